@@ -1,0 +1,88 @@
+# glint build. `make run` and `make test` are the two entry points (README.md).
+#
+# Variants build into their own folder: build/ (optimised) and build/asan/
+# (AddressSanitizer + UBSan, used by `make test`). Every .c under src/ goes
+# into libglint.a except src/app (the command line) and src/dist.
+
+BUILD    ?= build
+SAN      ?= 0
+CC       ?= cc
+PKGS     := yaml-0.1 stb
+
+CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+CFLAGS   := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswitch-enum -Werror=implicit-function-declaration -g -pthread
+ifeq ($(SAN),1)
+CFLAGS   += -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+LDFLAGS  += -fsanitize=address,undefined
+else
+CFLAGS   += -O2
+endif
+LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm -pthread
+
+LIB_SRC  := $(shell find src -name '*.c' -not -path 'src/app/*' -not -path 'src/dist/*' | sort)
+APP_SRC  := $(wildcard src/app/*.c)
+TEST_SRC := $(wildcard tests/test_*.c)
+GEN_SRC  := $(BUILD)/gen/assets.c
+LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/assets.o
+APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/obj/%.o)
+TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/obj/%.o)
+DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
+
+.PHONY: all deps run test check clean
+.DEFAULT_GOAL := all
+
+all: deps
+	@$(MAKE) --no-print-directory $(BUILD)/glint
+
+deps:
+	@scripts/install-deps build
+
+run: all
+	$(BUILD)/glint -o glint.png
+
+# The full suite: optimised build, then again under ASan + UBSan.
+test:
+	@scripts/install-deps test
+	@$(MAKE) --no-print-directory check
+	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 check
+
+check: $(BUILD)/glint $(BUILD)/tests
+	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+		$(BUILD)/tests --jobs 2
+
+$(BUILD)/libglint.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/libglint.a
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+
+$(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/gen/assets.o: $(GEN_SRC)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+# Built-in textures: made by tools/mktextures, embedded by tools/embed.
+$(BUILD)/tools/%: tools/%.c
+	@mkdir -p $(dir $@)
+	$(CC) -std=c11 -O2 -Wall -Wextra $(CPPFLAGS) -o $@ $< $(LDLIBS)
+
+$(BUILD)/gen/flag.png $(BUILD)/gen/globe.png &: $(BUILD)/tools/mktextures
+	@mkdir -p $(BUILD)/gen
+	$(BUILD)/tools/mktextures $(BUILD)/gen
+
+$(GEN_SRC): $(BUILD)/tools/embed $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png
+	$(BUILD)/tools/embed $@ flag.png=$(BUILD)/gen/flag.png globe.png=$(BUILD)/gen/globe.png
+
+clean:
+	rm -rf build glint.png
+
+-include $(DEPS)

@@ -1,0 +1,240 @@
+/* glint command line: the first client of the library (include/glint.h).
+ * The option set is a stable contract, documented in README.md. */
+#include <errno.h>
+#include <getopt.h>
+#include <limits.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "glint.h"
+#include "progress.h"
+
+static const char usage[] =
+    "usage: glint [options] [SCENE.yaml]\n"
+    "Renders SCENE.yaml, or with no scene the built-in nine-object scene.\n"
+    "\n"
+    "  -o, --output FILE      output image, .png (default glint.png) or .ppm\n"
+    "  -r, --resolution WxH   image size, overriding the scene's\n"
+    "  -s, --spp N            samples per pixel, a perfect square (4 = 2x2 grid)\n"
+    "  -d, --depth N          reflection/refraction recursion limit\n"
+    "  -t, --threads N        render threads (default: all cores)\n"
+    "      --transfer T       none (default) or srgb: how film values become pixels\n"
+    "      --stats            print rays, time and Mrays/s to stderr\n"
+    "  -q, --quiet            no progress bar\n"
+    "  -h, --help             show this help\n"
+    "  -V, --version          show the version\n"
+    "\n"
+    "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input.\n";
+
+enum { OPT_STATS = 256, OPT_TRANSFER };
+
+static const struct option long_options[] = {
+    {"output", required_argument, NULL, 'o'},
+    {"resolution", required_argument, NULL, 'r'},
+    {"spp", required_argument, NULL, 's'},
+    {"depth", required_argument, NULL, 'd'},
+    {"threads", required_argument, NULL, 't'},
+    {"transfer", required_argument, NULL, OPT_TRANSFER},
+    {"stats", no_argument, NULL, OPT_STATS},
+    {"quiet", no_argument, NULL, 'q'},
+    {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, 'V'},
+    {NULL, 0, NULL, 0},
+};
+
+struct cli {
+    const char *output;
+    const char *scene_path;
+    int width, height, samples, depth, threads; /* -1: not given */
+    int transfer;
+    bool stats, quiet;
+};
+
+static int usage_error(const char *fmt, const char *a, const char *b)
+{
+    fprintf(stderr, "glint: ");
+    fprintf(stderr, fmt, a, b);
+    fprintf(stderr, " (try 'glint --help')\n");
+    return 2;
+}
+
+/* Parses a whole decimal integer in [lo, hi]. */
+static bool parse_int(const char *s, int lo, int hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < lo || v > hi)
+        return false;
+    *out = (int)v;
+    return true;
+}
+
+static bool parse_resolution(const char *s, int *w, int *h)
+{
+    const char *x = strpbrk(s, "xX");
+    if (!x || x == s)
+        return false;
+    char buf[32];
+    size_t n = (size_t)(x - s);
+    if (n >= sizeof buf)
+        return false;
+    memcpy(buf, s, n);
+    buf[n] = '\0';
+    return parse_int(buf, 1, INT_MAX, w) && parse_int(x + 1, 1, INT_MAX, h);
+}
+
+/* Returns -1 to go on, else the exit code. */
+static int parse_args(int argc, char **argv, struct cli *c)
+{
+    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false};
+    opterr = 0;
+    int opt;
+    while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:qhV", long_options, NULL)) != -1) {
+        switch (opt) {
+        case 'o':
+            c->output = optarg;
+            break;
+        case 'r':
+            if (!parse_resolution(optarg, &c->width, &c->height))
+                return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'%s",
+                                   optarg, "");
+            break;
+        case 's':
+            if (!parse_int(optarg, 1, INT_MAX, &c->samples))
+                return usage_error("-s: expected a positive whole number, got '%s'%s", optarg, "");
+            break;
+        case 'd':
+            if (!parse_int(optarg, 0, INT_MAX, &c->depth))
+                return usage_error("-d: expected a whole number >= 0, got '%s'%s", optarg, "");
+            break;
+        case 't':
+            if (!parse_int(optarg, 1, INT_MAX, &c->threads))
+                return usage_error("-t: expected a positive whole number, got '%s'%s", optarg, "");
+            break;
+        case OPT_TRANSFER:
+            if (strcmp(optarg, "none") == 0)
+                c->transfer = GLINT_TRANSFER_NONE;
+            else if (strcmp(optarg, "srgb") == 0)
+                c->transfer = GLINT_TRANSFER_SRGB;
+            else
+                return usage_error("--transfer: expected none or srgb, got '%s'%s", optarg, "");
+            break;
+        case OPT_STATS:
+            c->stats = true;
+            break;
+        case 'q':
+            c->quiet = true;
+            break;
+        case 'h':
+            fputs(usage, stdout);
+            return 0;
+        case 'V':
+            printf("glint %s\n", GLINT_VERSION);
+            return 0;
+        case ':':
+            return usage_error("%s%s needs a value", optopt ? "-" : "",
+                               optopt ? (char[]){(char)optopt, 0} : argv[optind - 1]);
+        default:
+            if (optopt)
+                return usage_error("unknown option -%c%s", (char[]){(char)optopt, 0}, "");
+            return usage_error("unknown option %s%s", argv[optind - 1], "");
+        }
+    }
+    if (optind < argc)
+        c->scene_path = argv[optind++];
+    if (optind < argc)
+        return usage_error("more than one scene given ('%s' and '%s')", c->scene_path,
+                           argv[optind]);
+    return -1;
+}
+
+static void on_tile(void *user, const glint_film *film, int x0, int y0, int x1, int y1, int done,
+                    int total)
+{
+    (void)film, (void)x0, (void)y0, (void)x1, (void)y1;
+    progress_update(user, done, total);
+}
+
+int main(int argc, char **argv)
+{
+    struct cli c;
+    int code = parse_args(argc, argv, &c);
+    if (code >= 0)
+        return code;
+
+    glint_error err = {0};
+    glint_scene *scene = NULL;
+    glint_film film = {0};
+    glint_stats stats = {0};
+    glint_rc rc;
+
+    if (c.scene_path) {
+        fprintf(stderr, "glint: %s: scene files are not supported by this build\n", c.scene_path);
+        return 2;
+    }
+    rc = glint_scene_builtin(&scene, &err);
+    if (rc != GLINT_OK)
+        goto fail;
+
+    glint_settings s;
+    glint_scene_settings(scene, &s);
+    if (c.width > 0) {
+        s.width = c.width;
+        s.height = c.height;
+    }
+    if (c.samples > 0)
+        s.samples = c.samples;
+    if (c.depth >= 0)
+        s.max_depth = c.depth;
+    if (c.threads > 0)
+        s.threads = c.threads;
+    if (c.transfer >= 0)
+        s.transfer = (glint_transfer)c.transfer;
+    rc = glint_settings_check(&s, &err);
+    if (rc != GLINT_OK)
+        goto fail;
+
+    progress bar;
+    glint_callbacks cb = {0};
+    bool show = !c.quiet && isatty(STDERR_FILENO);
+    if (show) {
+        progress_begin(&bar, stderr);
+        cb.tile_done = on_tile;
+        cb.user = &bar;
+    }
+    rc = glint_render(scene, &s, &cb, &film, &stats, &err);
+    if (show)
+        progress_end(&bar);
+    if (rc != GLINT_OK)
+        goto fail;
+    rc = glint_film_write(&film, s.transfer, c.output, &err);
+    if (rc != GLINT_OK)
+        goto fail;
+
+    if (c.stats) {
+        uint64_t total = stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
+        int threads = s.threads > 0 ? s.threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+        fprintf(stderr,
+                "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
+                "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
+                "time:    %.3f s\n"
+                "speed:   %.2f Mrays/s\n",
+                s.width, s.height, s.samples, s.max_depth, threads, threads == 1 ? "" : "s",
+                (unsigned long long)total, (unsigned long long)stats.primary_rays,
+                (unsigned long long)stats.secondary_rays, (unsigned long long)stats.shadow_rays,
+                stats.seconds, stats.seconds > 0 ? (double)total / stats.seconds * 1e-6 : 0.0);
+    }
+    glint_film_free(&film);
+    glint_scene_free(scene);
+    return 0;
+
+fail:
+    fprintf(stderr, "glint: %s\n", err.msg);
+    glint_film_free(&film);
+    glint_scene_free(scene);
+    return glint_exit_code(rc);
+}

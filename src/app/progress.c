@@ -1,0 +1,43 @@
+#include "progress.h"
+
+#include <time.h>
+
+#define BAR_WIDTH 40
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+void progress_begin(progress *p, FILE *out)
+{
+    p->out = out;
+    p->last_percent = -1;
+    p->start = now();
+}
+
+void progress_update(progress *p, int done, int total)
+{
+    int percent = total > 0 ? (int)(100LL * done / total) : 100;
+    if (percent == p->last_percent)
+        return;
+    p->last_percent = percent;
+    int fill = percent * BAR_WIDTH / 100;
+    double elapsed = now() - p->start;
+    double eta = done > 0 ? elapsed * (total - done) / done : 0.0;
+    fprintf(p->out, "\r[");
+    for (int i = 0; i < BAR_WIDTH; i++)
+        fputc(i < fill ? '#' : '.', p->out);
+    fprintf(p->out, "] %3d%%  %.1fs elapsed, %.1fs left ", percent, elapsed, eta);
+    fflush(p->out);
+}
+
+void progress_end(progress *p)
+{
+    if (p->last_percent >= 0) {
+        fputc('\n', p->out);
+        fflush(p->out);
+    }
+}

@@ -1,0 +1,13 @@
+/* array: growth for the flat arrays that scenes own (objects, materials,
+ * textures...). Arrays are a pointer, a count and a capacity. */
+#ifndef GLINT_CORE_ARRAY_H
+#define GLINT_CORE_ARRAY_H
+
+#include <stddef.h>
+
+/* Makes room for one more element of size elem in *items (count *n, capacity
+ * *cap) and returns its index, or -1 when memory runs out (the array is left
+ * unchanged). The new element is zeroed. */
+int array_push(void **items, int *n, int *cap, size_t elem);
+
+#endif

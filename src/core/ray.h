@@ -1,0 +1,39 @@
+/* ray: origin, direction and the open parametric interval (tmin, tmax) in
+ * which hits count. Directions need not be unit length; t is measured in
+ * units of the direction, so transforming a ray keeps t meaningful.
+ *
+ * The offset rule (one for the whole renderer): a ray leaving a surface
+ * starts at the hit point pushed along the geometric normal, to the side the
+ * ray departs into, by ray_epsilon(p) — a distance relative to the point's
+ * magnitude so that float rounding in the hit point cannot put the origin
+ * back behind the surface. tmin is then 0. */
+#ifndef GLINT_CORE_RAY_H
+#define GLINT_CORE_RAY_H
+
+#include "vec3.h"
+
+typedef struct ray {
+    vec3 o, d;
+    float tmin, tmax;
+} ray;
+
+#define RAY_EPS_REL 1e-4f
+
+static inline vec3 ray_at(const ray *r, float t) { return v3_madd(r->o, r->d, t); }
+
+static inline float ray_epsilon(vec3 p) { return RAY_EPS_REL * (1.0f + v3_max_abs(p)); }
+
+/* Origin for a ray leaving point p (on a surface with geometric normal ng)
+ * in direction d. */
+static inline vec3 ray_offset(vec3 p, vec3 ng, vec3 d)
+{
+    float e = ray_epsilon(p);
+    return v3_madd(p, ng, v3_dot(ng, d) >= 0.0f ? e : -e);
+}
+
+static inline ray ray_make(vec3 o, vec3 d, float tmax)
+{
+    return (ray){o, d, 0.0f, tmax};
+}
+
+#endif

@@ -1,0 +1,25 @@
+/* Infinite plane (p - point) . normal = 0. */
+#include <math.h>
+#include "shape.h"
+
+bool plane_intersect(const struct plane *s, const ray *r, shape_hit *hit)
+{
+    float dn = v3_dot(r->d, s->normal);
+    if (dn == 0.0f)
+        return false; /* parallel: no hit, or the ray lies in the plane */
+    float t = v3_dot(v3_sub(s->point, r->o), s->normal) / dn;
+    if (!(t > r->tmin && t < r->tmax))
+        return false;
+    hit->t = t;
+    hit->part = 0;
+    return true;
+}
+
+void plane_surface(const struct plane *s, vec3 p, surface *out)
+{
+    vec3 d = v3_sub(p, s->point);
+    out->p = p;
+    out->n = s->normal;
+    out->u = v3_dot(d, s->tu);
+    out->v = v3_dot(d, s->tv);
+}

@@ -1,0 +1,79 @@
+/* scene: everything a render reads, in flat arrays owned here. Objects name
+ * their material, materials their texture, textures their image, all by
+ * index; an object's transform is an index into xforms or -1 for none.
+ *
+ * Invariants once scene_build has run: every index is in range, every
+ * transform is invertible, and bounds[] holds each object's world bounds. */
+#ifndef GLINT_SCENE_SCENE_H
+#define GLINT_SCENE_SCENE_H
+
+#include <stdbool.h>
+#include "glint.h"
+#include "core/mat4.h"
+#include "geom/shape.h"
+#include "io/image.h"
+#include "render/camera.h"
+#include "shade/light.h"
+#include "shade/material.h"
+#include "shade/texture.h"
+
+typedef struct object {
+    shape shape;
+    int material;
+    int xform; /* -1: the shape is in world space */
+} object;
+
+struct glint_scene {
+    object *objects;
+    int nobjects, cap_objects;
+    aabb *bounds; /* world bounds per object, by scene_build */
+    xform *xforms;
+    int nxforms, cap_xforms;
+    material *materials;
+    int nmaterials, cap_materials;
+    texture *textures;
+    int ntextures, cap_textures;
+    image *images;
+    int nimages, cap_images;
+    light *lights;
+    int nlights, cap_lights;
+
+    camera camera;
+    vec3 background;
+    vec3 ambient; /* ambient light, scaled by each material's ambient */
+    glint_settings settings;
+    bool built;
+    bool any_transmit; /* some material has transmit > 0 (by scene_build) */
+};
+
+typedef struct glint_scene scene;
+
+/* A scene with the default camera and settings and nothing in it. */
+scene *scene_new(void);
+void scene_free(scene *s);
+
+/* Each add returns the new element's index, or -1 when out of memory. */
+int scene_add_material(scene *s, const material *m);
+int scene_add_texture(scene *s, const texture *t);
+int scene_add_image(scene *s, image *img); /* takes ownership of img's pixels */
+int scene_add_light(scene *s, const light *l);
+int scene_add_xform(scene *s, const xform *x);
+int scene_add_object(scene *s, const shape *sh, int material, int xform);
+
+/* Checks indices and computes derived data; call after the last add. */
+glint_rc scene_build(scene *s, glint_error *err);
+
+typedef struct scene_hit {
+    shape_hit h;
+    int object;
+} scene_hit;
+
+/* Nearest hit along r within (tmin, tmax); tmax is not changed. */
+bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
+/* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
+bool scene_occluded_opaque(const scene *s, const ray *r);
+
+/* Surface at a hit, in world space, normal unit and outward. */
+void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
+
+#endif
