@@ -10,6 +10,11 @@ typedef struct vec3 {
     float x, y, z;
 } vec3;
 
+/* min and max as single instructions (fminf/fmaxf are library calls
+ * under strict IEEE rules); with a NaN argument they return b. */
+static inline float minf(float a, float b) { return a < b ? a : b; }
+static inline float maxf(float a, float b) { return a > b ? a : b; }
+
 static inline vec3 v3(float x, float y, float z) { return (vec3){x, y, z}; }
 static inline vec3 v3s(float s) { return (vec3){s, s, s}; }
 static inline vec3 v3_add(vec3 a, vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
@@ -36,14 +41,14 @@ static inline vec3 v3_norm(vec3 a)
 }
 static inline vec3 v3_min(vec3 a, vec3 b)
 {
-    return v3(fminf(a.x, b.x), fminf(a.y, b.y), fminf(a.z, b.z));
+    return v3(minf(a.x, b.x), minf(a.y, b.y), minf(a.z, b.z));
 }
 static inline vec3 v3_max(vec3 a, vec3 b)
 {
-    return v3(fmaxf(a.x, b.x), fmaxf(a.y, b.y), fmaxf(a.z, b.z));
+    return v3(maxf(a.x, b.x), maxf(a.y, b.y), maxf(a.z, b.z));
 }
-static inline float v3_max_comp(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
-static inline float v3_max_abs(vec3 a) { return fmaxf(fabsf(a.x), fmaxf(fabsf(a.y), fabsf(a.z))); }
+static inline float v3_max_comp(vec3 a) { return maxf(a.x, maxf(a.y, a.z)); }
+static inline float v3_max_abs(vec3 a) { return maxf(fabsf(a.x), maxf(fabsf(a.y), fabsf(a.z))); }
 static inline float v3_at(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 static inline vec3 v3_lerp(vec3 a, vec3 b, float t) { return v3_madd(v3_scale(a, 1.0f - t), b, t); }
 static inline bool v3_is_zero(vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }

@@ -51,7 +51,10 @@ static glint_rc build(scene *s, glint_error *err)
     s->settings.max_depth = 5;
     s->background = v3s(0.0f);
     s->ambient = v3s(0.2f);
-    light l = {LIGHT_POINT, v3(10, 40, -3), v3s(1.0f)};
+    /* Up and to the right, behind the camera's focus: every object's shadow,
+     * the transparent sphere's lighter red one above all, falls on open floor
+     * where the camera sees it. */
+    light l = {LIGHT_POINT, v3(40, 50, -45), v3s(1.0f)};
     if (scene_add_light(s, &l) < 0)
         return err_nomem(err);
 

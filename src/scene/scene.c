@@ -120,12 +120,27 @@ static inline ray object_ray(const scene *s, const object *o, const ray *r)
     return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax};
 }
 
+static inline vec3 inverse_dir(vec3 d)
+{
+    return v3(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+}
+
+/* Bounds of unbounded shapes (planes) are empty; those are always tested. */
+static inline bool may_hit(const scene *s, int i, const ray *r, vec3 inv_d)
+{
+    aabb b = s->bounds[i];
+    return aabb_is_empty(b) || aabb_hit(b, r->o, inv_d, r->tmin, r->tmax);
+}
+
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 {
     ray cur = *r;
     bool found = false;
+    vec3 inv_d = inverse_dir(r->d);
     for (int i = 0; i < s->nobjects; i++) {
         const object *o = &s->objects[i];
+        if (!may_hit(s, i, &cur, inv_d))
+            continue;
         ray lr = object_ray(s, o, &cur);
         if (shape_intersect(&o->shape, &lr, &hit->h)) {
             cur.tmax = hit->h.t;
@@ -138,9 +153,10 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 
 bool scene_occluded_opaque(const scene *s, const ray *r)
 {
+    vec3 inv_d = inverse_dir(r->d);
     for (int i = 0; i < s->nobjects; i++) {
         const object *o = &s->objects[i];
-        if (s->materials[o->material].transmit > 0.0f)
+        if (s->materials[o->material].transmit > 0.0f || !may_hit(s, i, r, inv_d))
             continue;
         ray lr = object_ray(s, o, r);
         if (shape_occluded(&o->shape, &lr))

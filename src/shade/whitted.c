@@ -70,7 +70,7 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
         }
     }
 
-    float w = fmaxf(0.0f, 1.0f - m->reflect - m->transmit);
+    float w = fmaxf(0.0f, 1.0f - m->transmit);
     vec3 diffuse_light = v3_scale(s->ambient, m->ambient);
     vec3 specular_light = v3s(0.0f);
     for (int i = 0; i < s->nlights; i++) {
