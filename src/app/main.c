@@ -2,6 +2,7 @@
  * The option set is a stable contract, documented in README.md. */
 #include <errno.h>
 #include <getopt.h>
+#include <stdarg.h>
 #include <limits.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -53,11 +54,14 @@ struct cli {
     bool stats, quiet;
 };
 
-static int usage_error(const char *fmt, const char *a, const char *b)
+__attribute__((format(printf, 1, 2))) static int usage_error(const char *fmt, ...)
 {
+    va_list ap;
+    va_start(ap, fmt);
     fprintf(stderr, "glint: ");
-    fprintf(stderr, fmt, a, b);
+    vfprintf(stderr, fmt, ap);
     fprintf(stderr, " (try 'glint --help')\n");
+    va_end(ap);
     return 2;
 }
 
@@ -100,20 +104,19 @@ static int parse_args(int argc, char **argv, struct cli *c)
             break;
         case 'r':
             if (!parse_resolution(optarg, &c->width, &c->height))
-                return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'%s",
-                                   optarg, "");
+                return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'", optarg);
             break;
         case 's':
             if (!parse_int(optarg, 1, INT_MAX, &c->samples))
-                return usage_error("-s: expected a positive whole number, got '%s'%s", optarg, "");
+                return usage_error("-s: expected a positive whole number, got '%s'", optarg);
             break;
         case 'd':
             if (!parse_int(optarg, 0, INT_MAX, &c->depth))
-                return usage_error("-d: expected a whole number >= 0, got '%s'%s", optarg, "");
+                return usage_error("-d: expected a whole number >= 0, got '%s'", optarg);
             break;
         case 't':
             if (!parse_int(optarg, 1, INT_MAX, &c->threads))
-                return usage_error("-t: expected a positive whole number, got '%s'%s", optarg, "");
+                return usage_error("-t: expected a positive whole number, got '%s'", optarg);
             break;
         case OPT_TRANSFER:
             if (strcmp(optarg, "none") == 0)
@@ -121,7 +124,7 @@ static int parse_args(int argc, char **argv, struct cli *c)
             else if (strcmp(optarg, "srgb") == 0)
                 c->transfer = GLINT_TRANSFER_SRGB;
             else
-                return usage_error("--transfer: expected none or srgb, got '%s'%s", optarg, "");
+                return usage_error("--transfer: expected none or srgb, got '%s'", optarg);
             break;
         case OPT_STATS:
             c->stats = true;
@@ -136,12 +139,13 @@ static int parse_args(int argc, char **argv, struct cli *c)
             printf("glint %s\n", GLINT_VERSION);
             return 0;
         case ':':
-            return usage_error("%s%s needs a value", optopt ? "-" : "",
-                               optopt ? (char[]){(char)optopt, 0} : argv[optind - 1]);
+            if (optopt)
+                return usage_error("-%c needs a value", optopt);
+            return usage_error("%s needs a value", argv[optind - 1]);
         default:
             if (optopt)
-                return usage_error("unknown option -%c%s", (char[]){(char)optopt, 0}, "");
-            return usage_error("unknown option %s%s", argv[optind - 1], "");
+                return usage_error("unknown option -%c", optopt);
+            return usage_error("unknown option %s", argv[optind - 1]);
         }
     }
     if (optind < argc)

@@ -27,6 +27,8 @@ void scene_free(scene *s)
         image_free(&s->images[i]);
     free(s->objects);
     free(s->bounds);
+    bvh_free(&s->bvh);
+    free(s->unbounded);
     free(s->xforms);
     free(s->materials);
     free(s->textures);
@@ -81,6 +83,44 @@ static aabb xform_bounds(const xform *x, aabb b)
     return r;
 }
 
+/* The BVH over bounded objects; unbounded ones are listed apart. */
+static glint_rc build_accel(scene *s, glint_error *err)
+{
+    bvh_free(&s->bvh);
+    free(s->unbounded);
+    s->unbounded = NULL;
+    s->nunbounded = 0;
+    size_t n = (size_t)(s->nobjects ? s->nobjects : 1);
+    int32_t *bounded = malloc(sizeof *bounded * n);
+    aabb *boxes = malloc(sizeof *boxes * n);
+    s->unbounded = malloc(sizeof *s->unbounded * n);
+    glint_rc rc = GLINT_OK;
+    if (!bounded || !boxes || !s->unbounded) {
+        rc = err_nomem(err);
+        goto out;
+    }
+    int nb = 0;
+    for (int i = 0; i < s->nobjects; i++) {
+        if (aabb_is_empty(s->bounds[i]) || !v3_is_finite(s->bounds[i].lo) ||
+            !v3_is_finite(s->bounds[i].hi)) {
+            s->unbounded[s->nunbounded++] = i;
+        } else {
+            boxes[nb] = s->bounds[i];
+            bounded[nb++] = i;
+        }
+    }
+    rc = bvh_build(&s->bvh, boxes, nb, err);
+    if (rc != GLINT_OK)
+        goto out;
+    /* Leaves refer to objects directly. */
+    for (int i = 0; i < s->bvh.nprims; i++)
+        s->bvh.prims[i] = bounded[s->bvh.prims[i]];
+out:
+    free(bounded);
+    free(boxes);
+    return rc;
+}
+
 glint_rc scene_build(scene *s, glint_error *err)
 {
     for (int i = 0; i < s->ntextures; i++)
@@ -103,6 +143,9 @@ glint_rc scene_build(scene *s, glint_error *err)
         aabb b = shape_bounds(&o->shape);
         s->bounds[i] = o->xform >= 0 ? xform_bounds(&s->xforms[o->xform], b) : b;
     }
+    glint_rc rc = build_accel(s, err);
+    if (rc != GLINT_OK)
+        return rc;
     s->any_transmit = false;
     for (int i = 0; i < s->nmaterials; i++)
         s->any_transmit = s->any_transmit || s->materials[i].transmit > 0.0f;
@@ -125,44 +168,90 @@ static inline vec3 inverse_dir(vec3 d)
     return v3(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
 }
 
-/* Bounds of unbounded shapes (planes) are empty; those are always tested. */
-static inline bool may_hit(const scene *s, int i, const ray *r, vec3 inv_d)
+static inline bool intersect_object(const scene *s, int i, ray *cur, scene_hit *hit)
 {
-    aabb b = s->bounds[i];
-    return aabb_is_empty(b) || aabb_hit(b, r->o, inv_d, r->tmin, r->tmax);
+    const object *o = &s->objects[i];
+    ray lr = object_ray(s, o, cur);
+    if (!shape_intersect(&o->shape, &lr, &hit->h))
+        return false;
+    cur->tmax = hit->h.t;
+    hit->object = i;
+    return true;
 }
 
+/* Ordered traversal with an explicit stack: the child on the near side of
+ * the split axis first, so hits found early shorten the ray for the rest
+ * (pbrt-v3, section 4.4.3). */
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 {
     ray cur = *r;
     bool found = false;
+    for (int i = 0; i < s->nunbounded; i++)
+        found |= intersect_object(s, s->unbounded[i], &cur, hit);
+    if (s->bvh.nnodes == 0)
+        return found;
     vec3 inv_d = inverse_dir(r->d);
-    for (int i = 0; i < s->nobjects; i++) {
-        const object *o = &s->objects[i];
-        if (!may_hit(s, i, &cur, inv_d))
-            continue;
-        ray lr = object_ray(s, o, &cur);
-        if (shape_intersect(&o->shape, &lr, &hit->h)) {
-            cur.tmax = hit->h.t;
-            hit->object = i;
-            found = true;
+    bool neg[3] = {inv_d.x < 0.0f, inv_d.y < 0.0f, inv_d.z < 0.0f};
+    int stack[BVH_MAX_DEPTH];
+    int sp = 0, node = 0;
+    for (;;) {
+        const bvh_node *nd = &s->bvh.nodes[node];
+        if (aabb_hit(nd->box, cur.o, inv_d, cur.tmin, cur.tmax)) {
+            if (nd->count) {
+                for (int i = 0; i < nd->count; i++)
+                    found |= intersect_object(s, s->bvh.prims[nd->index + i], &cur, hit);
+            } else if (neg[nd->axis]) {
+                stack[sp++] = node + 1;
+                node = nd->index;
+                continue;
+            } else {
+                stack[sp++] = nd->index;
+                node = node + 1;
+                continue;
+            }
         }
+        if (sp == 0)
+            break;
+        node = stack[--sp];
     }
     return found;
 }
 
+static inline bool occludes(const scene *s, int i, const ray *r)
+{
+    const object *o = &s->objects[i];
+    if (s->materials[o->material].transmit > 0.0f)
+        return false;
+    ray lr = object_ray(s, o, r);
+    return shape_occluded(&o->shape, &lr);
+}
+
 bool scene_occluded_opaque(const scene *s, const ray *r)
 {
-    vec3 inv_d = inverse_dir(r->d);
-    for (int i = 0; i < s->nobjects; i++) {
-        const object *o = &s->objects[i];
-        if (s->materials[o->material].transmit > 0.0f || !may_hit(s, i, r, inv_d))
-            continue;
-        ray lr = object_ray(s, o, r);
-        if (shape_occluded(&o->shape, &lr))
+    for (int i = 0; i < s->nunbounded; i++)
+        if (occludes(s, s->unbounded[i], r))
             return true;
+    if (s->bvh.nnodes == 0)
+        return false;
+    vec3 inv_d = inverse_dir(r->d);
+    int stack[BVH_MAX_DEPTH];
+    int sp = 0, node = 0;
+    for (;;) {
+        const bvh_node *nd = &s->bvh.nodes[node];
+        if (aabb_hit(nd->box, r->o, inv_d, r->tmin, r->tmax)) {
+            if (nd->count == 0) {
+                stack[sp++] = nd->index;
+                node = node + 1;
+                continue;
+            }
+            for (int i = 0; i < nd->count; i++)
+                if (occludes(s, s->bvh.prims[nd->index + i], r))
+                    return true;
+        }
+        if (sp == 0)
+            return false;
+        node = stack[--sp];
     }
-    return false;
 }
 
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)

@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 #include "glint.h"
+#include "accel/bvh.h"
 #include "core/mat4.h"
 #include "geom/shape.h"
 #include "io/image.h"
@@ -42,6 +43,9 @@ struct glint_scene {
     vec3 background;
     vec3 ambient; /* ambient light, scaled by each material's ambient */
     glint_settings settings;
+    bvh bvh;         /* over the objects with finite bounds, by scene_build */
+    int32_t *unbounded; /* the others (planes), tested by every ray */
+    int nunbounded;
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
 };

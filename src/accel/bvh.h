@@ -1,0 +1,42 @@
+/* bvh: a bounding volume hierarchy over primitives known only by their
+ * boxes. Nodes live in one flat array in depth-first order: an interior
+ * node's first child follows it directly and `index` names the second; a
+ * leaf's primitives are prims[index .. index + count). (pbrt-v3, section
+ * 4.3.4, "Compact BVH for Traversal".)
+ *
+ * The build is the binned surface-area-heuristic build of Wald, "On fast
+ * Construction of SAH-based Bounding Volume Hierarchies" (IEEE RT 2007).
+ * Traversal lives with the primitives it tests (scene.c for objects), using
+ * bvh_node_hit and the stack depth bound below. */
+#ifndef GLINT_ACCEL_BVH_H
+#define GLINT_ACCEL_BVH_H
+
+#include <stdint.h>
+#include "glint.h"
+#include "core/aabb.h"
+
+/* No path from the root is longer than this, so traversal stacks of this
+ * size never overflow. */
+#define BVH_MAX_DEPTH 64
+
+typedef struct bvh_node {
+    aabb box;
+    int32_t index;  /* leaf: first primitive; interior: second child */
+    uint16_t count; /* primitives in a leaf; 0 for an interior node */
+    uint8_t axis;   /* interior: the split axis, for front-to-back order */
+    uint8_t pad;
+} bvh_node;
+
+typedef struct bvh {
+    bvh_node *nodes;
+    int nnodes;
+    int32_t *prims; /* primitive indices, in leaf order */
+    int nprims;
+} bvh;
+
+/* Builds over n primitives with the given boxes (none may be empty). An
+ * n of 0 gives an empty hierarchy (nnodes 0). */
+glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err);
+void bvh_free(bvh *b);
+
+#endif

@@ -1,0 +1,153 @@
+/* The command line as a user meets it: options, messages, exit codes and
+ * output files. Runs the binary named by GLINT_BIN (set by `make check`). */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "io/image.h"
+
+static char tmpdir[64];
+
+static void make_tmpdir(void)
+{
+    strcpy(tmpdir, "/tmp/glint-cli-XXXXXX");
+    cr_assert_not_null(mkdtemp(tmpdir));
+}
+
+static void remove_tmpdir(void)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    cr_assert_eq(system(cmd), 0);
+}
+
+/* Runs glint with args (a shell fragment) in tmpdir; returns the exit code
+ * and fills out with stdout+stderr. */
+static int run(const char *args, char *out, size_t outlen)
+{
+    const char *bin = getenv("GLINT_BIN");
+    cr_assert_not_null(bin, "GLINT_BIN must name the glint binary");
+    char cmd[1024];
+    char abs[512];
+    if (bin[0] == '/')
+        snprintf(abs, sizeof abs, "%s", bin);
+    else
+        snprintf(abs, sizeof abs, "%s/%s", GLINT_SOURCE_DIR, bin);
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s 2>&1", tmpdir, abs, args);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    size_t n = fread(out, 1, outlen - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    cr_assert(WIFEXITED(status), "glint did not exit normally: %s", out);
+    return WEXITSTATUS(status);
+}
+
+static bool exists(const char *name)
+{
+    char path[256];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    return stat(path, &st) == 0;
+}
+
+TestSuite(cli, .init = make_tmpdir, .fini = remove_tmpdir);
+
+Test(cli, help_and_version)
+{
+    char out[4096];
+    cr_expect_eq(run("--help", out, sizeof out), 0);
+    cr_expect(strstr(out, "usage: glint [options] [SCENE.yaml]"), "%s", out);
+    cr_expect(strstr(out, "--resolution WxH"));
+    cr_expect_eq(run("-V", out, sizeof out), 0);
+    cr_expect_str_eq(out, "glint " GLINT_VERSION "\n");
+}
+
+Test(cli, default_render_writes_glint_png)
+{
+    char out[4096];
+    cr_assert_eq(run("-q -r 40x30", out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "", "quiet and successful means silent");
+    char path[256];
+    snprintf(path, sizeof path, "%s/glint.png", tmpdir);
+    image img;
+    glint_error err = {0};
+    cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+    cr_expect_eq(img.width, 40);
+    cr_expect_eq(img.height, 30);
+    image_free(&img);
+}
+
+Test(cli, ppm_output_and_stats)
+{
+    char out[4096];
+    cr_assert_eq(run("-q -r 20x20 -s 1 -t 2 --stats -o out.ppm", out, sizeof out), 0, "%s", out);
+    cr_expect(strstr(out, "rays:    "), "%s", out);
+    cr_expect(strstr(out, "(400 primary"), "%s", out);
+    cr_expect(strstr(out, "Mrays/s"), "%s", out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/out.ppm", tmpdir);
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f);
+    char head[16] = {0};
+    cr_expect_eq(fread(head, 1, 11, f), 11u);
+    cr_expect_str_eq(head, "P6\n20 20\n25");
+    fclose(f);
+}
+
+struct bad_case {
+    const char *args;
+    const char *message;
+};
+
+Test(cli, bad_options_exit_2_with_one_line)
+{
+    static const struct bad_case cases[] = {
+        {"--bogus", "glint: unknown option --bogus (try 'glint --help')\n"},
+        {"-x", "glint: unknown option -x (try 'glint --help')\n"},
+        {"-r", "glint: -r needs a value (try 'glint --help')\n"},
+        {"-r 100", "glint: -r: expected WIDTHxHEIGHT such as 800x600, got '100' (try 'glint --help')\n"},
+        {"-r 0x10", "glint: -r: expected WIDTHxHEIGHT such as 800x600, got '0x10' (try 'glint --help')\n"},
+        {"-s two", "glint: -s: expected a positive whole number, got 'two' (try 'glint --help')\n"},
+        {"-t -1", "glint: -t: expected a positive whole number, got '-1' (try 'glint --help')\n"},
+        {"--transfer gamma", "glint: --transfer: expected none or srgb, got 'gamma' (try 'glint --help')\n"},
+        {"-s 8", "glint: samples per pixel must be a perfect square (1, 4, 9, 16, ...) for the regular grid (got 8)\n"},
+        {"-r 40000x10", "glint: resolution 40000x10 is out of range (1 to 32768 per side)\n"},
+        {"a.yaml b.yaml", "glint: more than one scene given ('a.yaml' and 'b.yaml') (try 'glint --help')\n"},
+        {"-q -r 8x8 -o out.gif", "glint: out.gif: unknown output format '.gif' (use .png or .ppm)\n"},
+    };
+    char out[4096];
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        cr_expect_eq(run(cases[i].args, out, sizeof out), 2, "glint %s", cases[i].args);
+        cr_expect_str_eq(out, cases[i].message, "glint %s", cases[i].args);
+    }
+    cr_expect(!exists("glint.png") && !exists("out.gif"), "bad input writes no image");
+}
+
+Test(cli, unwritable_output_exits_1_and_leaves_nothing)
+{
+    char out[4096];
+    cr_expect_eq(run("-q -r 8x8 -o missing-dir/x.png", out, sizeof out), 1);
+    cr_expect(strstr(out, "glint: missing-dir/x.png: cannot write: No such file or directory"), "%s", out);
+    cr_expect(!exists("missing-dir"));
+}
+
+Test(cli, existing_output_is_replaced_whole)
+{
+    char out[4096];
+    cr_assert_eq(run("-q -r 8x8 -o same.png", out, sizeof out), 0, "%s", out);
+    cr_assert_eq(run("-q -r 16x8 -o same.png", out, sizeof out), 0, "%s", out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/same.png", tmpdir);
+    image img;
+    glint_error err = {0};
+    cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+    cr_expect_eq(img.width, 16);
+    image_free(&img);
+    cr_expect_eq(run("-q -r 8x8 -o same.png && ls", out, sizeof out), 0);
+    cr_expect_str_eq(out, "same.png\n", "no temporary files are left behind");
+}

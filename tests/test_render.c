@@ -1,0 +1,206 @@
+/* Whole renders of the built-in scene: a golden image with a stated
+ * tolerance, bit-identical output run to run and for any thread count, and
+ * the settings checks. Set GLINT_UPDATE_GOLDEN=1 to rewrite the reference
+ * (then look at it before committing). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "glint.h"
+#include "io/image.h"
+
+#define GOLDEN GLINT_SOURCE_DIR "/tests/golden/builtin-100.png"
+
+/* Tolerance against the reference, in 8-bit levels: the mean absolute error
+ * over all channels, and the largest single error. Differences come only
+ * from compilers and optimisation levels rounding floats differently. */
+#define GOLDEN_MEAN_TOLERANCE 0.5
+#define GOLDEN_MAX_TOLERANCE 32
+
+static glint_scene *builtin(void)
+{
+    glint_scene *s = NULL;
+    glint_error err = {0};
+    cr_assert_eq(glint_scene_builtin(&s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+static glint_film render(glint_scene *s, int w, int h, int samples, int threads)
+{
+    glint_settings st;
+    glint_scene_settings(s, &st);
+    st.width = w;
+    st.height = h;
+    st.samples = samples;
+    st.threads = threads;
+    glint_film film = {0};
+    glint_error err = {0};
+    cr_assert_eq(glint_render(s, &st, NULL, &film, NULL, &err), GLINT_OK, "%s", err.msg);
+    return film;
+}
+
+Test(render, builtin_matches_golden_image)
+{
+    glint_scene *s = builtin();
+    glint_film film = render(s, 100, 100, 4, 0);
+    size_t n = 100 * 100 * 3;
+    uint8_t *px = malloc(n);
+    image_quantize(film.rgb, n, GLINT_TRANSFER_NONE, px);
+    if (getenv("GLINT_UPDATE_GOLDEN")) {
+        glint_error err = {0};
+        cr_assert_eq(image_write(GOLDEN, 100, 100, px, &err), GLINT_OK, "%s", err.msg);
+    }
+    image ref;
+    glint_error err = {0};
+    cr_assert_eq(image_load(GOLDEN, &ref, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(ref.width, 100);
+    cr_assert_eq(ref.height, 100);
+    double sum = 0.0;
+    int worst = 0;
+    for (size_t i = 0; i < n; i++) {
+        int d = abs((int)px[i] - (int)ref.rgb[i]);
+        sum += d;
+        if (d > worst)
+            worst = d;
+    }
+    double mean = sum / (double)n;
+    cr_expect_leq(mean, GOLDEN_MEAN_TOLERANCE, "mean error %.3f levels", mean);
+    cr_expect_leq(worst, GOLDEN_MAX_TOLERANCE, "max error %d levels", worst);
+    image_free(&ref);
+    free(px);
+    glint_film_free(&film);
+    glint_scene_free(s);
+}
+
+Test(render, builtin_is_not_blank)
+{
+    /* Guards the golden test against a reference that is itself broken:
+     * the scene has bright, dark and coloured areas. */
+    glint_scene *s = builtin();
+    glint_film film = render(s, 64, 64, 1, 0);
+    float lo = INFINITY, hi = -INFINITY, chroma = 0.0f;
+    for (int i = 0; i < 64 * 64; i++) {
+        const float *p = film.rgb + i * 3;
+        float mx = fmaxf(p[0], fmaxf(p[1], p[2])), mn = fminf(p[0], fminf(p[1], p[2]));
+        lo = fminf(lo, mn);
+        hi = fmaxf(hi, mx);
+        chroma = fmaxf(chroma, mx - mn);
+    }
+    cr_expect_eq(lo, 0.0f, "the background is black");
+    cr_expect_gt(hi, 0.9f);
+    cr_expect_gt(chroma, 0.5f);
+    glint_film_free(&film);
+    glint_scene_free(s);
+}
+
+Test(render, same_render_is_bit_identical)
+{
+    glint_scene *s = builtin();
+    glint_film a = render(s, 120, 80, 4, 0);
+    glint_film b = render(s, 120, 80, 4, 0);
+    cr_assert_eq(memcmp(a.rgb, b.rgb, sizeof(float) * 120 * 80 * 3), 0);
+    glint_film_free(&a);
+    glint_film_free(&b);
+    glint_scene_free(s);
+}
+
+Test(render, thread_count_does_not_change_pixels)
+{
+    glint_scene *s = builtin();
+    glint_film ref = render(s, 97, 61, 4, 1);
+    int counts[] = {2, 3, 8};
+    for (size_t i = 0; i < sizeof counts / sizeof *counts; i++) {
+        glint_film f = render(s, 97, 61, 4, counts[i]);
+        cr_expect_eq(memcmp(ref.rgb, f.rgb, sizeof(float) * 97 * 61 * 3), 0, "%d threads",
+                     counts[i]);
+        glint_film_free(&f);
+    }
+    glint_film_free(&ref);
+    glint_scene_free(s);
+}
+
+Test(render, one_sample_grid_hits_pixel_centres_and_2x2_the_quarter_points)
+{
+    /* The 2x2 grid samples each pixel at its quarter points, which are the
+     * centres of the pixels of an image twice the size: so a 2x2 render
+     * equals a 1-sample render at double size, box-filtered. */
+    glint_scene *s = builtin();
+    glint_film big = render(s, 64, 64, 1, 0);
+    glint_film aa = render(s, 32, 32, 4, 0);
+    double sum_d = 0.0;
+    int off = 0;
+    for (int y = 0; y < 32; y++)
+        for (int x = 0; x < 32; x++)
+            for (int c = 0; c < 3; c++) {
+                float sum = 0.0f;
+                for (int dy = 0; dy < 2; dy++)
+                    for (int dx = 0; dx < 2; dx++)
+                        sum += big.rgb[((2 * y + dy) * 64 + 2 * x + dx) * 3 + c];
+                double d = fabs(sum / 4.0 - aa.rgb[(y * 32 + x) * 3 + c]);
+                sum_d += d;
+                off += d > 1e-3;
+            }
+    /* The two grids meet the same points up to float rounding of the
+     * camera's pixel steps, which can flip a ray that grazes an edge. */
+    cr_expect_lt(sum_d / (32 * 32 * 3), 1e-3, "mean difference %g", sum_d / (32 * 32 * 3));
+    cr_expect_lt(off, 32 * 32 * 3 / 100, "%d channels differ", off);
+    glint_film_free(&big);
+    glint_film_free(&aa);
+    glint_scene_free(s);
+}
+
+static void expect_bad(glint_settings st, const char *needle)
+{
+    glint_error err = {0};
+    cr_expect_eq(glint_settings_check(&st, &err), GLINT_ERR_INPUT);
+    cr_expect(strstr(err.msg, needle) != NULL, "message '%s' lacks '%s'", err.msg, needle);
+}
+
+Test(render, settings_are_checked)
+{
+    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_error err = {0};
+    cr_expect_eq(glint_settings_check(&ok, &err), GLINT_OK);
+    glint_settings s = ok;
+    s.width = 0;
+    expect_bad(s, "resolution 0x500 is out of range");
+    s = ok;
+    s.width = 20000;
+    s.height = 20000;
+    expect_bad(s, "pixel limit");
+    s = ok;
+    s.samples = 8;
+    expect_bad(s, "perfect square");
+    s = ok;
+    s.samples = 0;
+    expect_bad(s, "samples per pixel must be 1 to");
+    s = ok;
+    s.max_depth = -1;
+    expect_bad(s, "recursion depth");
+    s = ok;
+    s.threads = -2;
+    expect_bad(s, "threads");
+}
+
+static void cancel_on_first_tile(void *user, const glint_film *f, int x0, int y0, int x1, int y1,
+                                 int done, int total)
+{
+    (void)f, (void)x0, (void)y0, (void)x1, (void)y1, (void)done, (void)total;
+    *(volatile int *)user = 1;
+}
+
+Test(render, cancel_stops_the_render)
+{
+    glint_scene *s = builtin();
+    glint_settings st;
+    glint_scene_settings(s, &st);
+    st.threads = 1;
+    volatile int flag = 0;
+    glint_callbacks cb = {cancel_on_first_tile, (void *)&flag, &flag};
+    glint_film film = {0};
+    glint_error err = {0};
+    cr_expect_eq(glint_render(s, &st, &cb, &film, NULL, &err), GLINT_ERR_CANCELLED);
+    cr_expect_null(film.rgb, "a cancelled render leaves no film");
+    glint_scene_free(s);
+}
