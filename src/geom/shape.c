@@ -1,5 +1,7 @@
 #include "shape.h"
 
+#include "mesh.h"
+
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit)
 {
     switch (s->kind) {
@@ -15,17 +17,30 @@ bool shape_intersect(const shape *s, const ray *r, shape_hit *hit)
         return cylinder_intersect(&s->cylinder, r, hit);
     case SHAPE_TRIANGLE:
         return triangle_intersect(&s->triangle, r, hit);
+    case SHAPE_MESH:
+        return mesh_intersect(s->mesh, r, hit);
     }
     return false;
 }
 
-/* All shapes find their nearest hit without computing normals, so the
- * occlusion query costs the same as intersect; it is its own entry point so
- * that shapes with a cheaper any-hit test can add one here. */
+/* Analytic shapes find their nearest hit without computing normals, so
+ * for them the occlusion query costs the same as intersect; meshes stop at
+ * the first triangle found. */
 bool shape_occluded(const shape *s, const ray *r)
 {
     shape_hit h;
-    return shape_intersect(s, r, &h);
+    switch (s->kind) {
+    case SHAPE_SPHERE:
+    case SHAPE_PLANE:
+    case SHAPE_QUAD:
+    case SHAPE_BOX:
+    case SHAPE_CYLINDER:
+    case SHAPE_TRIANGLE:
+        return shape_intersect(s, r, &h);
+    case SHAPE_MESH:
+        return mesh_occluded(s->mesh, r);
+    }
+    return false;
 }
 
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out)
@@ -34,23 +49,27 @@ void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *
     switch (s->kind) {
     case SHAPE_SPHERE:
         sphere_surface(&s->sphere, p, out);
-        return;
+        break;
     case SHAPE_PLANE:
         plane_surface(&s->plane, p, out);
-        return;
+        break;
     case SHAPE_QUAD:
         quad_surface(&s->quad, p, hit, out);
-        return;
+        break;
     case SHAPE_BOX:
         box_surface(&s->box, p, hit, out);
-        return;
+        break;
     case SHAPE_CYLINDER:
         cylinder_surface(&s->cylinder, p, hit, out);
-        return;
+        break;
     case SHAPE_TRIANGLE:
         triangle_surface(&s->triangle, p, hit, out);
+        break;
+    case SHAPE_MESH:
+        mesh_surface(s->mesh, p, hit, out);
         return;
     }
+    out->ng = out->n;
 }
 
 aabb shape_bounds(const shape *s)
@@ -79,6 +98,8 @@ aabb shape_bounds(const shape *s)
     }
     case SHAPE_TRIANGLE:
         return aabb_grow(aabb_grow(aabb_point(s->triangle.p0), s->triangle.p1), s->triangle.p2);
+    case SHAPE_MESH:
+        return s->mesh->bounds;
     }
     return aabb_empty();
 }
@@ -94,6 +115,8 @@ bool shape_is_convex(const shape *s)
         return true;
     case SHAPE_CYLINDER:
         return s->cylinder.capped;
+    case SHAPE_MESH:
+        return false;
     }
     return false;
 }
@@ -126,6 +149,11 @@ shape shape_box(vec3 lo, vec3 hi)
 shape shape_cylinder(vec3 base, float radius, float height, bool capped)
 {
     return (shape){.kind = SHAPE_CYLINDER, .cylinder = {base, radius, height, capped}};
+}
+
+shape shape_mesh(const struct mesh *m)
+{
+    return (shape){.kind = SHAPE_MESH, .mesh = m};
 }
 
 shape shape_triangle(vec3 p0, vec3 p1, vec3 p2)

@@ -23,7 +23,10 @@ typedef enum shape_kind {
     SHAPE_BOX,
     SHAPE_CYLINDER,
     SHAPE_TRIANGLE,
+    SHAPE_MESH,
 } shape_kind;
+
+struct mesh;
 
 struct sphere {
     vec3 center;
@@ -71,19 +74,23 @@ typedef struct shape {
         struct box box;
         struct cylinder cylinder;
         struct triangle triangle;
+        const struct mesh *mesh; /* owned by the scene */
     };
 } shape;
 
 /* What intersect leaves for surface: t, and shape-specific detail. */
 typedef struct shape_hit {
     float t;
-    int part;     /* box face 0..5 (axis*2 + max side), cylinder 0 side 1 bottom 2 top */
+    int part;     /* box face 0..5 (axis*2 + max side), cylinder 0 side 1 bottom 2 top,
+                     mesh triangle */
     float b1, b2; /* triangle barycentrics, quad (u, v) */
 } shape_hit;
 
 typedef struct surface {
     vec3 p;   /* hit point in the shape's space */
-    vec3 n;   /* unit outward normal in the shape's space */
+    vec3 n;   /* unit outward shading normal in the shape's space */
+    vec3 ng;  /* unit outward geometric normal: differs from n only on meshes
+                 with vertex normals; new rays are offset along it */
     float u, v;
 } surface;
 
@@ -94,6 +101,7 @@ shape shape_quad(vec3 origin, vec3 edge_u, vec3 edge_v);
 shape shape_box(vec3 lo, vec3 hi);
 shape shape_cylinder(vec3 base, float radius, float height, bool capped);
 shape shape_triangle(vec3 p0, vec3 p1, vec3 p2);
+shape shape_mesh(const struct mesh *m);
 
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);

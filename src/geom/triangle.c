@@ -1,26 +1,13 @@
-/* Triangle by Moller and Trumbore, "Fast, Minimum Storage Ray/Triangle
- * Intersection" (JGT 1997). Rays in the triangle's plane miss. */
-#include <math.h>
+/* A single triangle, by the watertight test (watertight.h). Rays in the
+ * triangle's plane miss. */
 #include "shape.h"
+#include "watertight.h"
 
 bool triangle_intersect(const struct triangle *s, const ray *r, shape_hit *hit)
 {
-    vec3 e1 = v3_sub(s->p1, s->p0), e2 = v3_sub(s->p2, s->p0);
-    vec3 pv = v3_cross(r->d, e2);
-    float det = v3_dot(e1, pv);
-    if (det == 0.0f)
-        return false;
-    float inv = 1.0f / det;
-    vec3 tv = v3_sub(r->o, s->p0);
-    float b1 = v3_dot(tv, pv) * inv;
-    if (!(b1 >= 0.0f && b1 <= 1.0f))
-        return false;
-    vec3 qv = v3_cross(tv, e1);
-    float b2 = v3_dot(r->d, qv) * inv;
-    if (!(b2 >= 0.0f && b1 + b2 <= 1.0f))
-        return false;
-    float t = v3_dot(e2, qv) * inv;
-    if (!(t > r->tmin && t < r->tmax))
+    tri_ray tr = tri_ray_make(r);
+    float t, b1, b2;
+    if (!tri_intersect(&tr, s->p0, s->p1, s->p2, r->tmin, r->tmax, &t, &b1, &b2))
         return false;
     hit->t = t;
     hit->part = 0;

@@ -34,6 +34,11 @@ void scene_free(scene *s)
     free(s->textures);
     free(s->images);
     free(s->lights);
+    for (int i = 0; i < s->nmeshes; i++) {
+        mesh_free(s->meshes[i]);
+        free(s->meshes[i]);
+    }
+    free(s->meshes);
     free(s);
 }
 
@@ -66,9 +71,14 @@ int scene_add_image(scene *s, image *img)
 
 int scene_add_object(scene *s, const shape *sh, int mat, int xf)
 {
-    object o = {*sh, mat, xf};
+    object o = {*sh, mat, xf, false};
     s->built = false;
     PUSH(s->objects, s->nobjects, s->cap_objects, o);
+}
+
+int scene_add_mesh(scene *s, mesh *m)
+{
+    PUSH(s->meshes, s->nmeshes, s->cap_meshes, m);
 }
 
 static aabb xform_bounds(const xform *x, aabb b)
@@ -135,9 +145,21 @@ glint_rc scene_build(scene *s, glint_error *err)
     if (!s->bounds)
         return err_nomem(err);
     for (int i = 0; i < s->nobjects; i++) {
-        const object *o = &s->objects[i];
-        if (o->material < 0 || o->material >= s->nmaterials)
+        object *o = &s->objects[i];
+        const mesh *m = o->shape.kind == SHAPE_MESH ? o->shape.mesh : NULL;
+        if (o->material >= s->nmaterials || (o->material < 0 && !(m && m->tri_material)))
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
+        if (o->material >= 0) {
+            o->transmits = s->materials[o->material].transmit > 0.0f;
+        } else {
+            o->transmits = false;
+            for (int t = 0; t < m->ntris; t++) {
+                int32_t tm = m->tri_material[t];
+                if (tm < 0 || tm >= s->nmaterials)
+                    return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
+                o->transmits = o->transmits || s->materials[tm].transmit > 0.0f;
+            }
+        }
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
         aabb b = shape_bounds(&o->shape);
@@ -220,7 +242,7 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 static inline bool occludes(const scene *s, int i, const ray *r)
 {
     const object *o = &s->objects[i];
-    if (s->materials[o->material].transmit > 0.0f)
+    if (o->transmits)
         return false;
     ray lr = object_ray(s, o, r);
     return shape_occluded(&o->shape, &lr);
@@ -266,4 +288,5 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     shape_surface(&o->shape, &lr, &hit->h, out);
     out->p = ray_at(r, hit->h.t);
     out->n = v3_norm(xform_normal(x, out->n));
+    out->ng = v3_norm(xform_normal(x, out->ng));
 }

@@ -11,6 +11,7 @@
 #include "glint.h"
 #include "accel/bvh.h"
 #include "core/mat4.h"
+#include "geom/mesh.h"
 #include "geom/shape.h"
 #include "io/image.h"
 #include "render/camera.h"
@@ -20,8 +21,9 @@
 
 typedef struct object {
     shape shape;
-    int material;
-    int xform; /* -1: the shape is in world space */
+    int material;   /* -1: a mesh's own per-triangle materials */
+    int xform;      /* -1: the shape is in world space */
+    bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
 } object;
 
 struct glint_scene {
@@ -38,6 +40,8 @@ struct glint_scene {
     int nimages, cap_images;
     light *lights;
     int nlights, cap_lights;
+    mesh **meshes;
+    int nmeshes, cap_meshes;
 
     camera camera;
     vec3 background;
@@ -63,6 +67,8 @@ int scene_add_image(scene *s, image *img); /* takes ownership of img's pixels */
 int scene_add_light(scene *s, const light *l);
 int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
+/* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
+int scene_add_mesh(scene *s, mesh *m);
 
 /* Checks indices and computes derived data; call after the last add. */
 glint_rc scene_build(scene *s, glint_error *err);
@@ -77,7 +83,15 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 
-/* Surface at a hit, in world space, normal unit and outward. */
+/* Surface at a hit, in world space, normals unit and outward. */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
+
+/* The material at a hit. */
+static inline const material *scene_hit_material(const scene *s, const scene_hit *hit)
+{
+    const object *o = &s->objects[hit->object];
+    int m = o->material >= 0 ? o->material : o->shape.mesh->tri_material[hit->h.part];
+    return &s->materials[m];
+}
 
 #endif

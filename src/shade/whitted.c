@@ -26,7 +26,7 @@ vec3 whitted_shadow(trace_ctx *ctx, vec3 p, vec3 ng, vec3 to)
     for (int i = 0; i < SHADOW_MAX_CROSSINGS; i++) {
         if (!scene_intersect(s, &sr, &hit))
             return filter;
-        const material *m = &s->materials[s->objects[hit.object].material];
+        const material *m = scene_hit_material(s, &hit);
         filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
         if (v3_max_comp(filter) <= 0.0f)
             return filter;
@@ -44,10 +44,15 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
 
     surface sf;
     scene_surface(s, r, &hit, &sf);
-    const material *m = &s->materials[s->objects[hit.object].material];
+    const material *m = scene_hit_material(s, &hit);
     vec3 d = v3_norm(r->d);
-    bool inside = v3_dot(d, sf.n) > 0.0f;
-    vec3 n = inside ? v3_neg(sf.n) : sf.n; /* faces the incoming ray */
+    /* Both normals turned to face the incoming ray; the geometric one
+     * decides the side, the shading one the lighting. */
+    bool inside = v3_dot(d, sf.ng) > 0.0f;
+    vec3 ng = inside ? v3_neg(sf.ng) : sf.ng;
+    vec3 n = inside ? v3_neg(sf.n) : sf.n;
+    if (v3_dot(n, ng) < 0.0f)
+        n = ng;
 
     vec3 base = m->color;
     if (m->texture >= 0)
@@ -80,7 +85,7 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
         float ndl = v3_dot(n, lu);
         if (ndl <= 0.0f)
             continue;
-        vec3 vis = whitted_shadow(ctx, sf.p, n, l->position);
+        vec3 vis = whitted_shadow(ctx, sf.p, ng, l->position);
         if (v3_is_zero(vis))
             continue;
         vec3 lc = v3_mul(l->color, vis);
@@ -96,12 +101,12 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
     if (depth < ctx->max_depth) {
         if (kr > 0.0f) {
             vec3 rd = v3_reflect(d, n);
-            ray rr = ray_make(ray_offset(sf.p, n, rd), rd, INFINITY);
+            ray rr = ray_make(ray_offset(sf.p, ng, rd), rd, INFINITY);
             ctx->secondary_rays++;
             c = v3_madd(c, whitted_trace(ctx, &rr, depth + 1), kr);
         }
         if (kt > 0.0f) {
-            ray tr = ray_make(ray_offset(sf.p, n, tdir), tdir, INFINITY);
+            ray tr = ray_make(ray_offset(sf.p, ng, tdir), tdir, INFINITY);
             ctx->secondary_rays++;
             c = v3_add(c, v3_scale(v3_mul(whitted_trace(ctx, &tr, depth + 1), m->tint), kt));
         }

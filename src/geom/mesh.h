@@ -1,0 +1,41 @@
+/* mesh: a triangle mesh stored once and placed by any number of objects
+ * (instances, each with its own transform and material): vertex arrays,
+ * triangles as index triples, and the mesh's own BVH. A scene's BVH over
+ * objects sits on top of these, making a two-level hierarchy. */
+#ifndef GLINT_GEOM_MESH_H
+#define GLINT_GEOM_MESH_H
+
+#include <stdint.h>
+#include "glint.h"
+#include "accel/bvh.h"
+#include "core/ray.h"
+
+struct surface;
+struct shape_hit;
+
+typedef struct mesh {
+    vec3 *pos;
+    vec3 *nrm;        /* per vertex, unit; NULL: flat shading */
+    float (*uv)[2];   /* per vertex; NULL: (u, v) are the barycentrics */
+    uint32_t (*tri)[3];
+    int32_t *tri_material; /* per triangle scene material, or NULL */
+    int nverts, ntris;
+    bvh bvh;          /* prims are triangle indices */
+    aabb bounds;
+} mesh;
+
+/* Takes the arrays (allocated with malloc) and builds the BVH. Triangles
+ * with zero area or non-finite corners are dropped first; *dropped (when
+ * non-null) tells how many. Fails when none remain. name is for messages. */
+glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err);
+void mesh_free(mesh *m);
+
+bool mesh_intersect(const mesh *m, const ray *r, struct shape_hit *hit);
+bool mesh_occluded(const mesh *m, const ray *r);
+/* hit->part is the triangle; b1, b2 its barycentrics. */
+void mesh_surface(const mesh *m, vec3 p, const struct shape_hit *hit, struct surface *out);
+
+/* Bytes held by the mesh and its BVH. */
+size_t mesh_bytes(const mesh *m);
+
+#endif

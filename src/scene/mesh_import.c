@@ -1,0 +1,155 @@
+#include "mesh_import.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "core/error.h"
+
+/* Meshes larger than this are refused before allocating. */
+#define MESH_MAX_TRIANGLES (1 << 27)
+
+static material import_material(const struct aiMaterial *am)
+{
+    material m = material_default();
+    struct aiColor4D c;
+    if (aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS)
+        m.color = v3(c.r, c.g, c.b);
+    if (aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &c) == aiReturn_SUCCESS)
+        m.specular = fmaxf(c.r, fmaxf(c.g, c.b));
+    ai_real f;
+    if (aiGetMaterialFloatArray(am, AI_MATKEY_SHININESS, &f, NULL) == aiReturn_SUCCESS && f > 0)
+        m.shininess = (float)f;
+    if (aiGetMaterialFloatArray(am, AI_MATKEY_OPACITY, &f, NULL) == aiReturn_SUCCESS && f >= 0 &&
+        f < 1)
+        m.transmit = 1.0f - (float)f;
+    if (!v3_is_finite(m.color) || !isfinite(m.specular) || !isfinite(m.shininess))
+        m = material_default();
+    return m;
+}
+
+glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
+{
+    memset(out, 0, sizeof *out);
+    FILE *probe = fopen(path, "rb");
+    if (!probe)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
+    fclose(probe);
+
+    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                     aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
+                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+    const struct aiScene *sc = aiImportFile(path, flags);
+    if (!sc)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", path, aiGetErrorString());
+
+    glint_rc rc = GLINT_OK;
+    mesh *m = calloc(1, sizeof *m);
+    if (!m) {
+        rc = err_nomem(err);
+        goto out;
+    }
+    /* Count what will be kept: triangle meshes only (points and lines,
+     * which SortByPType puts in meshes of their own, are skipped). */
+    uint64_t nv = 0, nt = 0;
+    bool any_normals = false, any_uv = false;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        if (am->mPrimitiveTypes != aiPrimitiveType_TRIANGLE)
+            continue;
+        nv += am->mNumVertices;
+        nt += am->mNumFaces;
+        any_normals = any_normals || am->mNormals;
+        any_uv = any_uv || am->mTextureCoords[0];
+    }
+    if (nt == 0) {
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: mesh has no triangles", path);
+        goto out;
+    }
+    if (nt > MESH_MAX_TRIANGLES || nv > UINT32_MAX / 2) {
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: mesh is too large (%llu triangles, limit %d)", path,
+                     (unsigned long long)nt, MESH_MAX_TRIANGLES);
+        goto out;
+    }
+    m->nverts = (int)nv;
+    m->ntris = (int)nt;
+    m->pos = malloc(sizeof *m->pos * nv);
+    m->nrm = any_normals ? calloc(nv, sizeof *m->nrm) : NULL;
+    m->uv = any_uv ? calloc(nv, sizeof *m->uv) : NULL;
+    m->tri = malloc(sizeof *m->tri * nt);
+    m->tri_material = malloc(sizeof *m->tri_material * nt);
+    out->nmaterials = (int)sc->mNumMaterials;
+    out->materials = malloc(sizeof *out->materials * (sc->mNumMaterials ? sc->mNumMaterials : 1));
+    if (!m->pos || (any_normals && !m->nrm) || (any_uv && !m->uv) || !m->tri ||
+        !m->tri_material || !out->materials) {
+        rc = err_nomem(err);
+        goto out;
+    }
+    for (unsigned i = 0; i < sc->mNumMaterials; i++)
+        out->materials[i] = import_material(sc->mMaterials[i]);
+    if (sc->mNumMaterials == 0) {
+        out->materials[0] = material_default();
+        out->nmaterials = 1;
+    }
+
+    uint32_t vbase = 0, t = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        if (am->mPrimitiveTypes != aiPrimitiveType_TRIANGLE)
+            continue;
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            const struct aiVector3D *p = &am->mVertices[v];
+            m->pos[vbase + v] = v3((float)p->x, (float)p->y, (float)p->z);
+            if (am->mNormals) {
+                vec3 n = v3((float)am->mNormals[v].x, (float)am->mNormals[v].y,
+                            (float)am->mNormals[v].z);
+                m->nrm[vbase + v] = v3_is_finite(n) ? v3_norm(n) : v3s(0.0f);
+            }
+            if (am->mTextureCoords[0]) {
+                m->uv[vbase + v][0] = (float)am->mTextureCoords[0][v].x;
+                m->uv[vbase + v][1] = (float)am->mTextureCoords[0][v].y;
+            }
+        }
+        int mat = am->mMaterialIndex < (unsigned)out->nmaterials ? (int)am->mMaterialIndex : 0;
+        for (unsigned f = 0; f < am->mNumFaces; f++) {
+            const struct aiFace *face = &am->mFaces[f];
+            if (face->mNumIndices != 3) {
+                m->tri[t][0] = m->tri[t][1] = m->tri[t][2] = UINT32_MAX; /* dropped by mesh_init */
+            } else {
+                for (int k = 0; k < 3; k++)
+                    m->tri[t][k] = vbase + face->mIndices[k];
+            }
+            m->tri_material[t++] = mat;
+        }
+        vbase += am->mNumVertices;
+    }
+    rc = mesh_init(m, path, &out->dropped, err);
+out:
+    aiReleaseImport(sc);
+    if (rc != GLINT_OK) {
+        mesh_free(m);
+        free(m);
+        free(out->materials);
+        memset(out, 0, sizeof *out);
+        return rc;
+    }
+    out->mesh = m;
+    return GLINT_OK;
+}
+
+void mesh_file_free(mesh_file *f)
+{
+    if (f->mesh) {
+        mesh_free(f->mesh);
+        free(f->mesh);
+    }
+    free(f->materials);
+    memset(f, 0, sizeof *f);
+}
