@@ -14,6 +14,9 @@ CFLAGS   := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswi
 ifeq ($(SAN),1)
 CFLAGS   += -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 LDFLAGS  += -fsanitize=address,undefined
+else ifeq ($(SAN),fuzz)
+CFLAGS   += -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+LDFLAGS  += -fsanitize=fuzzer,address,undefined
 else
 CFLAGS   += -O2
 endif
@@ -28,7 +31,7 @@ APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/obj/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/obj/%.o)
 DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
 
-.PHONY: all deps run test check clean
+.PHONY: all deps run test check clean fuzz
 .DEFAULT_GOAL := all
 
 all: deps
@@ -81,6 +84,20 @@ $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png &: $(BUILD)/tools/mktextures
 
 $(GEN_SRC): $(BUILD)/tools/embed $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png
 	$(BUILD)/tools/embed $@ flag.png=$(BUILD)/gen/flag.png globe.png=$(BUILD)/gen/globe.png
+
+# Coverage-guided fuzzing of the scene loader with libFuzzer (clang):
+# `make fuzz FUZZ_SECONDS=1800`. New inputs collect in build/fuzz/corpus;
+# crashes are written to build/fuzz/ as crash-* files.
+FUZZ_SECONDS ?= 60
+fuzz:
+	@scripts/install-deps fuzz
+	@$(MAKE) --no-print-directory BUILD=build/fuzz SAN=fuzz CC=clang build/fuzz/fuzz_scene
+	@mkdir -p build/fuzz/corpus
+	cd build/fuzz && ./fuzz_scene -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
+		-dict=../../fuzz/yaml.dict corpus ../../fuzz/corpus ../../scenes
+
+$(BUILD)/fuzz_scene: $(BUILD)/obj/fuzz/fuzz_scene.o $(BUILD)/libglint.a
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 clean:
 	rm -rf build glint.png

@@ -10,32 +10,36 @@
 #include <stdbool.h>
 #include "core/ray.h"
 
-/* Per-ray data, computed once and reused for every triangle. */
+/* Per-ray data, computed once and reused for every triangle: the ray's
+ * origin and the shear that maps p - o to the space where the ray runs
+ * along +z with unit speed (rows: x, y, z of the sheared space). */
 typedef struct tri_ray {
     vec3 o;
-    int kx, ky, kz;
-    float sx, sy, sz;
+    vec3 mx, my, mz;
 } tri_ray;
 
-static inline float tri_comp(vec3 v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
+static inline vec3 tri_axis(int k, float s)
+{
+    return v3(k == 0 ? s : 0.0f, k == 1 ? s : 0.0f, k == 2 ? s : 0.0f);
+}
 
 static inline tri_ray tri_ray_make(const ray *r)
 {
-    tri_ray t;
     vec3 ad = v3(fabsf(r->d.x), fabsf(r->d.y), fabsf(r->d.z));
-    t.kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-    t.kx = (t.kz + 1) % 3;
-    t.ky = (t.kx + 1) % 3;
-    float dz = tri_comp(r->d, t.kz);
+    int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    float dz = v3_at(r->d, kz);
     if (dz < 0.0f) {
-        int k = t.kx;
-        t.kx = t.ky;
-        t.ky = k;
+        int k = kx;
+        kx = ky;
+        ky = k;
     }
-    t.sx = tri_comp(r->d, t.kx) / dz;
-    t.sy = tri_comp(r->d, t.ky) / dz;
-    t.sz = 1.0f / dz;
+    float sx = v3_at(r->d, kx) / dz, sy = v3_at(r->d, ky) / dz, sz = 1.0f / dz;
+    tri_ray t;
     t.o = r->o;
+    t.mx = v3_add(tri_axis(kx, 1.0f), tri_axis(kz, -sx));
+    t.my = v3_add(tri_axis(ky, 1.0f), tri_axis(kz, -sy));
+    t.mz = tri_axis(kz, sz);
     return t;
 }
 
@@ -45,10 +49,9 @@ static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, f
                                  float tmax, float *t, float *b1, float *b2)
 {
     vec3 a = v3_sub(p0, tr->o), b = v3_sub(p1, tr->o), c = v3_sub(p2, tr->o);
-    float az = tri_comp(a, tr->kz), bz = tri_comp(b, tr->kz), cz = tri_comp(c, tr->kz);
-    float ax = tri_comp(a, tr->kx) - tr->sx * az, ay = tri_comp(a, tr->ky) - tr->sy * az;
-    float bx = tri_comp(b, tr->kx) - tr->sx * bz, by = tri_comp(b, tr->ky) - tr->sy * bz;
-    float cx = tri_comp(c, tr->kx) - tr->sx * cz, cy = tri_comp(c, tr->ky) - tr->sy * cz;
+    float ax = v3_dot(tr->mx, a), ay = v3_dot(tr->my, a);
+    float bx = v3_dot(tr->mx, b), by = v3_dot(tr->my, b);
+    float cx = v3_dot(tr->mx, c), cy = v3_dot(tr->my, c);
     float u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
     if (u == 0.0f || v == 0.0f || w == 0.0f) {
         u = (float)((double)cx * by - (double)cy * bx);
@@ -60,7 +63,7 @@ static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, f
     float det = u + v + w;
     if (det == 0.0f)
         return false;
-    float tt = (u * az + v * bz + w * cz) * tr->sz;
+    float tt = u * v3_dot(tr->mz, a) + v * v3_dot(tr->mz, b) + w * v3_dot(tr->mz, c);
     float inv = 1.0f / det;
     tt *= inv;
     if (!(tt > tmin && tt < tmax))
