@@ -45,7 +45,8 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
         boxes[i] = b;
         m->bounds = aabb_union(m->bounds, b);
     }
-    glint_rc rc = bvh_build(&m->bvh, boxes, kept, err);
+    bvh bin;
+    glint_rc rc = bvh_build(&bin, boxes, kept, err);
     free(boxes);
     if (rc != GLINT_OK)
         return rc;
@@ -55,19 +56,20 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
     if (!tri || (m->tri_material && !tmat)) {
         free(tri);
         free(tmat);
+        bvh_free(&bin);
         return err_nomem(err);
     }
     for (int i = 0; i < kept; i++) {
-        memcpy(tri[i], m->tri[m->bvh.prims[i]], sizeof tri[i]);
+        memcpy(tri[i], m->tri[bin.prims[i]], sizeof tri[i]);
         if (tmat)
-            tmat[i] = m->tri_material[m->bvh.prims[i]];
-        m->bvh.prims[i] = i;
+            tmat[i] = m->tri_material[bin.prims[i]];
+        bin.prims[i] = i;
     }
     free(m->tri);
     free(m->tri_material);
     m->tri = tri;
     m->tri_material = tmat;
-    return GLINT_OK;
+    return bvh4_from_bvh(&m->bvh, &bin, err);
 }
 
 void mesh_free(mesh *m)
@@ -79,7 +81,7 @@ void mesh_free(mesh *m)
     free(m->uv);
     free(m->tri);
     free(m->tri_material);
-    bvh_free(&m->bvh);
+    bvh4_free(&m->bvh);
     memset(m, 0, sizeof *m);
 }
 
@@ -92,80 +94,65 @@ size_t mesh_bytes(const mesh *m)
         n += (size_t)m->nverts * sizeof m->uv[0];
     if (m->tri_material)
         n += (size_t)m->ntris * sizeof(int32_t);
-    n += (size_t)m->bvh.nnodes * sizeof(bvh_node) + (size_t)m->bvh.nprims * sizeof(int32_t);
+    n += (size_t)m->bvh.nnodes * sizeof(bvh4_node) + (size_t)m->bvh.nprims * sizeof(int32_t);
     return n;
 }
 
-/* The same ordered traversal as the scene's (scene.c); triangles in a leaf
- * are consecutive because mesh_init stored them in leaf order. */
+typedef struct leaf_ctx {
+    const mesh *m;
+    tri_ray tr;
+    shape_hit *hit;
+} leaf_ctx;
+
+/* Triangles of a leaf are consecutive (mesh_init stored them in leaf
+ * order), so prims[0] is the first and the rest follow. */
+__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const int32_t *prims, uint32_t count, float tmin,
+                                float *tmax)
+{
+    leaf_ctx *c = ctx;
+    bool found = false;
+    for (int32_t i = prims[0]; i < prims[0] + (int32_t)count; i++) {
+        const uint32_t *t = c->m->tri[i];
+        float tt, b1, b2;
+        if (tri_intersect(&c->tr, c->m->pos[t[0]], c->m->pos[t[1]], c->m->pos[t[2]], tmin, *tmax,
+                          &tt, &b1, &b2)) {
+            *tmax = tt;
+            c->hit->t = tt;
+            c->hit->part = i;
+            c->hit->b1 = b1;
+            c->hit->b2 = b2;
+            found = true;
+        }
+    }
+    return found;
+}
+
+__attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int32_t *prims, uint32_t count, float tmin,
+                            float *tmax)
+{
+    leaf_ctx *c = ctx;
+    for (int32_t i = prims[0]; i < prims[0] + (int32_t)count; i++) {
+        const uint32_t *t = c->m->tri[i];
+        float tt, b1, b2;
+        if (tri_intersect(&c->tr, c->m->pos[t[0]], c->m->pos[t[1]], c->m->pos[t[2]], tmin, *tmax,
+                          &tt, &b1, &b2))
+            return true;
+    }
+    return false;
+}
+
 bool mesh_intersect(const mesh *m, const ray *r, shape_hit *hit)
 {
-    tri_ray tr = tri_ray_make(r);
-    vec3 inv_d = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
-    bool neg[3] = {inv_d.x < 0.0f, inv_d.y < 0.0f, inv_d.z < 0.0f};
+    leaf_ctx c = {m, tri_ray_make(r), hit};
     float tmax = r->tmax;
-    bool found = false;
-    int stack[BVH_MAX_DEPTH];
-    int sp = 0, node = 0;
-    for (;;) {
-        const bvh_node *nd = &m->bvh.nodes[node];
-        if (aabb_hit(nd->box, r->o, inv_d, r->tmin, tmax)) {
-            if (nd->count) {
-                for (int i = nd->index; i < nd->index + nd->count; i++) {
-                    const uint32_t *t = m->tri[i];
-                    float tt, b1, b2;
-                    if (tri_intersect(&tr, m->pos[t[0]], m->pos[t[1]], m->pos[t[2]], r->tmin, tmax,
-                                      &tt, &b1, &b2)) {
-                        tmax = tt;
-                        hit->t = tt;
-                        hit->part = i;
-                        hit->b1 = b1;
-                        hit->b2 = b2;
-                        found = true;
-                    }
-                }
-            } else if (neg[nd->axis]) {
-                stack[sp++] = node + 1;
-                node = nd->index;
-                continue;
-            } else {
-                stack[sp++] = nd->index;
-                node = node + 1;
-                continue;
-            }
-        }
-        if (sp == 0)
-            return found;
-        node = stack[--sp];
-    }
+    return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_closest, &c);
 }
 
 bool mesh_occluded(const mesh *m, const ray *r)
 {
-    tri_ray tr = tri_ray_make(r);
-    vec3 inv_d = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
-    int stack[BVH_MAX_DEPTH];
-    int sp = 0, node = 0;
-    for (;;) {
-        const bvh_node *nd = &m->bvh.nodes[node];
-        if (aabb_hit(nd->box, r->o, inv_d, r->tmin, r->tmax)) {
-            if (nd->count == 0) {
-                stack[sp++] = nd->index;
-                node = node + 1;
-                continue;
-            }
-            for (int i = nd->index; i < nd->index + nd->count; i++) {
-                const uint32_t *t = m->tri[i];
-                float tt, b1, b2;
-                if (tri_intersect(&tr, m->pos[t[0]], m->pos[t[1]], m->pos[t[2]], r->tmin, r->tmax,
-                                  &tt, &b1, &b2))
-                    return true;
-            }
-        }
-        if (sp == 0)
-            return false;
-        node = stack[--sp];
-    }
+    leaf_ctx c = {m, tri_ray_make(r), NULL};
+    float tmax = r->tmax;
+    return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, true, leaf_any, &c);
 }
 
 void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)

@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 #include "glint.h"
-#include "accel/bvh.h"
+#include "accel/bvh4.h"
 #include "core/ray.h"
 
 struct surface;
@@ -20,7 +20,7 @@ typedef struct mesh {
     uint32_t (*tri)[3];
     int32_t *tri_material; /* per triangle scene material, or NULL */
     int nverts, ntris;
-    bvh bvh;          /* prims are triangle indices */
+    bvh4 bvh;         /* prims[i] == i: triangles are stored in leaf order */
     aabb bounds;
 } mesh;
 

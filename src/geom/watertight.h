@@ -45,7 +45,7 @@ static inline tri_ray tri_ray_make(const ray *r)
 
 /* Hit with t in (tmin, tmax): sets *t and the barycentric weights b1, b2 of
  * p1 and p2. */
-static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, float tmin,
+__attribute__((always_inline)) static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, float tmin,
                                  float tmax, float *t, float *b1, float *b2)
 {
     vec3 a = v3_sub(p0, tr->o), b = v3_sub(p1, tr->o), c = v3_sub(p2, tr->o);

@@ -27,7 +27,7 @@ void scene_free(scene *s)
         image_free(&s->images[i]);
     free(s->objects);
     free(s->bounds);
-    bvh_free(&s->bvh);
+    bvh4_free(&s->bvh);
     free(s->unbounded);
     free(s->xforms);
     free(s->materials);
@@ -96,7 +96,7 @@ static aabb xform_bounds(const xform *x, aabb b)
 /* The BVH over bounded objects; unbounded ones are listed apart. */
 static glint_rc build_accel(scene *s, glint_error *err)
 {
-    bvh_free(&s->bvh);
+    bvh4_free(&s->bvh);
     free(s->unbounded);
     s->unbounded = NULL;
     s->nunbounded = 0;
@@ -119,12 +119,14 @@ static glint_rc build_accel(scene *s, glint_error *err)
             bounded[nb++] = i;
         }
     }
-    rc = bvh_build(&s->bvh, boxes, nb, err);
+    bvh bin;
+    rc = bvh_build(&bin, boxes, nb, err);
     if (rc != GLINT_OK)
         goto out;
     /* Leaves refer to objects directly. */
-    for (int i = 0; i < s->bvh.nprims; i++)
-        s->bvh.prims[i] = bounded[s->bvh.prims[i]];
+    for (int i = 0; i < bin.nprims; i++)
+        bin.prims[i] = bounded[bin.prims[i]];
+    rc = bvh4_from_bvh(&s->bvh, &bin, err);
 out:
     free(bounded);
     free(boxes);
@@ -185,61 +187,50 @@ static inline ray object_ray(const scene *s, const object *o, const ray *r)
     return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax};
 }
 
-static inline vec3 inverse_dir(vec3 d)
-{
-    return v3(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
-}
+typedef struct leaf_ctx {
+    const scene *s;
+    const ray *r;
+    scene_hit *hit;
+} leaf_ctx;
 
-static inline bool intersect_object(const scene *s, int i, ray *cur, scene_hit *hit)
+__attribute__((always_inline)) static inline bool intersect_object(const scene *s, int i,
+                                                                   const ray *r, float tmin,
+                                                                   float *tmax, scene_hit *hit)
 {
     const object *o = &s->objects[i];
-    ray lr = object_ray(s, o, cur);
+    ray lr = object_ray(s, o, r);
+    lr.tmin = tmin;
+    lr.tmax = *tmax;
     if (!shape_intersect(&o->shape, &lr, &hit->h))
         return false;
-    cur->tmax = hit->h.t;
+    *tmax = hit->h.t;
     hit->object = i;
     return true;
 }
 
-/* Ordered traversal with an explicit stack: the child on the near side of
- * the split axis first, so hits found early shorten the ray for the rest
- * (pbrt-v3, section 4.4.3). */
-bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
+__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const int32_t *prims,
+                                                               uint32_t count, float tmin,
+                                                               float *tmax)
 {
-    ray cur = *r;
+    leaf_ctx *c = ctx;
     bool found = false;
-    for (int i = 0; i < s->nunbounded; i++)
-        found |= intersect_object(s, s->unbounded[i], &cur, hit);
-    if (s->bvh.nnodes == 0)
-        return found;
-    vec3 inv_d = inverse_dir(r->d);
-    bool neg[3] = {inv_d.x < 0.0f, inv_d.y < 0.0f, inv_d.z < 0.0f};
-    int stack[BVH_MAX_DEPTH];
-    int sp = 0, node = 0;
-    for (;;) {
-        const bvh_node *nd = &s->bvh.nodes[node];
-        if (aabb_hit(nd->box, cur.o, inv_d, cur.tmin, cur.tmax)) {
-            if (nd->count) {
-                for (int i = 0; i < nd->count; i++)
-                    found |= intersect_object(s, s->bvh.prims[nd->index + i], &cur, hit);
-            } else if (neg[nd->axis]) {
-                stack[sp++] = node + 1;
-                node = nd->index;
-                continue;
-            } else {
-                stack[sp++] = nd->index;
-                node = node + 1;
-                continue;
-            }
-        }
-        if (sp == 0)
-            break;
-        node = stack[--sp];
-    }
+    for (uint32_t i = 0; i < count; i++)
+        found |= intersect_object(c->s, prims[i], c->r, tmin, tmax, c->hit);
     return found;
 }
 
-static inline bool occludes(const scene *s, int i, const ray *r)
+bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
+{
+    float tmax = r->tmax;
+    bool found = false;
+    for (int i = 0; i < s->nunbounded; i++)
+        found |= intersect_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
+    leaf_ctx c = {s, r, hit};
+    found |= bvh4_traverse(&s->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_closest, &c);
+    return found;
+}
+
+__attribute__((always_inline)) static inline bool occludes(const scene *s, int i, const ray *r)
 {
     const object *o = &s->objects[i];
     if (o->transmits)
@@ -248,32 +239,26 @@ static inline bool occludes(const scene *s, int i, const ray *r)
     return shape_occluded(&o->shape, &lr);
 }
 
+__attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int32_t *prims,
+                                                           uint32_t count, float tmin,
+                                                           float *tmax)
+{
+    (void)tmin, (void)tmax;
+    leaf_ctx *c = ctx;
+    for (uint32_t i = 0; i < count; i++)
+        if (occludes(c->s, prims[i], c->r))
+            return true;
+    return false;
+}
+
 bool scene_occluded_opaque(const scene *s, const ray *r)
 {
     for (int i = 0; i < s->nunbounded; i++)
         if (occludes(s, s->unbounded[i], r))
             return true;
-    if (s->bvh.nnodes == 0)
-        return false;
-    vec3 inv_d = inverse_dir(r->d);
-    int stack[BVH_MAX_DEPTH];
-    int sp = 0, node = 0;
-    for (;;) {
-        const bvh_node *nd = &s->bvh.nodes[node];
-        if (aabb_hit(nd->box, r->o, inv_d, r->tmin, r->tmax)) {
-            if (nd->count == 0) {
-                stack[sp++] = nd->index;
-                node = node + 1;
-                continue;
-            }
-            for (int i = 0; i < nd->count; i++)
-                if (occludes(s, s->bvh.prims[nd->index + i], r))
-                    return true;
-        }
-        if (sp == 0)
-            return false;
-        node = stack[--sp];
-    }
+    leaf_ctx c = {s, r, NULL};
+    float tmax = r->tmax;
+    return bvh4_traverse(&s->bvh, r->o, r->d, r->tmin, &tmax, true, leaf_any, &c);
 }
 
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)
