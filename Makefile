@@ -35,7 +35,7 @@ DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
 .DEFAULT_GOAL := all
 
 all: deps
-	@$(MAKE) --no-print-directory $(BUILD)/glint
+	@$(MAKE) --no-print-directory $(BUILD)/glint scenes/textures/flag.png scenes/textures/globe.png
 
 deps:
 	@scripts/install-deps build
@@ -49,7 +49,7 @@ test:
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 check
 
-check: $(BUILD)/glint $(BUILD)/tests
+check: $(BUILD)/glint $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
 	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 		$(BUILD)/tests --jobs 2
 
@@ -81,6 +81,11 @@ $(BUILD)/tools/%: tools/%.c
 $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png &: $(BUILD)/tools/mktextures
 	@mkdir -p $(BUILD)/gen
 	$(BUILD)/tools/mktextures $(BUILD)/gen
+
+# The example scenes in scenes/ use the same two pictures from disk.
+scenes/textures/%.png: $(BUILD)/gen/%.png
+	@mkdir -p $(dir $@)
+	cp $< $@
 
 $(GEN_SRC): $(BUILD)/tools/embed $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png
 	$(BUILD)/tools/embed $@ flag.png=$(BUILD)/gen/flag.png globe.png=$(BUILD)/gen/globe.png

@@ -1,6 +1,8 @@
 #include "image.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <math.h>
 #include <stdio.h>
@@ -99,6 +101,20 @@ static const char *extension(const char *path)
     return dot;
 }
 
+/* Creates a new file beside path, named path.tmp.PID.N, with the mode a
+ * plain creat() would give (mkstemp's 0600 would stay on the final file). */
+static int open_temp(const char *path, char *tmp, size_t len)
+{
+    static atomic_uint counter;
+    for (int tries = 0; tries < 100; tries++) {
+        snprintf(tmp, len, "%s.tmp.%ld.%u", path, (long)getpid(), atomic_fetch_add(&counter, 1));
+        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST)
+            return fd;
+    }
+    return -1;
+}
+
 glint_rc image_write(const char *path, int width, int height, const uint8_t *rgb,
                      glint_error *err)
 {
@@ -108,12 +124,11 @@ glint_rc image_write(const char *path, int width, int height, const uint8_t *rgb
         return err_set(err, GLINT_ERR_INPUT,
                        "%s: unknown output format '%s' (use .png or .ppm)", path, ext);
 
-    size_t len = strlen(path);
-    char *tmp = malloc(len + 16);
+    size_t len = strlen(path) + 48;
+    char *tmp = malloc(len);
     if (!tmp)
         return err_nomem(err);
-    snprintf(tmp, len + 16, "%s.tmp.XXXXXX", path);
-    int fd = mkstemp(tmp);
+    int fd = open_temp(path, tmp, len);
     if (fd < 0) {
         glint_rc rc = err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
         free(tmp);
