@@ -72,6 +72,9 @@ typedef struct glint_scene glint_scene;
 
 /* The assignment's nine-object scene. */
 glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
+/* A scene file (YAML, docs/scene-format.md); paths in it are relative to
+ * its folder. Errors name the file, line and column. */
+glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 void glint_scene_free(glint_scene *scene);
 
 /* The scene's own image settings. */
@@ -85,6 +88,9 @@ glint_rc glint_render(const glint_scene *scene, const glint_settings *settings,
                       const glint_callbacks *callbacks, glint_film *film, glint_stats *stats,
                       glint_error *err);
 void glint_film_free(glint_film *film);
+
+/* Render threads used when settings.threads is 0: one per core. */
+int glint_default_threads(void);
 
 /* Writes the film to path; the format follows the extension (.png, .ppm).
  * The file appears complete or not at all. */

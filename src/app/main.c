@@ -176,11 +176,8 @@ int main(int argc, char **argv)
     glint_stats stats = {0};
     glint_rc rc;
 
-    if (c.scene_path) {
-        fprintf(stderr, "glint: %s: scene files are not supported by this build\n", c.scene_path);
-        return 2;
-    }
-    rc = glint_scene_builtin(&scene, &err);
+    rc = c.scene_path ? glint_scene_load(c.scene_path, &scene, &err)
+                      : glint_scene_builtin(&scene, &err);
     if (rc != GLINT_OK)
         goto fail;
 
@@ -221,7 +218,7 @@ int main(int argc, char **argv)
 
     if (c.stats) {
         uint64_t total = stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
-        int threads = s.threads > 0 ? s.threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+        int threads = s.threads > 0 ? s.threads : glint_default_threads();
         fprintf(stderr,
                 "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
                 "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"

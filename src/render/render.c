@@ -13,6 +13,8 @@
 #include "scene/scene.h"
 #include "shade/whitted.h"
 
+int glint_default_threads(void) { return render_default_threads(); }
+
 int render_default_threads(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
