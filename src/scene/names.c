@@ -82,7 +82,9 @@ void names_free(names *t)
     *t = (names){0};
 }
 
-/* Levenshtein distance between a and b, or limit + 1 when it exceeds limit
+static char lower(char c) { return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c; }
+
+/* Levenshtein distance between a and b, ignoring ASCII case, or limit + 1 when it exceeds limit
  * (Wagner and Fischer, "The String-to-String Correction Problem", JACM 1974). */
 static size_t distance(const char *a, size_t na, const char *b, size_t nb, size_t limit)
 {
@@ -98,7 +100,7 @@ static size_t distance(const char *a, size_t na, const char *b, size_t nb, size_
         row[0] = i;
         for (size_t j = 1; j <= nb; j++) {
             size_t up = row[j];
-            size_t v = diag + (a[i - 1] != b[j - 1]);
+            size_t v = diag + (lower(a[i - 1]) != lower(b[j - 1]));
             if (up + 1 < v)
                 v = up + 1;
             if (row[j - 1] + 1 < v)

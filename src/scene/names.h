@@ -5,7 +5,8 @@
  * files with many names load in linear time.
  *
  * Also home to the "did you mean" suggestions that error messages offer:
- * the nearest candidate by Levenshtein distance, if it is close enough. */
+ * the nearest candidate by Levenshtein distance (ASCII case ignored), if it
+ * is close enough. */
 #ifndef GLINT_SCENE_NAMES_H
 #define GLINT_SCENE_NAMES_H
 

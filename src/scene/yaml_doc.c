@@ -466,7 +466,8 @@ static glint_rc finish_map(builder *b, ynode *map, const uint32_t *kids, size_t 
                 return rc;
         }
     }
-    qsort(b->scratch, n, sizeof *b->scratch, by_key_then_order);
+    if (n > 1)
+        qsort(b->scratch, n, sizeof *b->scratch, by_key_then_order);
     size_t kept = 0;
     for (size_t i = 0; i < n; i++) {
         const mpair *p = &b->scratch[i];
@@ -482,7 +483,8 @@ static glint_rc finish_map(builder *b, ynode *map, const uint32_t *kids, size_t 
         }
         b->scratch[kept++] = *p;
     }
-    qsort(b->scratch, kept, sizeof *b->scratch, by_order);
+    if (kept > 1)
+        qsort(b->scratch, kept, sizeof *b->scratch, by_order);
     /* Reuse the sources buffer for the flat key, value list. */
     if (!reserve((void **)&b->sources, &b->cap_sources, 2 * kept, sizeof *b->sources))
         return err_nomem(b->err);
@@ -736,6 +738,11 @@ float ydoc_float(const ydoc *d, const ynode *n)
     }
     buf[o] = '\0';
     return strtof(buf, NULL);
+}
+
+bool ydoc_is_integer(const ydoc *d, const ynode *n)
+{
+    return n->kind == YNODE_NUMBER && is_int_form(ydoc_text(d, n), n->count);
 }
 
 bool ydoc_int(const ydoc *d, const ynode *n, long long *out)

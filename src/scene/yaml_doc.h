@@ -105,8 +105,10 @@ const char *ydoc_kind_name(ynode_kind kind);
 float ydoc_float(const ydoc *d, const ynode *n);
 /* Whether a YNODE_NUMBER is written .inf, -.inf or .nan (any case form). */
 bool ydoc_is_special(const ydoc *d, const ynode *n);
-/* A YNODE_NUMBER written as an integer (decimal, 0x hex or 0o octal);
- * false for float forms and for integers beyond long long. */
+/* Whether a YNODE_NUMBER is written as an integer (decimal, 0x hex or 0o
+ * octal) rather than in a float form. */
+bool ydoc_is_integer(const ydoc *d, const ynode *n);
+/* An integer-form YNODE_NUMBER's value; false when beyond long long. */
 bool ydoc_int(const ydoc *d, const ynode *n, long long *out);
 
 /* Describes a node's kind for "expected ..., got X" messages: "null",

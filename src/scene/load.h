@@ -1,0 +1,56 @@
+/* load: scene files. A YAML scene (the format is docs/scene-format.md)
+ * becomes a built scene, or an error that names the file, line and column
+ * of what is wrong, in one line, with GLINT_ERR_INPUT (or GLINT_ERR_NOMEM).
+ *
+ * Files reach the loader through a scene_reader, so one code path serves
+ * scenes on disk and scenes compiled into the program. Paths written in a
+ * file (includes, texture images) are relative to that file's folder; the
+ * reader is given them joined to it and tidied ("a/./b/../c" is "a/c").
+ *
+ * The loader is the first code untrusted input meets. Beyond the checks of
+ * the format, it bounds what a file can make it do: file size
+ * (LOAD_MAX_FILE_BYTES), nesting and alias expansion (yaml_doc.h), include
+ * depth and count, and the number of objects; sizes and sample counts are
+ * checked against the renderer's limits (render.h) before anything is
+ * allocated for them. On failure nothing leaks and *out is untouched. */
+#ifndef GLINT_SCENE_LOAD_H
+#define GLINT_SCENE_LOAD_H
+
+#include <stddef.h>
+#include "glint.h"
+
+typedef struct glint_scene scene;
+
+#define LOAD_MAX_FILE_BYTES (1u << 30)
+#define LOAD_MAX_FILES 256        /* the scene and everything it includes */
+#define LOAD_MAX_INCLUDE_DEPTH 32 /* files open inside one another */
+#define LOAD_MAX_OBJECTS 10000000
+
+/* Reads the file at path (already resolved as above) into *data, a buffer
+ * the caller frees with free(), and its length into *size. On failure it
+ * returns an error with err->msg holding only the reason (for example "No
+ * such file or directory"); the loader adds where and which file. Failures
+ * other than GLINT_ERR_NOMEM are reported as GLINT_ERR_INPUT. */
+typedef glint_rc (*scene_reader)(void *user, const char *path, char **data, size_t *size,
+                                 glint_error *err);
+
+/* The reader for files on disk (user is unused). */
+glint_rc scene_read_file(void *user, const char *path, char **data, size_t *size,
+                         glint_error *err);
+
+/* Loads the scene file at path; paths in it resolve against its folder.
+ * Messages name the file as path. */
+glint_rc scene_load_file(const char *path, scene **out, glint_error *err);
+
+/* Loads a scene from text (len bytes). name is the text's path: messages
+ * name it, and an include that leads back to it is a cycle. Relative paths
+ * in the text resolve against base_dir (NULL or "": used as written).
+ * reader (NULL: scene_read_file) supplies included files and texture
+ * images; user is passed to it. */
+glint_rc scene_load_text(const char *text, size_t len, const char *name, const char *base_dir,
+                         scene_reader reader, void *user, scene **out, glint_error *err);
+
+/* Public entry point (to move to glint.h): scene_load_file. */
+glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
+
+#endif
