@@ -230,6 +230,17 @@ Test(load, settings_camera_and_defaults)
     scene_free(s);
 }
 
+Test(load, an_empty_mapping_is_an_empty_scene)
+{
+    scene *s = load_ok("{}");
+    cr_expect_eq(s->nobjects, 0);
+    cr_expect(s->built);
+    scene_free(s);
+    s = load_ok("objects: []\nlights: []\ntextures: {}\nmaterials: {}\ninclude: []\n");
+    cr_expect_eq(s->nobjects, 0);
+    scene_free(s);
+}
+
 Test(load, every_shape)
 {
     scene *s = load_ok("objects:\n"
@@ -452,6 +463,8 @@ Test(load_errors, yaml_syntax)
                  "scene.yaml:2:1: a second YAML document: a scene file holds one document");
     expect_error("ambient: !color 0.2\n", "scene.yaml:1:10: unsupported tag '!color'");
     expect_error("ambient: !!int 0.2\n", "scene.yaml:1:10: '0.2' is not a valid !!int");
+    /* Found by fuzzing: an empty collection before any other. */
+    expect_error("# She\n {}x, c", "scene.yaml:2:4: did not find expected <document start>");
 }
 
 Test(load_errors, unknown_keys_with_suggestions)
@@ -643,6 +656,12 @@ Test(load_errors, missing_or_unreadable_files)
     expect_error_with("include: locked.yaml\n", files,
                       "scene.yaml:1:10: cannot read include 'locked.yaml': Permission denied");
     expect_error_with("include: \"\"\n", files, "scene.yaml:1:10: include must not be empty");
+    /* Paths with control characters are escaped: a message is one line. */
+    expect_error_with("include: \"parts/a\\nb.yaml\"\n", files,
+                      "scene.yaml:1:10: cannot read include 'parts/a\\x0Ab.yaml': No such file or "
+                      "directory");
+    expect_error_with("include: \"a\\0b.yaml\"\n", files,
+                      "scene.yaml:1:10: include must not contain a NUL character");
 
     /* From disk, with the operating system's own reasons. */
     char dir[] = "/tmp/glint-load-XXXXXX", path[128], want[512];
@@ -744,6 +763,49 @@ Test(load_errors, empty_files_and_documents_that_are_not_mappings)
     expect_error("sphere\n",
                  "scene.yaml:1:1: expected a mapping at the top of the scene, got the string "
                  "'sphere'");
+}
+
+/* Serves "chain/N.yaml" as a file including chain/N+1.yaml, and
+ * "wide.yaml" as one including leaf.yaml 300 times. */
+static glint_rc generated_reader(void *user, const char *path, char **data, size_t *size,
+                                 glint_error *err)
+{
+    (void)user;
+    char *text = calloc(1, 8192);
+    cr_assert_not_null(text);
+    int n;
+    if (sscanf(path, "chain/%d.yaml", &n) == 1) {
+        snprintf(text, 8192, "include: %d.yaml\n", n + 1);
+    } else if (strcmp(path, "wide.yaml") == 0) {
+        strcpy(text, "include:\n");
+        for (int i = 0; i < 300; i++)
+            strcat(text, "  - leaf.yaml\n");
+    } else if (strcmp(path, "leaf.yaml") == 0) {
+        strcpy(text, "lights: [{type: point, position: [0, 0, 0]}]\n");
+    } else {
+        free(text);
+        return err_set(err, GLINT_ERR_IO, "No such file or directory");
+    }
+    *data = text;
+    *size = strlen(text);
+    return GLINT_OK;
+}
+
+Test(load_errors, include_depth_and_count_are_bounded)
+{
+    scene *s = NULL;
+    glint_error err = {0};
+    const char *deep = "include: chain/1.yaml\n";
+    cr_expect_eq(scene_load_text(deep, strlen(deep), "scene.yaml", NULL, generated_reader, NULL,
+                                 &s, &err),
+                 GLINT_ERR_INPUT);
+    cr_expect_str_eq(err.msg, "chain/31.yaml:1:10: includes nested more than 32 deep");
+    const char *wide = "include: wide.yaml\n";
+    cr_expect_eq(scene_load_text(wide, strlen(wide), "scene.yaml", NULL, generated_reader, NULL,
+                                 &s, &err),
+                 GLINT_ERR_INPUT);
+    cr_expect_str_eq(err.msg, "wide.yaml:256:5: more than 256 files included");
+    cr_expect_null(s);
 }
 
 Test(load_errors, hostile_files_hit_limits_not_the_stack_or_memory)

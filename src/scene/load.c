@@ -31,7 +31,7 @@ typedef struct lfile {
     char *name; /* shown in messages */
     char *key;  /* tidied path, for finding include cycles */
     char *dir;  /* folder that relative paths resolve against; "" for none */
-    char *data; /* the text, when the loader read it */
+    char *data; /* the text while it is parsed, when the loader read it */
     ydoc *doc;
 } lfile;
 
@@ -101,11 +101,11 @@ static glint_rc vfail_at(loader *L, int file, uint32_t line, uint32_t col, const
     return err_set(L->err, GLINT_ERR_INPUT, "%s:%u:%u: %s", L->files[file].name, line, col, msg);
 }
 
-/* Fails with "FILE:LINE:COL: message" at node of file. */
+/* Fails with "FILE:LINE:COL: message" at node at of file. */
 GLINT_PRINTF(4, 5)
-static glint_rc fail_in(loader *L, int file, uint32_t node, const char *fmt, ...)
+static glint_rc fail_in(loader *L, int file, uint32_t at, const char *fmt, ...)
 {
-    const ynode *n = ydoc_node(L->files[file].doc, node);
+    const ynode *n = ydoc_node(L->files[file].doc, at);
     va_list ap;
     va_start(ap, fmt);
     glint_rc rc = vfail_at(L, file, n->line, n->col, fmt, ap);
@@ -115,9 +115,9 @@ static glint_rc fail_in(loader *L, int file, uint32_t node, const char *fmt, ...
 
 /* The same in the file being read. */
 GLINT_PRINTF(3, 4)
-static glint_rc fail(loader *L, uint32_t node, const char *fmt, ...)
+static glint_rc fail(loader *L, uint32_t at, const char *fmt, ...)
 {
-    const ynode *n = ydoc_node(L->files[L->cur].doc, node);
+    const ynode *n = ydoc_node(L->files[L->cur].doc, at);
     va_list ap;
     va_start(ap, fmt);
     glint_rc rc = vfail_at(L, L->cur, n->line, n->col, fmt, ap);
@@ -446,6 +446,29 @@ static char *dir_of(const char *path)
     return d;
 }
 
+/* A copy of a path with control bytes escaped as \xNN, so that messages
+ * naming it stay on one line; NULL when out of memory. */
+static char *printable(const char *path)
+{
+    size_t n = 0;
+    for (const char *p = path; *p; p++)
+        n += (unsigned char)*p < 0x20 || *p == 0x7f ? 4 : 1;
+    char *out = malloc(n + 1), *o = out;
+    if (!out)
+        return NULL;
+    for (const char *p = path; *p; p++) {
+        unsigned char c = (unsigned char)*p;
+        if (c < 0x20 || c == 0x7f) {
+            snprintf(o, 5, "\\x%02X", c);
+            o += 4;
+        } else {
+            *o++ = (char)c;
+        }
+    }
+    *o = '\0';
+    return out;
+}
+
 /* Reads a file named in the scene through the reader. written is the
  * path as written, resolved the path the reader gets; kind says what the
  * file is for ("include", "texture"). */
@@ -455,20 +478,28 @@ static glint_rc read_named_file(loader *L, uint32_t at, const char *written, con
     glint_error rerr = {0};
     *data = NULL;
     glint_rc rc = L->reader(L->user, resolved, data, size, &rerr);
-    char also[600] = "";
-    if (strcmp(written, resolved) != 0)
-        snprintf(also, sizeof also, " (%s)", resolved);
-    if (rc == GLINT_OK && *size > LOAD_MAX_FILE_BYTES) {
+    if (rc == GLINT_OK && *size <= LOAD_MAX_FILE_BYTES)
+        return GLINT_OK;
+    if (rc == GLINT_OK) {
         free(*data);
         *data = NULL;
-        return fail(L, at, "%s '%s'%s is larger than the %u-byte limit", kind, written, also,
-                    LOAD_MAX_FILE_BYTES);
     }
-    if (rc == GLINT_ERR_NOMEM)
-        return err_nomem(L->err);
-    if (rc != GLINT_OK)
-        return fail(L, at, "cannot read %s '%s'%s: %s", kind, written, also, rerr.msg);
-    return GLINT_OK;
+    char *w = printable(written), *r = printable(resolved);
+    if (!w || !r || rc == GLINT_ERR_NOMEM) {
+        rc = err_nomem(L->err);
+    } else {
+        char also[600] = "";
+        if (strcmp(written, resolved) != 0)
+            snprintf(also, sizeof also, " (%s)", r);
+        if (rc == GLINT_OK)
+            rc = fail(L, at, "%s '%s'%s is larger than the %u-byte limit", kind, w, also,
+                      LOAD_MAX_FILE_BYTES);
+        else
+            rc = fail(L, at, "cannot read %s '%s'%s: %s", kind, w, also, rerr.msg);
+    }
+    free(w);
+    free(r);
+    return rc;
 }
 
 /* ---- textures and materials ------------------------------------------- */
@@ -483,10 +514,13 @@ static glint_rc load_image_file(loader *L, uint32_t v, int *index)
 {
     const char *written = ydoc_text(doc(L), node(L, v));
     char *resolved = join_path(L->files[L->cur].dir, written);
+    char *shown_name = printable(written);
     char *data = NULL;
-    if (!resolved)
-        return err_nomem(L->err);
     glint_rc rc = GLINT_OK;
+    if (!resolved || !shown_name) {
+        rc = err_nomem(L->err);
+        goto out;
+    }
     *index = names_find(&L->images, resolved, strlen(resolved));
     if (*index >= 0)
         goto out;
@@ -496,7 +530,7 @@ static glint_rc load_image_file(loader *L, uint32_t v, int *index)
         goto out;
     image img;
     glint_error ierr = {0};
-    rc = image_load_memory(data, size, written, &img, &ierr);
+    rc = image_load_memory(data, size, shown_name, &img, &ierr);
     if (rc == GLINT_ERR_NOMEM) {
         rc = err_nomem(L->err);
         goto out;
@@ -513,6 +547,7 @@ static glint_rc load_image_file(loader *L, uint32_t v, int *index)
 out:
     free(data);
     free(resolved);
+    free(shown_name);
     return rc;
 }
 
@@ -701,7 +736,9 @@ static glint_rc load_named(loader *L, uint32_t map, bool textures)
         if (node(L, v)->kind != YNODE_MAP) {
             char got[SHOWN + 32];
             ydoc_describe(doc(L), node(L, v), got, sizeof got);
-            rc = fail(L, v, "expected a mapping for %s '%s', got %s", what, name, got);
+            char buf[SHOWN];
+            rc = fail(L, v, "expected a mapping for %s '%s', got %s", what, shown(L, k, buf),
+                      got);
             break;
         }
         int index;
@@ -1259,8 +1296,9 @@ static glint_rc follow_include(loader *L, uint32_t v)
     const char *written = ydoc_text(doc(L), node(L, v));
     char *path = join_path(L->files[L->cur].dir, written);
     char *dir = path ? dir_of(path) : NULL;
+    char *name = path ? printable(path) : NULL;
     char *data = NULL;
-    if (!path || !dir) {
+    if (!path || !dir || !name) {
         rc = err_nomem(L->err);
         goto out;
     }
@@ -1274,7 +1312,7 @@ static glint_rc follow_include(loader *L, uint32_t v)
             o += (size_t)snprintf(cycle + o, sizeof cycle - o, "%s -> ",
                                   L->files[L->chain[j]].name);
         if (o < sizeof cycle)
-            snprintf(cycle + o, sizeof cycle - o, "%s", path);
+            snprintf(cycle + o, sizeof cycle - o, "%s", name);
         rc = fail_in(L, L->chain[k], L->via[k], "include cycle: %s", cycle);
         goto out;
     }
@@ -1291,13 +1329,14 @@ static glint_rc follow_include(loader *L, uint32_t v)
     if (rc != GLINT_OK)
         goto out;
     int from = L->cur;
-    rc = load_text(L, data, size, data, path, path, dir);
+    rc = load_text(L, data, size, data, name, path, dir);
     data = NULL; /* owned by the loader now */
     L->cur = from;
 out:
     free(data);
     free(path);
     free(dir);
+    free(name);
     return rc;
 }
 
@@ -1375,6 +1414,9 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
     if (!lf->name || !lf->key || !lf->dir)
         return err_nomem(L->err);
     glint_rc rc = ydoc_parse(text, len, name, &lf->doc, L->err);
+    /* The tree holds copies of every scalar: the text is done with. */
+    free(lf->data);
+    lf->data = NULL;
     if (rc != GLINT_OK)
         return rc;
     L->cur = f;
@@ -1539,19 +1581,22 @@ glint_rc scene_read_file(void *user, const char *path, char **data, size_t *size
             goto out;
         }
         if (n < cap)
-            break;
-        if (cap > LOAD_MAX_FILE_BYTES) {
+            break; /* end of file */
+        if (n > LOAD_MAX_FILE_BYTES) {
             rc = err_set(err, GLINT_ERR_INPUT, "the file is larger than the %u-byte limit",
                          LOAD_MAX_FILE_BYTES);
             goto out;
         }
-        char *bigger = realloc(buf, cap * 2);
+        /* One byte past the limit tells a file of exactly the limit from a larger one. */
+        size_t ncap = cap * 2 > (size_t)LOAD_MAX_FILE_BYTES + 1 ? (size_t)LOAD_MAX_FILE_BYTES + 1
+                                                                : cap * 2;
+        char *bigger = realloc(buf, ncap);
         if (!bigger) {
             rc = err_nomem(err);
             goto out;
         }
         buf = bigger;
-        cap *= 2;
+        cap = ncap;
     }
 out:
     fclose(f);

@@ -84,32 +84,39 @@ void names_free(names *t)
 
 static char lower(char c) { return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c; }
 
-/* Levenshtein distance between a and b, ignoring ASCII case, or limit + 1 when it exceeds limit
- * (Wagner and Fischer, "The String-to-String Correction Problem", JACM 1974). */
+/* Levenshtein distance between a and b, ignoring ASCII case, or limit + 1
+ * when it exceeds limit (Wagner and Fischer, "The String-to-String
+ * Correction Problem", JACM 1974). Only the cells within limit of the
+ * diagonal can stay within limit (Ukkonen, "Algorithms for approximate
+ * string matching", 1985), so each row costs O(limit), not O(length). */
 static size_t distance(const char *a, size_t na, const char *b, size_t nb, size_t limit)
 {
     if (na > SUGGEST_MAX_LEN || nb > SUGGEST_MAX_LEN)
         return limit + 1;
     if ((na > nb ? na - nb : nb - na) > limit)
         return limit + 1;
-    size_t row[SUGGEST_MAX_LEN + 1];
+    size_t row[SUGGEST_MAX_LEN + 2]; /* row[j]: distance of a[0..i) to b[0..j) */
     for (size_t j = 0; j <= nb; j++)
-        row[j] = j;
+        row[j] = j <= limit ? j : limit + 1;
     for (size_t i = 1; i <= na; i++) {
-        size_t diag = row[0], best = i;
-        row[0] = i;
-        for (size_t j = 1; j <= nb; j++) {
+        size_t lo = i > limit ? i - limit : 1, hi = i + limit < nb ? i + limit : nb;
+        size_t diag = row[lo - 1];
+        row[lo - 1] = lo == 1 && i <= limit ? i : limit + 1;
+        size_t best = row[lo - 1];
+        for (size_t j = lo; j <= hi; j++) {
             size_t up = row[j];
             size_t v = diag + (lower(a[i - 1]) != lower(b[j - 1]));
             if (up + 1 < v)
                 v = up + 1;
             if (row[j - 1] + 1 < v)
                 v = row[j - 1] + 1;
-            row[j] = v;
+            row[j] = v > limit ? limit + 1 : v;
             diag = up;
-            if (v < best)
-                best = v;
+            if (row[j] < best)
+                best = row[j];
         }
+        if (hi < nb)
+            row[hi + 1] = limit + 1; /* outside the band: never within limit */
         if (best > limit)
             return limit + 1;
     }

@@ -503,7 +503,7 @@ static glint_rc end_collection(builder *b)
 {
     frame f = b->stack[--b->depth];
     ynode *n = &b->d->nodes[f.node];
-    const uint32_t *kids = b->pending + f.start;
+    const uint32_t *kids = b->pending ? b->pending + f.start : NULL;
     size_t nkids = b->npending - f.start;
     glint_rc rc;
     if (n->kind == YNODE_MAP) {
@@ -532,8 +532,6 @@ static glint_rc on_event(builder *b, const yaml_event_t *ev)
     case YAML_DOCUMENT_END_EVENT:
         return GLINT_OK;
     case YAML_STREAM_END_EVENT:
-        b->d->end_line = (uint32_t)ev->start_mark.line + 1;
-        b->d->end_col = (uint32_t)ev->start_mark.column + 1;
         b->done = true;
         return GLINT_OK;
     case YAML_DOCUMENT_START_EVENT:

@@ -65,7 +65,6 @@ typedef struct ydoc {
     char *text;
     size_t ntext, cap_text;
     uint32_t root; /* YDOC_NONE when the stream holds no document */
-    uint32_t end_line, end_col; /* where the stream ends, for empty files */
 } ydoc;
 
 /* Parses text (len bytes, UTF-8/16 as libyaml detects) into *out; name is
