@@ -87,8 +87,10 @@ scenes/textures/%.png: $(BUILD)/gen/%.png
 	@mkdir -p $(dir $@)
 	cp $< $@
 
-$(GEN_SRC): $(BUILD)/tools/embed $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png
-	$(BUILD)/tools/embed $@ flag.png=$(BUILD)/gen/flag.png globe.png=$(BUILD)/gen/globe.png
+# The built-in scene is scenes/seed.yaml with the two textures it names.
+$(GEN_SRC): $(BUILD)/tools/embed scenes/seed.yaml $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png
+	$(BUILD)/tools/embed $@ seed.yaml=scenes/seed.yaml \
+		textures/flag.png=$(BUILD)/gen/flag.png textures/globe.png=$(BUILD)/gen/globe.png
 
 # Coverage-guided fuzzing of the scene loader with libFuzzer (clang):
 # `make fuzz FUZZ_SECONDS=1800`. New inputs collect in build/fuzz/corpus;

@@ -1,7 +1,7 @@
 /* libFuzzer target for the scene loader: any bytes as a scene file. The
- * reader serves the built-in textures (as textures/flag.png and
- * textures/globe.png, the paths the example scenes use) and refuses every
- * other path, so runs never touch the disk. A scene that loads is also
+ * reader serves the built-in assets (textures/flag.png and textures/globe.png,
+ * the paths the example scenes use, and seed.yaml) and refuses every other
+ * path, so runs never touch the disk. A scene that loads is also
  * rendered at a tiny size to exercise what the loader let through. */
 #include <stdint.h>
 #include <stdio.h>
@@ -12,35 +12,13 @@
 #include "scene/load.h"
 #include "scene/scene.h"
 
-static glint_rc reader(void *user, const char *path, char **data, size_t *size, glint_error *err)
-{
-    (void)user;
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    const unsigned char *bytes;
-    size_t n;
-    if (strncmp(path, "textures/", 9) != 0 || !asset_find(base, &bytes, &n)) {
-        snprintf(err->msg, sizeof err->msg, "No such file or directory");
-        err->code = GLINT_ERR_INPUT;
-        return GLINT_ERR_INPUT;
-    }
-    *data = malloc(n);
-    if (!*data) {
-        err->code = GLINT_ERR_NOMEM;
-        return GLINT_ERR_NOMEM;
-    }
-    memcpy(*data, bytes, n);
-    *size = n;
-    return GLINT_OK;
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     scene *s = NULL;
     glint_error err = {0};
-    if (scene_load_text((const char *)data, size, "fuzz.yaml", "", reader, NULL, &s, &err) !=
+    if (scene_load_text((const char *)data, size, "fuzz.yaml", "", asset_read, NULL, &s, &err) !=
         GLINT_OK)
         return 0;
     glint_settings st;

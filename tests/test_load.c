@@ -7,6 +7,7 @@
 #include <criterion/criterion.h>
 #include <errno.h>
 #include <glob.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,15 +28,14 @@ typedef struct vfile {
 } vfile;
 
 /* Serves an embedded texture for any path ending in textures/NAME. */
+/* The built-in textures, for paths ending in textures/NAME. */
 static bool asset_for(const char *path, char **data, size_t *size)
 {
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    size_t n = strlen(path), nb = strlen(base);
-    if (n < nb + 9 || memcmp(path + n - nb - 9, "textures/", 9) != 0)
-        return false;
+    const char *at = NULL;
+    for (const char *p = strstr(path, "textures/"); p; p = strstr(p + 1, "textures/"))
+        at = p;
     const unsigned char *bytes;
-    if (!asset_find(base, &bytes, size))
+    if (!at || !asset_find(at, &bytes, size))
         return false;
     *data = malloc(*size);
     cr_assert_not_null(*data);
@@ -828,4 +828,103 @@ Test(load_errors, hostile_files_hit_limits_not_the_stack_or_memory)
     /* An alias inside the collection it names. */
     expect_error("objects: &o [*o]\n",
                  "scene.yaml:1:14: alias '*o' refers to a collection that contains it");
+}
+
+/* ---- meshes ----------------------------------------------------------- */
+
+/* A unit tetrahedron, corners at the origin and on the three axes. */
+#define TETRA_OBJ                                                                                  \
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"                                                         \
+    "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+
+Test(load, meshes_are_read_once_and_placed_by_instances)
+{
+    vfile files[] = {{"models/tetra.obj", TETRA_OBJ}, {NULL, NULL}};
+    scene *s = load_ok_with("camera: {eye: [3, 3, 3], look_at: [0.3, 0.3, 0.3], fov: 40}\n"
+                            "lights: [{type: point, position: [5, 5, 5]}]\n"
+                            "objects:\n"
+                            "  - {type: mesh, file: models/tetra.obj, material: {color: [1, 0, 0]}}\n"
+                            "  - {type: mesh, file: ./models/../models/tetra.obj,\n"
+                            "     transform: [translate: [0, 0, -2]]}\n",
+                            files);
+    cr_expect_eq(s->nmeshes, 1, "one file, read once");
+    cr_assert_eq(s->nobjects, 2);
+    cr_expect_eq(s->objects[0].shape.kind, SHAPE_MESH);
+    cr_expect_eq(s->objects[0].shape.mesh, s->objects[1].shape.mesh);
+    cr_expect_geq(s->objects[0].material, 0, "a material given in the scene wins");
+    cr_expect_eq(s->objects[1].material, -1, "without one, the file's own materials");
+    const mesh *m = s->objects[0].shape.mesh;
+    cr_expect_eq(m->ntris, 4);
+    for (int t = 0; t < m->ntris; t++)
+        cr_expect(m->tri_material[t] >= 0 && m->tri_material[t] < s->nmaterials);
+
+    /* A ray down the diagonal meets the slanted face x + y + z = 1. */
+    ray r = ray_make(v3(2, 2, 2), v3_norm(v3(-1, -1, -1)), INFINITY);
+    scene_hit hit;
+    cr_assert(scene_intersect(s, &r, &hit));
+    cr_expect_eq(hit.object, 0);
+    cr_expect_float_eq(hit.h.t, sqrtf(12.0f) - sqrtf(3.0f) / 3.0f, 1e-4f);
+    scene_free(s);
+}
+
+Test(load, mesh_from_disk_keeps_the_files_materials)
+{
+    char dir[] = "/tmp/glint-mesh-XXXXXX", path[160];
+    cr_assert_not_null(mkdtemp(dir));
+    const char *names[] = {"tetra.obj", "tetra.mtl", "scene.yaml"};
+    const char *texts[] = {
+        "mtllib tetra.mtl\nusemtl green\n" TETRA_OBJ,
+        "newmtl green\nKd 0.1 0.8 0.2\nKs 0.5 0.5 0.5\nNs 30\n",
+        "objects: [{type: mesh, file: tetra.obj}]\n",
+    };
+    for (int i = 0; i < 3; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        FILE *f = fopen(path, "w");
+        cr_assert_not_null(f);
+        fputs(texts[i], f);
+        fclose(f);
+    }
+    scene *s = NULL;
+    glint_error err = {0};
+    cr_assert_eq(scene_load_file(path, &s, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(s->nobjects, 1);
+    scene_hit hit = {.object = 0};
+    hit.h.part = 0;
+    const material *mat = scene_hit_material(s, &hit);
+    cr_expect_float_eq(mat->color.y, 0.8f, 1e-6f, "Kd from the .mtl beside the OBJ");
+    cr_expect_float_eq(mat->shininess, 30.0f, 1e-6f);
+    scene_free(s);
+    for (int i = 0; i < 3; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        remove(path);
+    }
+    rmdir(dir);
+}
+
+Test(load_errors, meshes)
+{
+    vfile files[] = {
+        {"bad.obj", "this is not a mesh\n"},
+        {"lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n"},
+        {NULL, NULL},
+    };
+    expect_error("objects: [{type: mesh}]\n", "scene.yaml:1:11: mesh needs 'file'");
+    expect_error("objects: [{type: mesh, file: m.obj, radius: 2}]\n",
+                 "scene.yaml:1:37: unknown key 'radius' in mesh (valid: type, file, material, "
+                 "transform)");
+    expect_error_with("objects: [{type: mesh, file: nope.obj}]\n", files,
+                      "scene.yaml:1:30: cannot read mesh 'nope.obj': No such file or directory");
+    expect_error_with("objects: [{type: mesh, file: lines.obj}]\n", files,
+                      "scene.yaml:1:30: lines.obj: mesh has no triangles");
+
+    /* assimp's own reason follows; the start of the message is ours. */
+    scene *s = NULL;
+    glint_error err = {0};
+    const char *text = "objects: [{type: mesh, file: bad.obj}]\n";
+    cr_expect_eq(scene_load_text(text, strlen(text), "scene.yaml", NULL, mem_reader, files, &s,
+                                 &err),
+                 GLINT_ERR_INPUT);
+    const char *want = "scene.yaml:1:30: bad.obj: cannot import mesh: ";
+    cr_expect_eq(strncmp(err.msg, want, strlen(want)), 0, "got: %s", err.msg);
+    cr_expect_null(s);
 }

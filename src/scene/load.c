@@ -22,6 +22,7 @@
 #include "render/render.h"
 #include "scene/names.h"
 #include "scene/scene.h"
+#include "scene/mesh_import.h"
 #include "scene/yaml_doc.h"
 
 /* Room for a user string in a message, escaped (ydoc_show). */
@@ -83,6 +84,7 @@ typedef struct loader {
     def *defs;
     int ndefs, cap_defs;
     names images; /* resolved path -> index into the scene's images */
+    names meshes; /* resolved path -> index into the scene's meshes */
     ref *texture_refs, *material_refs;
     int ntexture_refs, cap_texture_refs, nmaterial_refs, cap_material_refs;
     int default_material; /* -1 until an object needs it */
@@ -469,6 +471,30 @@ static char *printable(const char *path)
     return out;
 }
 
+/* "cannot read KIND 'written' (resolved): reason", or the size-limit
+ * message when reason is NULL. */
+static glint_rc cannot_read(loader *L, uint32_t at, const char *kind, const char *written,
+                            const char *resolved, const char *reason)
+{
+    glint_rc rc;
+    char *w = printable(written), *r = printable(resolved);
+    if (!w || !r) {
+        rc = err_nomem(L->err);
+    } else {
+        char also[600] = "";
+        if (strcmp(written, resolved) != 0)
+            snprintf(also, sizeof also, " (%s)", r);
+        if (!reason)
+            rc = fail(L, at, "%s '%s'%s is larger than the %u-byte limit", kind, w, also,
+                      LOAD_MAX_FILE_BYTES);
+        else
+            rc = fail(L, at, "cannot read %s '%s'%s: %s", kind, w, also, reason);
+    }
+    free(w);
+    free(r);
+    return rc;
+}
+
 /* Reads a file named in the scene through the reader. written is the
  * path as written, resolved the path the reader gets; kind says what the
  * file is for ("include", "texture"). */
@@ -484,22 +510,9 @@ static glint_rc read_named_file(loader *L, uint32_t at, const char *written, con
         free(*data);
         *data = NULL;
     }
-    char *w = printable(written), *r = printable(resolved);
-    if (!w || !r || rc == GLINT_ERR_NOMEM) {
-        rc = err_nomem(L->err);
-    } else {
-        char also[600] = "";
-        if (strcmp(written, resolved) != 0)
-            snprintf(also, sizeof also, " (%s)", r);
-        if (rc == GLINT_OK)
-            rc = fail(L, at, "%s '%s'%s is larger than the %u-byte limit", kind, w, also,
-                      LOAD_MAX_FILE_BYTES);
-        else
-            rc = fail(L, at, "cannot read %s '%s'%s: %s", kind, w, also, rerr.msg);
-    }
-    free(w);
-    free(r);
-    return rc;
+    if (rc == GLINT_ERR_NOMEM)
+        return err_nomem(L->err);
+    return cannot_read(L, at, kind, written, resolved, rc == GLINT_OK ? NULL : rerr.msg);
 }
 
 /* ---- textures and materials ------------------------------------------- */
@@ -939,8 +952,8 @@ static glint_rc load_transform(loader *L, uint32_t list, int *index)
 /* ---- objects ---------------------------------------------------------- */
 
 /* In shape_kind order. */
-static const char *const object_types[] = {"sphere", "plane",    "quad",     "box",
-                                           "cylinder", "triangle", NULL};
+static const char *const object_types[] = {"sphere",   "plane",    "quad", "box",
+                                           "cylinder", "triangle", "mesh", NULL};
 static const char *const *const object_keys[] = {
     (const char *const[]){"type", "center", "radius", "material", "transform", NULL},
     (const char *const[]){"type", "point", "normal", "material", "transform", NULL},
@@ -949,6 +962,7 @@ static const char *const *const object_keys[] = {
     (const char *const[]){"type", "base", "radius", "height", "capped", "material", "transform",
                           NULL},
     (const char *const[]){"type", "p0", "p1", "p2", "uv", "material", "transform", NULL},
+    (const char *const[]){"type", "file", "material", "transform", NULL},
 };
 
 /* A required vector field of a shape. */
@@ -1012,6 +1026,76 @@ static glint_rc load_triangle(loader *L, uint32_t map, shape *out)
     return rc;
 }
 
+/* The mesh at a path written in the file, imported once per resolved path
+ * however many objects place it. Files on disk go to assimp by path (so an
+ * OBJ finds its .mtl); through another reader, from memory. The file's own
+ * materials join the scene's, and its triangles index them there. */
+static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
+{
+    const char *written = ydoc_text(doc(L), node(L, v));
+    char *resolved = join_path(L->files[L->cur].dir, written);
+    char *data = NULL;
+    mesh_file mf = {0};
+    glint_rc rc = GLINT_OK;
+    if (!resolved) {
+        rc = err_nomem(L->err);
+        goto out;
+    }
+    int index = names_find(&L->meshes, resolved, strlen(resolved));
+    if (index >= 0) {
+        *out = shape_mesh(L->s->meshes[index]);
+        goto out;
+    }
+    glint_error merr = {0};
+    if (L->reader == scene_read_file) {
+        FILE *probe = fopen(resolved, "rb");
+        if (!probe) {
+            rc = cannot_read(L, v, "mesh", written, resolved, strerror(errno));
+            goto out;
+        }
+        fclose(probe);
+        rc = mesh_import(resolved, &mf, &merr);
+    } else {
+        size_t size;
+        rc = read_named_file(L, v, written, resolved, "mesh", &data, &size);
+        if (rc != GLINT_OK)
+            goto out;
+        rc = mesh_import_memory(data, size, resolved, &mf, &merr);
+    }
+    if (rc == GLINT_ERR_NOMEM) {
+        rc = err_nomem(L->err);
+        goto out;
+    }
+    if (rc != GLINT_OK) {
+        rc = fail(L, v, "%s", merr.msg);
+        goto out;
+    }
+    int base = L->s->nmaterials;
+    for (int i = 0; i < mf.nmaterials; i++)
+        if (scene_add_material(L->s, &mf.materials[i]) < 0) {
+            rc = err_nomem(L->err);
+            goto out;
+        }
+    for (int t = 0; t < mf.mesh->ntris; t++)
+        mf.mesh->tri_material[t] += base;
+    index = scene_add_mesh(L->s, mf.mesh);
+    if (index < 0) {
+        rc = err_nomem(L->err);
+        goto out;
+    }
+    mf.mesh = NULL; /* the scene owns it now */
+    if (!names_put(&L->meshes, resolved, strlen(resolved), index)) {
+        rc = err_nomem(L->err);
+        goto out;
+    }
+    *out = shape_mesh(L->s->meshes[index]);
+out:
+    mesh_file_free(&mf);
+    free(data);
+    free(resolved);
+    return rc;
+}
+
 static glint_rc load_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
 {
     const char *what = object_types[kind];
@@ -1065,19 +1149,26 @@ static glint_rc load_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
     }
     case SHAPE_TRIANGLE:
         return load_triangle(L, map, out);
-    case SHAPE_MESH: /* not in object_types: meshes are not written inline */
-        break;
+    case SHAPE_MESH:
+        rc = need(L, map, "file", "mesh", &v);
+        if (rc == GLINT_OK)
+            rc = read_path(L, v, "file");
+        if (rc == GLINT_OK)
+            rc = load_mesh_file(L, v, out);
+        return rc;
     }
     return rc;
 }
 
-/* The object's material: a name (resolved later), a mapping, or nothing
- * (the default material, added once). */
-static glint_rc object_material(loader *L, uint32_t map, int *index, uint32_t *name)
+/* The object's material: a name (resolved later), a mapping, or nothing:
+ * a mesh's own materials (index -1) or the default material, added once. */
+static glint_rc object_material(loader *L, uint32_t map, bool is_mesh, int *index, uint32_t *name)
 {
     uint32_t v = get(L, map, "material");
     *name = YDOC_NONE;
     *index = -1;
+    if (v == YDOC_NONE && is_mesh)
+        return GLINT_OK;
     if (v == YDOC_NONE) {
         if (L->default_material < 0) {
             material m = material_default();
@@ -1120,7 +1211,7 @@ static glint_rc load_object(loader *L, uint32_t map)
     int mat, xf = -1;
     uint32_t name;
     if (rc == GLINT_OK)
-        rc = object_material(L, map, &mat, &name);
+        rc = object_material(L, map, type == SHAPE_MESH, &mat, &name);
     if (rc == GLINT_OK && (v = get(L, map, "transform")) != YDOC_NONE)
         rc = load_transform(L, v, &xf);
     if (rc != GLINT_OK)
@@ -1495,6 +1586,7 @@ static void loader_free(loader *L)
     names_free(&L->texture_names);
     names_free(&L->material_names);
     names_free(&L->images);
+    names_free(&L->meshes);
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);

@@ -1,6 +1,7 @@
 #include "mesh_import.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,21 +36,14 @@ static material import_material(const struct aiMaterial *am)
     return m;
 }
 
-glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
+static const unsigned import_flags =
+    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+    aiProcess_GenSmoothNormals | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+
+/* Flattens what assimp read into one glint mesh; releases sc. */
+static glint_rc convert(const struct aiScene *sc, const char *path, mesh_file *out,
+                        glint_error *err)
 {
-    memset(out, 0, sizeof *out);
-    FILE *probe = fopen(path, "rb");
-    if (!probe)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
-    fclose(probe);
-
-    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                     aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
-                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
-    const struct aiScene *sc = aiImportFile(path, flags);
-    if (!sc)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", path, aiGetErrorString());
-
     glint_rc rc = GLINT_OK;
     mesh *m = calloc(1, sizeof *m);
     if (!m) {
@@ -142,6 +136,36 @@ out:
     }
     out->mesh = m;
     return GLINT_OK;
+}
+
+glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
+{
+    memset(out, 0, sizeof *out);
+    FILE *probe = fopen(path, "rb");
+    if (!probe)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
+    fclose(probe);
+    const struct aiScene *sc = aiImportFile(path, import_flags);
+    if (!sc)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", path, aiGetErrorString());
+    return convert(sc, path, out, err);
+}
+
+glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mesh_file *out,
+                            glint_error *err)
+{
+    memset(out, 0, sizeof *out);
+    const char *dot = strrchr(name, '.');
+    const char *slash = strrchr(name, '/');
+    const char *hint = dot && (!slash || dot > slash) ? dot + 1 : "";
+    if (size == 0 || size > UINT_MAX)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name,
+                       size ? "file too large" : "file is empty");
+    const struct aiScene *sc =
+        aiImportFileFromMemory(data, (unsigned)size, import_flags, hint);
+    if (!sc)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, aiGetErrorString());
+    return convert(sc, name, out, err);
 }
 
 void mesh_file_free(mesh_file *f)

@@ -18,6 +18,11 @@ typedef struct mesh_file {
  * triangulated, vertex normals are kept when the file has them and computed
  * (smooth) when not, and texture coordinates are kept. */
 glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err);
+/* The same for a file already in memory; name (shown in messages) gives
+ * the format by its extension. Files the mesh refers to (an OBJ's .mtl,
+ * a glTF's external buffers) are not found this way. */
+glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mesh_file *out,
+                            glint_error *err);
 /* Frees what mesh_import returned and the caller did not take. */
 void mesh_file_free(mesh_file *f);
 
