@@ -6,13 +6,14 @@
 
 #include "core/error.h"
 
-#define BINS 16
+#define BINS 32
 #define MAX_LEAF 4
 #define COST_TRAVERSE 1.0f
 #define COST_INTERSECT 1.0f
 
 typedef struct build {
     const aabb *boxes;
+    int block;
     vec3 *centers;
     int32_t *prims;
     bvh_node *nodes;
@@ -78,49 +79,36 @@ static void median_split(build *b, int lo, int hi, int axis, int *mid)
     *mid = k;
 }
 
-static int build_node(build *b, int lo, int hi, int depth)
+/* Cost of testing n primitives: they are tested block-wide at a time. */
+static float leaf_cost(const build *b, int n)
 {
-    int self = new_node(b);
-    if (self < 0)
-        return -1;
-    aabb box = aabb_empty(), cbox = aabb_empty();
-    for (int i = lo; i < hi; i++) {
-        box = aabb_union(box, b->boxes[b->prims[i]]);
-        cbox = aabb_grow(cbox, b->centers[b->prims[i]]);
-    }
-    int n = hi - lo, mid;
-    b->nodes[self].box = box;
-    /* Split along the axis of largest centroid extent. */
-    vec3 ext = aabb_extent(cbox);
-    int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
-    float cmin = v3_at(cbox.lo, axis), cext = v3_at(ext, axis);
-    if (n <= 1 || depth >= BVH_MAX_DEPTH - 1) {
-    leaf:
-        if (n > UINT16_MAX) /* a leaf's count must fit; median splits halve n */
-            goto split_median;
-        b->nodes[self].index = lo;
-        b->nodes[self].count = (uint16_t)n;
-        b->nodes[self].axis = 0;
-        return self;
-    }
-    if (cext <= 0.0f) {
-        if (n <= MAX_LEAF)
-            goto leaf;
-        goto split_median;
-    }
-    {
+    return COST_INTERSECT * (float)((n + b->block - 1) / b->block);
+}
+
+/* The best binned SAH split of [lo, hi) over all three axes: sets *axis
+ * and *plane (a centre coordinate) and returns its cost relative to the
+ * parent's area, or INFINITY when no plane separates the centres. */
+static float best_split(const build *b, int lo, int hi, aabb box, aabb cbox, int *axis,
+                        float *plane)
+{
+    float best = INFINITY;
+    float area = aabb_area(box);
+    for (int a = 0; a < 3; a++) {
+        float cmin = v3_at(cbox.lo, a), cext = v3_at(cbox.hi, a) - cmin;
+        if (!(cext > 0.0f))
+            continue;
         aabb bin_box[BINS];
         int bin_n[BINS] = {0};
         for (int i = 0; i < BINS; i++)
             bin_box[i] = aabb_empty();
         float scale = (float)BINS / cext;
         for (int i = lo; i < hi; i++) {
-            int k = (int)((v3_at(b->centers[b->prims[i]], axis) - cmin) * scale);
+            int k = (int)((v3_at(b->centers[b->prims[i]], a) - cmin) * scale);
             k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
             bin_n[k]++;
             bin_box[k] = aabb_union(bin_box[k], b->boxes[b->prims[i]]);
         }
-        /* Sweep from the right to get the cost of every split plane. */
+        /* Sweep from the right for the area and count right of each plane. */
         float right_area[BINS];
         int right_n[BINS];
         aabb acc = aabb_empty();
@@ -133,30 +121,58 @@ static int build_node(build *b, int lo, int hi, int depth)
         }
         acc = aabb_empty();
         cnt = 0;
-        float best = INFINITY;
-        int best_split = -1;
         for (int i = 1; i < BINS; i++) {
             acc = aabb_union(acc, bin_box[i - 1]);
             cnt += bin_n[i - 1];
             if (cnt == 0 || right_n[i] == 0)
                 continue;
-            float cost = aabb_area(acc) * (float)cnt + right_area[i] * (float)right_n[i];
+            float cost = aabb_area(acc) * leaf_cost(b, cnt) + right_area[i] * leaf_cost(b, right_n[i]);
+            cost = area > 0.0f ? COST_TRAVERSE + cost / area : INFINITY;
             if (cost < best) {
                 best = cost;
-                best_split = i;
+                *axis = a;
+                *plane = cmin + (float)i / scale;
             }
         }
-        float area = aabb_area(box);
-        float leaf_cost = COST_INTERSECT * (float)n;
-        float split_cost = COST_TRAVERSE + COST_INTERSECT * (area > 0.0f ? best / area : (float)n);
-        if (best_split < 0) {
+    }
+    return best;
+}
+
+static int build_node(build *b, int lo, int hi, int depth)
+{
+    int self = new_node(b);
+    if (self < 0)
+        return -1;
+    aabb box = aabb_empty(), cbox = aabb_empty();
+    for (int i = lo; i < hi; i++) {
+        box = aabb_union(box, b->boxes[b->prims[i]]);
+        cbox = aabb_grow(cbox, b->centers[b->prims[i]]);
+    }
+    int n = hi - lo, mid;
+    b->nodes[self].box = box;
+    /* The median fallback splits along the axis of largest centre extent. */
+    vec3 ext = aabb_extent(cbox);
+    int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    if (n <= 1 || depth >= BVH_MAX_DEPTH - 1) {
+    leaf:
+        if (n > UINT16_MAX) /* a leaf's count must fit; median splits halve n */
+            goto split_median;
+        b->nodes[self].index = lo;
+        b->nodes[self].count = (uint16_t)n;
+        b->nodes[self].axis = 0;
+        return self;
+    }
+    {
+        float plane = 0.0f;
+        float split = best_split(b, lo, hi, box, cbox, &axis, &plane);
+        if (split == INFINITY) {
             if (n <= MAX_LEAF)
                 goto leaf;
             goto split_median;
         }
-        if (n <= MAX_LEAF && leaf_cost <= split_cost)
+        if (n <= MAX_LEAF && leaf_cost(b, n) <= split)
             goto leaf;
-        mid = partition(b, lo, hi, axis, cmin + (float)best_split / scale);
+        mid = partition(b, lo, hi, axis, plane);
         if (mid == lo || mid == hi)
             goto split_median;
         goto recurse;
@@ -177,10 +193,15 @@ recurse:
 
 glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err)
 {
+    return bvh_build_blocked(out, boxes, n, 1, err);
+}
+
+glint_rc bvh_build_blocked(bvh *out, const aabb *boxes, int n, int block, glint_error *err)
+{
     memset(out, 0, sizeof *out);
     if (n <= 0)
         return GLINT_OK;
-    build b = {boxes, NULL, NULL, NULL, 0, 0};
+    build b = {boxes, block > 0 ? block : 1, NULL, NULL, NULL, 0, 0};
     b.centers = malloc(sizeof *b.centers * (size_t)n);
     b.prims = malloc(sizeof *b.prims * (size_t)n);
     b.cap = 2 * (n / MAX_LEAF + 1) + 1;

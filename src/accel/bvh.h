@@ -5,7 +5,8 @@
  * 4.3.4, "Compact BVH for Traversal".)
  *
  * The build is the binned surface-area-heuristic build of Wald, "On fast
- * Construction of SAH-based Bounding Volume Hierarchies" (IEEE RT 2007).
+ * Construction of SAH-based Bounding Volume Hierarchies" (IEEE RT 2007),
+ * with 32 bins on each of the three axes.
  * Traversal lives with the primitives it tests (scene.c for objects), using
  * bvh_node_hit and the stack depth bound below. */
 #ifndef GLINT_ACCEL_BVH_H
@@ -37,6 +38,10 @@ typedef struct bvh {
 /* Builds over n primitives with the given boxes (none may be empty). An
  * n of 0 gives an empty hierarchy (nnodes 0). */
 glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err);
+/* The same for primitives that are tested `block` at a time (a mesh's
+ * triangles, four to a tri4): the cost model counts a leaf's blocks, not
+ * its primitives, so leaves fill up to a whole block. */
+glint_rc bvh_build_blocked(bvh *out, const aabb *boxes, int n, int block, glint_error *err);
 void bvh_free(bvh *b);
 
 #endif

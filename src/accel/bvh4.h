@@ -50,11 +50,22 @@ void bvh4_free(bvh4 *b);
 typedef bool (*bvh4_leaf_fn)(void *ctx, const int32_t *prims, uint32_t count, float tmin,
                              float *tmax);
 
+/* One entry of the traversal stack: a child to visit and the distance at
+ * which the ray enters its box. */
+typedef struct bvh4_entry {
+    int32_t child;
+    uint32_t count;
+    float dist;
+} bvh4_entry;
+
 /* The ray o + t d against the hierarchy for t in (tmin, *tmax). With any
- * set, stops at the first leaf that reports a hit. Children are visited
- * near to far. */
-__attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, vec3 o, vec3 d, float tmin, float *tmax, bool any,
-                                 bvh4_leaf_fn leaf, void *ctx)
+ * set, stops at the first leaf that reports a hit. Closest-hit queries
+ * visit children near to far: with one child hit the traversal goes on to
+ * it directly, with two it pushes the farther, with more it sorts them;
+ * any-hit queries skip the ordering. */
+__attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, vec3 o, vec3 d,
+                                                                float tmin, float *tmax, bool any,
+                                                                bvh4_leaf_fn leaf, void *ctx)
 {
     if (b->nnodes == 0)
         return false;
@@ -62,9 +73,7 @@ __attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, v
     /* Which of lo/hi is the near plane on each axis. */
     int nx = inv.x < 0.0f, ny = inv.y < 0.0f, nz = inv.z < 0.0f;
     bool found = false;
-    int32_t stack[BVH4_STACK];
-    uint32_t counts[BVH4_STACK];
-    float dists[BVH4_STACK];
+    bvh4_entry stack[BVH4_STACK];
     int sp = 0;
     int32_t cur = 0;
     uint32_t cur_count = 0;
@@ -106,23 +115,42 @@ __attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, v
             }
 #endif
             if (mask) {
-                /* Sort the hit children far to near by entry distance and
-                 * push them; the nearest is popped first. */
-                int idx[4], m = 0;
-                for (int k = 0; k < 4; k++)
-                    if (mask & (1 << k)) {
-                        int j = m++;
-                        while (j > 0 && tn[idx[j - 1]] < tn[k]) {
-                            idx[j] = idx[j - 1];
+                int k0 = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                if (!mask) { /* one child: straight on */
+                    cur = n->child[k0];
+                    cur_count = n->count[k0];
+                    continue;
+                }
+                int k1 = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                if (!mask) { /* two: push the farther, go on with the nearer */
+                    int nearer = any || tn[k0] <= tn[k1] ? k0 : k1, farther = k0 + k1 - nearer;
+                    stack[sp++] = (bvh4_entry){n->child[farther], n->count[farther], tn[farther]};
+                    cur = n->child[nearer];
+                    cur_count = n->count[nearer];
+                    continue;
+                }
+                /* Three or four: push them sorted far to near, then pop
+                 * the nearest. Ties keep child order, so traversal is the
+                 * same on every run. */
+                int base = sp;
+                stack[sp++] = (bvh4_entry){n->child[k0], n->count[k0], tn[k0]};
+                stack[sp++] = (bvh4_entry){n->child[k1], n->count[k1], tn[k1]};
+                for (; mask; mask &= mask - 1) {
+                    int k = __builtin_ctz((unsigned)mask);
+                    stack[sp++] = (bvh4_entry){n->child[k], n->count[k], tn[k]};
+                }
+                if (!any)
+                    for (int i = base + 1; i < sp; i++) {
+                        bvh4_entry e = stack[i];
+                        int j = i;
+                        while (j > base && stack[j - 1].dist < e.dist) {
+                            stack[j] = stack[j - 1];
                             j--;
                         }
-                        idx[j] = k;
+                        stack[j] = e;
                     }
-                for (int j = 0; j < m; j++) {
-                    stack[sp] = n->child[idx[j]];
-                    dists[sp] = tn[idx[j]];
-                    counts[sp++] = n->count[idx[j]];
-                }
             }
         }
         /* Pop the nearest entry still in front of the nearest hit. */
@@ -130,9 +158,9 @@ __attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, v
             if (sp == 0)
                 return found;
             sp--;
-        } while (dists[sp] > *tmax);
-        cur = stack[sp];
-        cur_count = counts[sp];
+        } while (stack[sp].dist > *tmax);
+        cur = stack[sp].child;
+        cur_count = stack[sp].count;
     }
 }
 

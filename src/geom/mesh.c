@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "geom/shape.h"
-#include "geom/watertight.h"
+#include "geom/tri4.h"
 
 static bool degenerate(vec3 a, vec3 b, vec3 c)
 {
@@ -13,6 +13,49 @@ static bool degenerate(vec3 a, vec3 b, vec3 c)
         return true;
     vec3 n = v3_cross(v3_sub(b, a), v3_sub(c, a));
     return !(v3_len2(n) > 0.0f);
+}
+
+/* Copies each leaf's triangles into tri4 blocks, in node order, and points
+ * the leaf's first prims entry at its first block. */
+static glint_rc make_blocks(mesh *m, glint_error *err)
+{
+    const bvh4 *b = &m->bvh;
+    size_t n = 0;
+    for (int i = 0; i < b->nnodes; i++)
+        for (int k = 0; k < 4; k++)
+            if (b->nodes[i].child[k] < 0)
+                n += (b->nodes[i].count[k] + 3) / 4;
+    m->blocks = aligned_alloc(16, (n ? n : 1) * sizeof *m->blocks);
+    if (!m->blocks)
+        return err_nomem(err);
+    memset(m->blocks, 0, (n ? n : 1) * sizeof *m->blocks);
+    m->nblocks = (int)n;
+    int next = 0;
+    for (int i = 0; i < b->nnodes; i++)
+        for (int k = 0; k < 4; k++) {
+            int32_t c = b->nodes[i].child[k];
+            uint32_t count = b->nodes[i].count[k];
+            if (c >= 0 || count == 0)
+                continue;
+            int32_t *first = &b->prims[-1 - c];
+            int32_t t0 = *first; /* triangles are in leaf order: t0 .. t0 + count */
+            *first = next;
+            for (uint32_t j = 0; j < count; j += 4, next++) {
+                tri4 *blk = &m->blocks[next];
+                for (int lane = 0; lane < 4; lane++) {
+                    blk->id[lane] = j + (uint32_t)lane < count ? t0 + (int32_t)(j + lane) : -1;
+                    if (blk->id[lane] < 0)
+                        continue;
+                    for (int corner = 0; corner < 3; corner++) {
+                        vec3 p = m->pos[m->tri[blk->id[lane]][corner]];
+                        blk->p[corner][0][lane] = p.x;
+                        blk->p[corner][1][lane] = p.y;
+                        blk->p[corner][2][lane] = p.z;
+                    }
+                }
+            }
+        }
+    return GLINT_OK;
 }
 
 glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
@@ -46,7 +89,7 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
         m->bounds = aabb_union(m->bounds, b);
     }
     bvh bin;
-    glint_rc rc = bvh_build(&bin, boxes, kept, err);
+    glint_rc rc = bvh_build_blocked(&bin, boxes, kept, 4, err);
     free(boxes);
     if (rc != GLINT_OK)
         return rc;
@@ -69,7 +112,8 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
     free(m->tri_material);
     m->tri = tri;
     m->tri_material = tmat;
-    return bvh4_from_bvh(&m->bvh, &bin, err);
+    glint_rc rc2 = bvh4_from_bvh(&m->bvh, &bin, err);
+    return rc2 == GLINT_OK ? make_blocks(m, err) : rc2;
 }
 
 void mesh_free(mesh *m)
@@ -81,6 +125,7 @@ void mesh_free(mesh *m)
     free(m->uv);
     free(m->tri);
     free(m->tri_material);
+    free(m->blocks);
     bvh4_free(&m->bvh);
     memset(m, 0, sizeof *m);
 }
@@ -95,47 +140,49 @@ size_t mesh_bytes(const mesh *m)
     if (m->tri_material)
         n += (size_t)m->ntris * sizeof(int32_t);
     n += (size_t)m->bvh.nnodes * sizeof(bvh4_node) + (size_t)m->bvh.nprims * sizeof(int32_t);
+    n += (size_t)m->nblocks * sizeof(tri4);
     return n;
 }
 
 typedef struct leaf_ctx {
     const mesh *m;
-    tri_ray tr;
+    tri4_ray q;
     shape_hit *hit;
 } leaf_ctx;
 
-/* Triangles of a leaf are consecutive (mesh_init stored them in leaf
- * order), so prims[0] is the first and the rest follow. */
-__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const int32_t *prims, uint32_t count, float tmin,
-                                float *tmax)
+/* A leaf's first prims entry is its first block; count triangles fill
+ * (count + 3) / 4 blocks from there. */
+__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const int32_t *prims,
+                                                               uint32_t count, float tmin,
+                                                               float *tmax)
 {
     leaf_ctx *c = ctx;
+    const tri4 *blk = &c->m->blocks[prims[0]];
     bool found = false;
-    for (int32_t i = prims[0]; i < prims[0] + (int32_t)count; i++) {
-        const uint32_t *t = c->m->tri[i];
-        float tt, b1, b2;
-        if (tri_intersect(&c->tr, c->m->pos[t[0]], c->m->pos[t[1]], c->m->pos[t[2]], tmin, *tmax,
-                          &tt, &b1, &b2)) {
-            *tmax = tt;
-            c->hit->t = tt;
-            c->hit->part = i;
-            c->hit->b1 = b1;
-            c->hit->b2 = b2;
-            found = true;
-        }
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        float t[4], b1[4], b2[4];
+        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
+        for (int k = 0; mask; k++, mask >>= 1)
+            if ((mask & 1) && t[k] < *tmax) {
+                *tmax = t[k];
+                c->hit->t = t[k];
+                c->hit->part = blk->id[k];
+                c->hit->b1 = b1[k];
+                c->hit->b2 = b2[k];
+                found = true;
+            }
     }
     return found;
 }
 
-__attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int32_t *prims, uint32_t count, float tmin,
-                            float *tmax)
+__attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int32_t *prims,
+                                                           uint32_t count, float tmin, float *tmax)
 {
     leaf_ctx *c = ctx;
-    for (int32_t i = prims[0]; i < prims[0] + (int32_t)count; i++) {
-        const uint32_t *t = c->m->tri[i];
-        float tt, b1, b2;
-        if (tri_intersect(&c->tr, c->m->pos[t[0]], c->m->pos[t[1]], c->m->pos[t[2]], tmin, *tmax,
-                          &tt, &b1, &b2))
+    const tri4 *blk = &c->m->blocks[prims[0]];
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        float t[4], b1[4], b2[4];
+        if (tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2))
             return true;
     }
     return false;
@@ -143,14 +190,14 @@ __attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int3
 
 bool mesh_intersect(const mesh *m, const ray *r, shape_hit *hit)
 {
-    leaf_ctx c = {m, tri_ray_make(r), hit};
+    leaf_ctx c = {m, tri4_ray_make(r), hit};
     float tmax = r->tmax;
     return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_closest, &c);
 }
 
 bool mesh_occluded(const mesh *m, const ray *r)
 {
-    leaf_ctx c = {m, tri_ray_make(r), NULL};
+    leaf_ctx c = {m, tri4_ray_make(r), NULL};
     float tmax = r->tmax;
     return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, true, leaf_any, &c);
 }

@@ -20,7 +20,10 @@ typedef struct mesh {
     uint32_t (*tri)[3];
     int32_t *tri_material; /* per triangle scene material, or NULL */
     int nverts, ntris;
-    bvh4 bvh;         /* prims[i] == i: triangles are stored in leaf order */
+    bvh4 bvh;         /* triangles are stored in leaf order; a leaf's first
+                         prims entry is the index of its first tri4 block */
+    struct tri4 *blocks; /* each leaf's triangles, four to a block */
+    int nblocks;
     aabb bounds;
 } mesh;
 
