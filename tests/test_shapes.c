@@ -1,0 +1,790 @@
+/* Shapes (src/geom): for each primitive a hit at a hand-computed t with its
+ * unit outward normal and (u, v), a miss, a tangent or grazing ray, a ray
+ * starting inside, culling by tmax (the interval is open), and agreement of
+ * the occlusion twin with intersect on fixed-seed random rays. Then shapes
+ * placed through the scene's object transforms (a rotated box and an
+ * ellipsoid, normals through the inverse transpose), and the property that
+ * a ray leaving a convex surface outward, from an origin placed by the
+ * documented ray_offset rule, never meets the same shape again.
+ *
+ * Tolerances: 1e-5 on t, points, normals and (u, v) of hand-computed hits
+ * (a few float ulps at the magnitudes used, which are below 20); 1e-4 on
+ * hits through a transform, whose matrices hold rounded sines and cosines. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+
+#include "core/mat4.h"
+#include "core/rng.h"
+#include "geom/shape.h"
+#include "scene/scene.h"
+#include "shade/material.h"
+
+#define TOL 1e-5
+#define XTOL 1e-4
+
+#define ASSERT_NEAR(a, b, tol)                                                              \
+    cr_assert(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.9g, expected %.9g (tol %g)", \
+              #a, (double)(a), (double)(b), (double)(tol))
+
+#define ASSERT_V3_NEAR(v, ex, ey, ez, tol)                                                  \
+    cr_assert(fabs((double)(v).x - (ex)) <= (tol) && fabs((double)(v).y - (ey)) <= (tol) && \
+                  fabs((double)(v).z - (ez)) <= (tol),                                      \
+              "%s = (%.9g, %.9g, %.9g), expected (%.9g, %.9g, %.9g) (tol %g)", #v,          \
+              (double)(v).x, (double)(v).y, (double)(v).z, (double)(ex), (double)(ey),      \
+              (double)(ez), (double)(tol))
+
+/* ---- helpers ------------------------------------------------------------- */
+
+/* Intersects and, on a hit, fills the surface; asserts the normal is unit. */
+static bool hit_surface(const shape *s, ray r, shape_hit *h, surface *sf)
+{
+    bool hit = shape_intersect(s, &r, h);
+    cr_assert_eq(shape_occluded(s, &r), hit, "occluded disagrees with intersect");
+    if (!hit)
+        return false;
+    shape_surface(s, &r, h, sf);
+    ASSERT_NEAR(v3_len(sf->n), 1.0, TOL);
+    ASSERT_NEAR(v3_len(sf->ng), 1.0, TOL);
+    return true;
+}
+
+static void expect_miss(const shape *s, ray r)
+{
+    shape_hit h;
+    cr_assert_not(shape_intersect(s, &r, &h), "unexpected hit at t = %.9g", (double)h.t);
+    cr_assert_not(shape_occluded(s, &r), "occluded reports a hit that intersect does not");
+}
+
+/* Expects a hit at t with point p, normal n and (u, v); u < 0 skips (u, v). */
+static void expect_hit(const shape *s, ray r, double t, vec3 p, vec3 n, double u, double v)
+{
+    shape_hit h;
+    surface sf;
+    cr_assert(hit_surface(s, r, &h, &sf), "expected a hit at t = %g", t);
+    ASSERT_NEAR(h.t, t, TOL);
+    ASSERT_V3_NEAR(sf.p, p.x, p.y, p.z, TOL);
+    ASSERT_V3_NEAR(sf.n, n.x, n.y, n.z, TOL);
+    if (u >= 0.0) {
+        ASSERT_NEAR(sf.u, u, TOL);
+        ASSERT_NEAR(sf.v, v, TOL);
+    }
+}
+
+/* Uniform direction on the unit sphere (rejection from the cube). */
+static vec3 rand_dir(rng *g)
+{
+    for (;;) {
+        vec3 v = v3(2.0f * rng_float(g) - 1.0f, 2.0f * rng_float(g) - 1.0f,
+                    2.0f * rng_float(g) - 1.0f);
+        float l2 = v3_len2(v);
+        if (l2 > 1e-4f && l2 <= 1.0f)
+            return v3_scale(v, 1.0f / sqrtf(l2));
+    }
+}
+
+static vec3 rand_in_box(rng *g, aabb b)
+{
+    return v3(b.lo.x + (b.hi.x - b.lo.x) * rng_float(g), b.lo.y + (b.hi.y - b.lo.y) * rng_float(g),
+              b.lo.z + (b.hi.z - b.lo.z) * rng_float(g));
+}
+
+/* A scene with one object (default material) and an optional transform. */
+static scene *one_object(shape sh, const xform *x)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material m = material_default();
+    cr_assert_eq(scene_add_material(s, &m), 0);
+    int xi = -1;
+    if (x) {
+        xi = scene_add_xform(s, x);
+        cr_assert_geq(xi, 0);
+    }
+    cr_assert_geq(scene_add_object(s, &sh, 0, xi), 0);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+/* ---- sphere -------------------------------------------------------------- */
+
+/* Centre (1, 2, 3), radius 2. The hit's direction from the centre is
+ * n = (0.48, 0.6, 0.64), so u = 0.5 + atan2(0.48, 0.64) / 2pi and
+ * v = 0.5 + asin(0.6) / pi. */
+Test(shapes, sphere_hit_known_t)
+{
+    shape s = shape_sphere(v3(1, 2, 3), 2);
+    expect_hit(&s, ray_make(v3(1, 2, 10), v3(0, 0, -1), INFINITY), 5.0, v3(1, 2, 5), v3(0, 0, 1),
+               0.5, 0.5);
+    double u = 0.5 + atan2(0.48, 0.64) / (2 * M_PI), v = 0.5 + asin(0.6) / M_PI;
+    expect_hit(&s, ray_make(v3(1.96f, 3.2f, 10), v3(0, 0, -1), INFINITY), 5.72,
+               v3(1.96f, 3.2f, 4.28f), v3(0.48f, 0.6f, 0.64f), u, v);
+    /* A direction of length 2 halves t. */
+    expect_hit(&s, ray_make(v3(1, 2, 10), v3(0, 0, -2), INFINITY), 2.5, v3(1, 2, 5), v3(0, 0, 1),
+               0.5, 0.5);
+    cr_assert(shape_is_convex(&s));
+}
+
+Test(shapes, sphere_miss)
+{
+    shape s = shape_sphere(v3(1, 2, 3), 2);
+    expect_miss(&s, ray_make(v3(3.5f, 2, 10), v3(0, 0, -1), INFINITY)); /* passes beside */
+    expect_miss(&s, ray_make(v3(1, 2, 10), v3(0, 0, 1), INFINITY));     /* points away */
+}
+
+/* A ray touching the sphere at (3, 2, 3): reported there (the two roots
+ * coincide) with the normal perpendicular to the ray; a hair outside misses
+ * and a hair inside hits close to the tangent point. */
+Test(shapes, sphere_tangent)
+{
+    shape s = shape_sphere(v3(1, 2, 3), 2);
+    shape_hit h;
+    surface sf;
+    if (hit_surface(&s, ray_make(v3(3, 2, 10), v3(0, 0, -1), INFINITY), &h, &sf)) {
+        ASSERT_NEAR(h.t, 7.0, TOL);
+        ASSERT_V3_NEAR(sf.n, 1, 0, 0, TOL);
+    }
+    expect_miss(&s, ray_make(v3(3.001f, 2, 10), v3(0, 0, -1), INFINITY));
+    cr_assert(hit_surface(&s, ray_make(v3(2.999f, 2, 10), v3(0, 0, -1), INFINITY), &h, &sf));
+    /* depth of the chord: sqrt(4 - 1.999^2) = 0.0632 */
+    ASSERT_NEAR(h.t, 7.0 - sqrt(4.0 - 1.999 * 1.999), 1e-4);
+}
+
+Test(shapes, sphere_inside_hits_far_side_with_outward_normal)
+{
+    shape s = shape_sphere(v3(1, 2, 3), 2);
+    expect_hit(&s, ray_make(v3(1, 2, 3), v3(0, 1, 0), INFINITY), 2.0, v3(1, 4, 3), v3(0, 1, 0),
+               0.5, 1.0);
+    expect_hit(&s, ray_make(v3(1, 2, 4), v3(0, 0, -1), INFINITY), 3.0, v3(1, 2, 1), v3(0, 0, -1),
+               -1, 0);
+}
+
+/* Centre 0, radius 1, ray from z = 6 down z: roots exactly 5 and 7. */
+Test(shapes, sphere_tmax_culls)
+{
+    shape s = shape_sphere(v3(0, 0, 0), 1);
+    ray r = ray_make(v3(0, 0, 6), v3(0, 0, -1), 4.9f);
+    expect_miss(&s, r);
+    r.tmax = 5.0f; /* open interval: t == tmax is not a hit, and 7 is beyond */
+    expect_miss(&s, r);
+    r.tmax = nextafterf(5.0f, 6.0f);
+    expect_hit(&s, r, 5.0, v3(0, 0, 1), v3(0, 0, 1), -1, 0);
+    /* tmin past the near root gives the far one; tmin past both, nothing. */
+    r = ray_make(v3(0, 0, 6), v3(0, 0, -1), INFINITY);
+    r.tmin = 5.0f;
+    expect_hit(&s, r, 7.0, v3(0, 0, -1), v3(0, 0, -1), -1, 0);
+    r.tmin = 7.0f;
+    expect_miss(&s, r);
+}
+
+/* ---- plane --------------------------------------------------------------- */
+
+Test(shapes, plane_hit_known_t)
+{
+    shape s = shape_plane(v3(0, -1, 0), v3(0, 2, 0)); /* normal normalised by the constructor */
+    const struct plane *pl = &s.plane;
+    ASSERT_V3_NEAR(pl->normal, 0, 1, 0, TOL);
+    /* The tangents are unit, orthogonal, and tu x tv = normal. */
+    ASSERT_NEAR(v3_len(pl->tu), 1.0, TOL);
+    ASSERT_NEAR(v3_len(pl->tv), 1.0, TOL);
+    ASSERT_NEAR(v3_dot(pl->tu, pl->tv), 0.0, TOL);
+    vec3 c = v3_cross(pl->tu, pl->tv);
+    ASSERT_V3_NEAR(c, 0, 1, 0, TOL);
+
+    shape_hit h;
+    surface sf;
+    cr_assert(hit_surface(&s, ray_make(v3(2, 3, 5), v3(0, -1, 0), INFINITY), &h, &sf));
+    ASSERT_NEAR(h.t, 4.0, TOL);
+    ASSERT_V3_NEAR(sf.p, 2, -1, 5, TOL);
+    ASSERT_V3_NEAR(sf.n, 0, 1, 0, TOL);
+    /* (u, v) are world units along the tangents from the plane's point. */
+    ASSERT_NEAR(sf.u, v3_dot(v3(2, 0, 5), pl->tu), TOL);
+    ASSERT_NEAR(sf.v, v3_dot(v3(2, 0, 5), pl->tv), TOL);
+    ASSERT_NEAR(sf.u * sf.u + sf.v * sf.v, 29.0, 1e-4);
+    /* From below: the same point, and the normal stays the plane's. */
+    expect_hit(&s, ray_make(v3(2, -4, 5), v3(0, 1, 0), INFINITY), 3.0, v3(2, -1, 5), v3(0, 1, 0),
+               -1, 0);
+    /* Oblique: from (0, 1, 0) along (1, -1, 0) reaches y = -1 at t = 2. */
+    expect_hit(&s, ray_make(v3(0, 1, 0), v3(1, -1, 0), INFINITY), 2.0, v3(2, -1, 0), v3(0, 1, 0),
+               -1, 0);
+}
+
+Test(shapes, plane_miss_parallel_and_grazing)
+{
+    shape s = shape_plane(v3(0, -1, 0), v3(0, 1, 0));
+    expect_miss(&s, ray_make(v3(0, 3, 0), v3(0, 1, 0), INFINITY));  /* away */
+    expect_miss(&s, ray_make(v3(0, 3, 0), v3(1, 0, 0), INFINITY));  /* parallel above */
+    expect_miss(&s, ray_make(v3(0, -1, 0), v3(1, 0, 1), INFINITY)); /* in the plane */
+    /* Grazing: slope 1e-3 reaches the plane 1000 units on. */
+    shape_hit h;
+    surface sf;
+    cr_assert(hit_surface(&s, ray_make(v3(0, 0, 0), v3(1, -1e-3f, 0), INFINITY), &h, &sf));
+    ASSERT_NEAR(h.t, 1000.0, 1e-2);
+}
+
+Test(shapes, plane_tmax_culls)
+{
+    shape s = shape_plane(v3(0, -1, 0), v3(0, 1, 0));
+    expect_miss(&s, ray_make(v3(0, 3, 0), v3(0, -1, 0), 4.0f));
+    expect_hit(&s, ray_make(v3(0, 3, 0), v3(0, -1, 0), 4.01f), 4.0, v3(0, -1, 0), v3(0, 1, 0), -1,
+               0);
+}
+
+/* ---- quad ---------------------------------------------------------------- */
+
+/* Origin (1, 1, 0), edges (2, 0, 0) and (0, 4, 0): normal +z. */
+Test(shapes, quad_hit_known_t_and_uv_corners)
+{
+    shape s = shape_quad(v3(1, 1, 0), v3(2, 0, 0), v3(0, 4, 0));
+    expect_hit(&s, ray_make(v3(1.5f, 4, 5), v3(0, 0, -1), INFINITY), 5.0, v3(1.5f, 4, 0),
+               v3(0, 0, 1), 0.25, 0.75);
+    /* From behind: the same normal (edge_u x edge_v). */
+    expect_hit(&s, ray_make(v3(2, 3, -2), v3(0, 0, 1), INFINITY), 2.0, v3(2, 3, 0), v3(0, 0, 1),
+               0.5, 0.5);
+    /* The corners, inclusive. */
+    const float cu[4] = {0, 1, 0, 1}, cv[4] = {0, 0, 1, 1};
+    for (int i = 0; i < 4; i++) {
+        vec3 p = v3(1 + 2 * cu[i], 1 + 4 * cv[i], 0);
+        expect_hit(&s, ray_make(v3_add(p, v3(0, 0, 1)), v3(0, 0, -1), INFINITY), 1.0, p,
+                   v3(0, 0, 1), cu[i], cv[i]);
+    }
+}
+
+Test(shapes, quad_miss_parallel_and_tmax)
+{
+    shape s = shape_quad(v3(1, 1, 0), v3(2, 0, 0), v3(0, 4, 0));
+    expect_miss(&s, ray_make(v3(3.01f, 2, 5), v3(0, 0, -1), INFINITY)); /* beside edge u = 1 */
+    expect_miss(&s, ray_make(v3(2, 0.99f, 5), v3(0, 0, -1), INFINITY)); /* below v = 0 */
+    expect_miss(&s, ray_make(v3(0, 2, 0), v3(1, 0, 0), INFINITY));      /* in its plane */
+    expect_miss(&s, ray_make(v3(2, 2, 5), v3(0, 0, -1), 5.0f));
+    expect_hit(&s, ray_make(v3(2, 2, 5), v3(0, 0, -1), 5.01f), 5.0, v3(2, 2, 0), v3(0, 0, 1), 0.5,
+               0.25);
+}
+
+/* A skewed parallelogram: (u, v) are coordinates along the edges. */
+Test(shapes, quad_skewed_uv)
+{
+    shape s = shape_quad(v3(0, 0, 0), v3(2, 0, 0), v3(1, 2, 0));
+    /* origin + 0.5 edge_u + 0.25 edge_v = (1.25, 0.5, 0) */
+    expect_hit(&s, ray_make(v3(1.25f, 0.5f, 3), v3(0, 0, -1), INFINITY), 3.0,
+               v3(1.25f, 0.5f, 0), v3(0, 0, 1), 0.5, 0.25);
+    expect_miss(&s, ray_make(v3(0.1f, 1.5f, 3), v3(0, 0, -1), INFINITY)); /* left of the slant */
+}
+
+/* ---- box ----------------------------------------------------------------- */
+
+/* Box [-1, 1] x [-2, 2] x [-3, 3]. Face f = axis*2 + (max side); (u, v) run
+ * along the next two axes in cyclic order. */
+Test(shapes, box_hit_known_t)
+{
+    shape s = shape_box(v3(1, 2, 3), v3(-1, -2, -3)); /* corners in any order */
+    ASSERT_V3_NEAR(s.box.lo, -1, -2, -3, 0);
+    shape_hit h;
+    surface sf;
+    /* +z face: u along x, v along y. */
+    cr_assert(hit_surface(&s, ray_make(v3(0.5f, -1, 10), v3(0, 0, -1), INFINITY), &h, &sf));
+    cr_assert_eq(h.part, 5);
+    ASSERT_NEAR(h.t, 7.0, TOL);
+    ASSERT_V3_NEAR(sf.n, 0, 0, 1, TOL);
+    ASSERT_NEAR(sf.u, 0.75, TOL);
+    ASSERT_NEAR(sf.v, 0.25, TOL);
+    /* -x face: u along y, v along z. */
+    cr_assert(hit_surface(&s, ray_make(v3(-5, 1, -1.5f), v3(1, 0, 0), INFINITY), &h, &sf));
+    cr_assert_eq(h.part, 0);
+    ASSERT_NEAR(h.t, 4.0, TOL);
+    ASSERT_V3_NEAR(sf.p, -1, 1, -1.5, TOL);
+    ASSERT_V3_NEAR(sf.n, -1, 0, 0, TOL);
+    ASSERT_NEAR(sf.u, 0.75, TOL);
+    ASSERT_NEAR(sf.v, 0.25, TOL);
+    /* +y face from above, obliquely: from (0, 6, 0) along (0.125, -1, 0.5). */
+    cr_assert(hit_surface(&s, ray_make(v3(0, 6, 0), v3(0.125f, -1, 0.5f), INFINITY), &h, &sf));
+    cr_assert_eq(h.part, 3);
+    ASSERT_NEAR(h.t, 4.0, TOL);
+    ASSERT_V3_NEAR(sf.p, 0.5, 2, 2, TOL);
+    ASSERT_V3_NEAR(sf.n, 0, 1, 0, TOL);
+    ASSERT_NEAR(sf.u, 5.0 / 6.0, TOL); /* z: (2 + 3) / 6 */
+    ASSERT_NEAR(sf.v, 0.75, TOL);      /* x: (0.5 + 1) / 2 */
+}
+
+Test(shapes, box_miss)
+{
+    shape s = shape_box(v3(-1, -2, -3), v3(1, 2, 3));
+    expect_miss(&s, ray_make(v3(0, 0, 10), v3(0, 0, 1), INFINITY));   /* away */
+    expect_miss(&s, ray_make(v3(5, 0, 10), v3(0, 0, -1), INFINITY));  /* beside */
+    expect_miss(&s, ray_make(v3(0, 0, 10), v3(1, 1, -1), INFINITY));  /* passes the corner */
+}
+
+/* Rays with zero direction components: outside a slab they miss, inside it
+ * they are unconstrained by it, and on its boundary plane they graze the
+ * face and still hit the face they run into. */
+Test(shapes, box_rays_parallel_to_faces)
+{
+    shape s = shape_box(v3(-1, -2, -3), v3(1, 2, 3));
+    expect_miss(&s, ray_make(v3(0, 2.5f, 10), v3(0, 0, -1), INFINITY));
+    expect_miss(&s, ray_make(v3(-1.5f, 0, 10), v3(0, 0, -1), INFINITY));
+    expect_miss(&s, ray_make(v3(0, 2.5f, 10), v3(-0.0f, 0.0f, -1), INFINITY));
+    expect_hit(&s, ray_make(v3(0.5f, 1, 10), v3(0, 0, -1), INFINITY), 7.0, v3(0.5f, 1, 3),
+               v3(0, 0, 1), 0.75, 0.75);
+    /* negative zero is still zero */
+    expect_hit(&s, ray_make(v3(0.5f, 1, 10), v3(-0.0f, -0.0f, -1), INFINITY), 7.0,
+               v3(0.5f, 1, 3), v3(0, 0, 1), 0.75, 0.75);
+    /* In the plane y = 2 of the +y face: grazes it, enters through +z. */
+    expect_hit(&s, ray_make(v3(0, 2, 10), v3(0, 0, -1), INFINITY), 7.0, v3(0, 2, 3), v3(0, 0, 1),
+               0.5, 1.0);
+    /* Along the edge x = 1, y = 2. */
+    shape_hit h;
+    surface sf;
+    cr_assert(hit_surface(&s, ray_make(v3(1, 2, 10), v3(0, 0, -1), INFINITY), &h, &sf));
+    ASSERT_NEAR(h.t, 7.0, TOL);
+    /* Diagonal in the xz plane with dy = 0, inside the y slab. */
+    expect_hit(&s, ray_make(v3(4, 0, 0), v3(-1, 0, 0.5f), INFINITY), 3.0, v3(1, 0, 1.5f),
+               v3(1, 0, 0), 0.5, 0.75);
+}
+
+Test(shapes, box_inside_hits_far_side_with_outward_normal)
+{
+    shape s = shape_box(v3(-1, -2, -3), v3(1, 2, 3));
+    expect_hit(&s, ray_make(v3(0, 0, 0), v3(1, 0, 0), INFINITY), 1.0, v3(1, 0, 0), v3(1, 0, 0),
+               0.5, 0.5);
+    expect_hit(&s, ray_make(v3(0, 0, 0), v3(0, -1, 0), INFINITY), 2.0, v3(0, -2, 0),
+               v3(0, -1, 0), 0.5, 0.5);
+    expect_hit(&s, ray_make(v3(0.5f, 0, 1), v3(0, 0, -2), INFINITY), 2.0, v3(0.5f, 0, -3),
+               v3(0, 0, -1), 0.75, 0.5);
+}
+
+Test(shapes, box_tmax_culls)
+{
+    shape s = shape_box(v3(-1, -2, -3), v3(1, 2, 3));
+    ray r = ray_make(v3(0, 0, 10), v3(0, 0, -1), 7.0f);
+    expect_miss(&s, r); /* near face at 7 == tmax; far face at 13 is beyond */
+    r.tmax = 7.01f;
+    expect_hit(&s, r, 7.0, v3(0, 0, 3), v3(0, 0, 1), -1, 0);
+    r.tmax = INFINITY;
+    r.tmin = 7.0f;
+    expect_hit(&s, r, 13.0, v3(0, 0, -3), v3(0, 0, -1), -1, 0);
+}
+
+/* ---- cylinder ------------------------------------------------------------ */
+
+/* Base (1, 0, 0), radius 2, height 4, capped. Side: u = 0.5 facing +z,
+ * v = height fraction; caps: the disc mapped onto [0, 1]^2. */
+Test(shapes, cylinder_hit_known_t)
+{
+    shape s = shape_cylinder(v3(1, 0, 0), 2, 4, true);
+    expect_hit(&s, ray_make(v3(1, 1, 10), v3(0, 0, -1), INFINITY), 8.0, v3(1, 1, 2), v3(0, 0, 1),
+               0.5, 0.25);
+    /* The side at n = (0.6, 0, 0.8): x = 1 + 1.2, z = 1.6. */
+    expect_hit(&s, ray_make(v3(2.2f, 3, 10), v3(0, 0, -1), INFINITY), 8.4, v3(2.2f, 3, 1.6f),
+               v3(0.6f, 0, 0.8f), 0.5 + atan2(0.6, 0.8) / (2 * M_PI), 0.75);
+    /* +x side: u = 0.75. */
+    expect_hit(&s, ray_make(v3(10, 2, 0), v3(-1, 0, 0), INFINITY), 7.0, v3(3, 2, 0), v3(1, 0, 0),
+               0.75, 0.5);
+    /* Top cap at (2, 4, 1): u = 0.5 + 0.5 * 1/2, v = 0.5 - 0.5 * 1/2. */
+    expect_hit(&s, ray_make(v3(2, 9, 1), v3(0, -1, 0), INFINITY), 5.0, v3(2, 4, 1), v3(0, 1, 0),
+               0.75, 0.25);
+    /* Bottom cap at (2, 0, 1): v mirrored, as seen from below. */
+    expect_hit(&s, ray_make(v3(2, -3, 1), v3(0, 1, 0), INFINITY), 3.0, v3(2, 0, 1), v3(0, -1, 0),
+               0.75, 0.75);
+    cr_assert(shape_is_convex(&s));
+    shape open = shape_cylinder(v3(1, 0, 0), 2, 4, false);
+    cr_assert_not(shape_is_convex(&open));
+}
+
+Test(shapes, cylinder_miss)
+{
+    shape s = shape_cylinder(v3(1, 0, 0), 2, 4, true);
+    expect_miss(&s, ray_make(v3(1, 4.5f, 10), v3(0, 0, -1), INFINITY)); /* above */
+    expect_miss(&s, ray_make(v3(1, -0.5f, 10), v3(0, 0, -1), INFINITY)); /* below */
+    expect_miss(&s, ray_make(v3(3.5f, 2, 10), v3(0, 0, -1), INFINITY)); /* beside */
+    expect_miss(&s, ray_make(v3(4, 9, 0), v3(0, -1, 0), INFINITY));    /* parallel to the axis */
+    /* Uncapped: straight down the axis passes through. */
+    shape open = shape_cylinder(v3(1, 0, 0), 2, 4, false);
+    expect_miss(&open, ray_make(v3(1, 9, 0), v3(0, -1, 0), INFINITY));
+}
+
+Test(shapes, cylinder_tangent)
+{
+    shape s = shape_cylinder(v3(1, 0, 0), 2, 4, true);
+    shape_hit h;
+    surface sf;
+    /* touches the side line x = 3, z = 0 */
+    if (hit_surface(&s, ray_make(v3(3, 2, 10), v3(0, 0, -1), INFINITY), &h, &sf)) {
+        ASSERT_NEAR(h.t, 10.0, TOL);
+        ASSERT_V3_NEAR(sf.n, 1, 0, 0, TOL);
+    }
+    expect_miss(&s, ray_make(v3(3.001f, 2, 10), v3(0, 0, -1), INFINITY));
+    /* grazes the top rim: in the plane y = 4, enters the cap's edge */
+    cr_assert(hit_surface(&s, ray_make(v3(1, 4, 10), v3(0, 0, -1), INFINITY), &h, &sf));
+    ASSERT_NEAR(h.t, 8.0, TOL);
+    ASSERT_V3_NEAR(sf.p, 1, 4, 2, TOL);
+}
+
+Test(shapes, cylinder_inside_hits_far_side_with_outward_normal)
+{
+    shape s = shape_cylinder(v3(1, 0, 0), 2, 4, true);
+    expect_hit(&s, ray_make(v3(1, 1, 0), v3(1, 0, 0), INFINITY), 2.0, v3(3, 1, 0), v3(1, 0, 0),
+               0.75, 0.25);
+    expect_hit(&s, ray_make(v3(1, 1, 0), v3(0, 1, 0), INFINITY), 3.0, v3(1, 4, 0), v3(0, 1, 0),
+               0.5, 0.5);
+    expect_hit(&s, ray_make(v3(1, 1, 0), v3(0, -1, 0), INFINITY), 1.0, v3(1, 0, 0), v3(0, -1, 0),
+               0.5, 0.5);
+    /* Open cylinder seen from inside: the far wall, normal still away from
+     * the axis ((u, v) not checked: -z is the seam, u = 0 or 1). */
+    shape open = shape_cylinder(v3(1, 0, 0), 2, 4, false);
+    expect_hit(&open, ray_make(v3(1, 1, 0), v3(0, 0, -1), INFINITY), 2.0, v3(1, 1, -2),
+               v3(0, 0, -1), -1, 0);
+    expect_hit(&open, ray_make(v3(1, 1, 0), v3(0, 0.5f, 1), INFINITY), 2.0, v3(1, 2, 2),
+               v3(0, 0, 1), 0.5, 0.5);
+}
+
+Test(shapes, cylinder_tmax_culls)
+{
+    shape s = shape_cylinder(v3(1, 0, 0), 2, 4, true);
+    ray r = ray_make(v3(1, 1, 10), v3(0, 0, -1), 8.0f);
+    expect_miss(&s, r);
+    r.tmax = 8.01f;
+    expect_hit(&s, r, 8.0, v3(1, 1, 2), v3(0, 0, 1), -1, 0);
+    r = ray_make(v3(2, 9, 1), v3(0, -1, 0), 5.0f); /* the cap */
+    expect_miss(&s, r);
+    r.tmin = 5.0f;
+    r.tmax = INFINITY;
+    expect_hit(&s, r, 9.0, v3(2, 0, 1), v3(0, -1, 0), -1, 0);
+}
+
+/* ---- triangle ------------------------------------------------------------ */
+
+/* (0,0,0) (2,0,0) (0,2,0): front (counter-clockwise) faces +z. */
+Test(shapes, triangle_hit_known_t)
+{
+    shape s = shape_triangle(v3(0, 0, 0), v3(2, 0, 0), v3(0, 2, 0));
+    shape_hit h;
+    surface sf;
+    cr_assert(hit_surface(&s, ray_make(v3(0.5f, 1, 3), v3(0, 0, -1), INFINITY), &h, &sf));
+    ASSERT_NEAR(h.t, 3.0, TOL);
+    ASSERT_NEAR(h.b1, 0.25, TOL);
+    ASSERT_NEAR(h.b2, 0.5, TOL);
+    ASSERT_V3_NEAR(sf.p, 0.5, 1, 0, TOL);
+    ASSERT_V3_NEAR(sf.n, 0, 0, 1, TOL);
+    ASSERT_NEAR(sf.u, 0.25, TOL); /* default uv: the barycentrics */
+    ASSERT_NEAR(sf.v, 0.5, TOL);
+    /* From behind: same geometric normal. */
+    expect_hit(&s, ray_make(v3(0.5f, 1, -1), v3(0, 0, 1), INFINITY), 1.0, v3(0.5f, 1, 0),
+               v3(0, 0, 1), 0.25, 0.5);
+    /* Custom per-corner (u, v) interpolate: b0 = 0.25, b1 = 0.25, b2 = 0.5. */
+    s.triangle.uv[0][0] = 0.2f, s.triangle.uv[0][1] = 0.4f;
+    s.triangle.uv[1][0] = 1.0f, s.triangle.uv[1][1] = 0.0f;
+    s.triangle.uv[2][0] = 0.6f, s.triangle.uv[2][1] = 1.0f;
+    expect_hit(&s, ray_make(v3(0.5f, 1, 3), v3(0, 0, -1), INFINITY), 3.0, v3(0.5f, 1, 0),
+               v3(0, 0, 1), 0.25 * 0.2 + 0.25 * 1.0 + 0.5 * 0.6, 0.25 * 0.4 + 0.5 * 1.0);
+    /* Clockwise order flips the normal. */
+    shape cw = shape_triangle(v3(0, 0, 0), v3(0, 2, 0), v3(2, 0, 0));
+    expect_hit(&cw, ray_make(v3(0.5f, 1, 3), v3(0, 0, -1), INFINITY), 3.0, v3(0.5f, 1, 0),
+               v3(0, 0, -1), -1, 0);
+}
+
+Test(shapes, triangle_miss_edge_and_parallel)
+{
+    shape s = shape_triangle(v3(0, 0, 0), v3(2, 0, 0), v3(0, 2, 0));
+    expect_miss(&s, ray_make(v3(1.1f, 1.1f, 3), v3(0, 0, -1), INFINITY)); /* past the hypotenuse */
+    expect_miss(&s, ray_make(v3(-0.1f, 1, 3), v3(0, 0, -1), INFINITY));
+    expect_miss(&s, ray_make(v3(-1, 0.5f, 0), v3(1, 0, 0), INFINITY)); /* in its plane */
+    expect_miss(&s, ray_make(v3(0.5f, 0.5f, 3), v3(0, 0, -1), 3.0f));  /* tmax */
+    expect_hit(&s, ray_make(v3(0.5f, 0.5f, 3), v3(0, 0, -1), 3.01f), 3.0, v3(0.5f, 0.5f, 0),
+               v3(0, 0, 1), -1, 0);
+    /* A ray through a vertex or along an edge's point counts (edges are inclusive). */
+    shape_hit h;
+    surface sf;
+    cr_assert(hit_surface(&s, ray_make(v3(1, 1, 3), v3(0, 0, -1), INFINITY), &h, &sf));
+    ASSERT_NEAR(h.t, 3.0, TOL);
+}
+
+/* Two triangles sharing the edge (0,0,0)-(1,1,0): rays through points on
+ * that edge, from random origins, never slip between them (watertight). */
+Test(shapes, triangle_shared_edge_is_watertight)
+{
+    shape a = shape_triangle(v3(0, 0, 0), v3(1, 0, 0), v3(1, 1, 0));
+    shape b = shape_triangle(v3(0, 0, 0), v3(1, 1, 0), v3(0, 1, 0));
+    rng g = rng_seed(0x5eed, 11);
+    int leaks = 0;
+    for (int i = 0; i < 20000; i++) {
+        float s = 0.01f + 0.98f * rng_float(&g);
+        vec3 target = v3(s, s, 0);
+        vec3 o = v3_madd(target, rand_dir(&g), 1.0f + 10.0f * rng_float(&g));
+        if (fabsf(o.z) < 1e-3f)
+            continue;
+        ray r = ray_make(o, v3_sub(target, o), INFINITY);
+        shape_hit h;
+        if (!shape_intersect(&a, &r, &h) && !shape_intersect(&b, &r, &h))
+            leaks++;
+    }
+    cr_assert_eq(leaks, 0, "%d rays passed between two triangles sharing an edge", leaks);
+}
+
+/* ---- occlusion twin ------------------------------------------------------ */
+
+/* Random rays from [-3, 3]^3 (many start inside the solids), non-unit
+ * directions (half of them aimed near the shape), and tmax either infinite
+ * or random: occluded must answer
+ * exactly as intersect, every hit must lie in (tmin, tmax) and on the
+ * shape's bounds (within 1e-4 relative). */
+Test(shapes, occluded_agrees_with_intersect_on_random_rays)
+{
+    shape shapes[] = {
+        shape_sphere(v3(0.2f, -0.1f, 0.3f), 1.5f),
+        shape_plane(v3(0, 0.3f, 0), v3(0.2f, 1, -0.1f)),
+        shape_quad(v3(-1, -1, 0.5f), v3(2, 0.3f, 0), v3(0.2f, 2, 0.4f)),
+        shape_box(v3(-1, -1.5f, -0.5f), v3(1.2f, 1, 2)),
+        shape_cylinder(v3(0.1f, -1, 0), 1.2f, 2.5f, true),
+        shape_cylinder(v3(0.1f, -1, 0), 1.2f, 2.5f, false),
+        shape_triangle(v3(-2, -1, 0), v3(2, -1, 0.5f), v3(0, 2, -0.5f)),
+    };
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
+        const shape *s = &shapes[k];
+        aabb b = shape_bounds(s);
+        rng g = rng_seed(1234, k);
+        int hits = 0;
+        for (int i = 0; i < 10000; i++) {
+            vec3 o = v3(6 * rng_float(&g) - 3, 6 * rng_float(&g) - 3, 6 * rng_float(&g) - 3);
+            vec3 d = v3_scale(rand_dir(&g), 0.5f + 1.5f * rng_float(&g));
+            if (i % 2 && !aabb_is_empty(b)) /* aimed at the shape's bounds, grown by 0.5 */
+                d = v3_sub(rand_in_box(&g, (aabb){v3_sub(b.lo, v3s(0.5f)), v3_add(b.hi, v3s(0.5f))}), o);
+            float tmax = i % 3 == 0 ? INFINITY : 6.0f * rng_float(&g);
+            ray r = ray_make(o, d, tmax);
+            shape_hit h;
+            bool hit = shape_intersect(s, &r, &h);
+            cr_assert_eq(shape_occluded(s, &r), hit, "shape %zu ray %d: occluded %d, intersect %d",
+                         k, i, !hit, hit);
+            if (!hit)
+                continue;
+            hits++;
+            cr_assert(h.t > r.tmin && h.t < r.tmax, "shape %zu ray %d: t %g outside (0, %g)", k, i,
+                      (double)h.t, (double)tmax);
+            if (!aabb_is_empty(b)) {
+                vec3 p = ray_at(&r, h.t);
+                float e = 1e-4f * (1.0f + v3_max_abs(p));
+                cr_assert(p.x >= b.lo.x - e && p.y >= b.lo.y - e && p.z >= b.lo.z - e &&
+                              p.x <= b.hi.x + e && p.y <= b.hi.y + e && p.z <= b.hi.z + e,
+                          "shape %zu ray %d: hit (%g %g %g) outside the bounds", k, i,
+                          (double)p.x, (double)p.y, (double)p.z);
+            }
+        }
+        /* Not vacuous: a good share of the rays must hit. */
+        cr_assert_gt(hits, 1000, "shape %zu: only %d hits", k, hits);
+    }
+}
+
+/* ---- through object transforms -------------------------------------------- */
+
+/* The cube [-1, 1]^3 turned 45 degrees about +y (right-handed: +z goes to
+ * (s, 0, c)). Its +z face now lies in (x + z)/sqrt2 = 1 with normal
+ * (1, 0, 1)/sqrt2, its -x face in (z - x)/sqrt2 = 1 with normal
+ * (-1, 0, 1)/sqrt2. A ray down -z at x = +-0.3 meets them at
+ * z = sqrt2 - 0.3. */
+Test(shapes, rotated_box_through_scene_transform)
+{
+    xform x = xform_rotate(v3(0, 1, 0), 45.0f);
+    scene *s = one_object(shape_box(v3(-1, -1, -1), v3(1, 1, 1)), &x);
+    const double h = M_SQRT1_2, z = M_SQRT2 - 0.3;
+    /* world bounds: the rotated corners reach sqrt2 in x and z */
+    ASSERT_NEAR(s->bounds[0].hi.x, M_SQRT2, XTOL);
+    ASSERT_NEAR(s->bounds[0].hi.y, 1.0, XTOL);
+    ASSERT_NEAR(s->bounds[0].lo.z, -M_SQRT2, XTOL);
+    const float xs[2] = {0.3f, -0.3f};
+    const double nx[2] = {h, -h};
+    for (int i = 0; i < 2; i++) {
+        ray r = ray_make(v3(xs[i], 0.25f, 10), v3(0, 0, -1), INFINITY);
+        scene_hit hit;
+        cr_assert(scene_intersect(s, &r, &hit));
+        cr_assert(scene_occluded_opaque(s, &r));
+        ASSERT_NEAR(hit.h.t, 10.0 - z, XTOL);
+        surface sf;
+        scene_surface(s, &r, &hit, &sf);
+        ASSERT_V3_NEAR(sf.p, xs[i], 0.25, z, XTOL);
+        ASSERT_V3_NEAR(sf.n, nx[i], 0.0, h, XTOL);
+        ASSERT_V3_NEAR(sf.ng, nx[i], 0.0, h, XTOL);
+    }
+    /* From the side along -x at z = 0: meets the vertical edge where the +x
+     * and +z faces join, at x = sqrt2, so either face's normal, (1, 0, -+1)/sqrt2;
+     * misses above the top at y = 1. */
+    ray r = ray_make(v3(10, 0, 0), v3(-2, 0, 0), INFINITY); /* non-unit: t halves */
+    scene_hit hit;
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, (10.0 - M_SQRT2) / 2, XTOL);
+    surface sf;
+    scene_surface(s, &r, &hit, &sf);
+    ASSERT_V3_NEAR(sf.p, M_SQRT2, 0, 0, XTOL);
+    cr_assert(fabs(sf.n.x - h) <= XTOL && fabs(sf.n.y) <= XTOL && fabs(fabs(sf.n.z) - h) <= XTOL,
+              "n = (%g %g %g)", (double)sf.n.x, (double)sf.n.y, (double)sf.n.z);
+    r = ray_make(v3(10, 1.01f, 0), v3(-1, 0, 0), INFINITY);
+    cr_assert_not(scene_intersect(s, &r, &hit));
+    cr_assert_not(scene_occluded_opaque(s, &r));
+    scene_free(s);
+}
+
+/* The unit sphere scaled by (2, 1, 0.5) and moved by (1, 2, 3): the
+ * ellipsoid (x-1)^2/4 + (y-2)^2 + (z-3)^2/0.25 = 1. A ray down -z at
+ * x - 1 = 1, y = 2 meets it at z - 3 = 0.5 sqrt(0.75); the normal there is
+ * the gradient (x/4, y, 4z) ~ (0.25, 0, 1.7320508), of length 1.75. (The
+ * forward matrix applied to the object normal would give (0.917, 0, 0.397)
+ * instead.) */
+Test(shapes, ellipsoid_normals_by_inverse_transpose)
+{
+    xform sc = xform_scale(v3(2, 1, 0.5f)), tr = xform_translate(v3(1, 2, 3));
+    xform x = xform_then(&sc, &tr);
+    scene *s = one_object(shape_sphere(v3(0, 0, 0), 1), &x);
+    ASSERT_V3_NEAR(s->bounds[0].lo, -1, 1, 2.5, XTOL);
+    ASSERT_V3_NEAR(s->bounds[0].hi, 3, 3, 3.5, XTOL);
+
+    const double zc = 0.5 * sqrt(0.75);
+    ray r = ray_make(v3(2, 2, 13), v3(0, 0, -1), INFINITY);
+    scene_hit hit;
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, 10.0 - zc, XTOL);
+    surface sf;
+    scene_surface(s, &r, &hit, &sf);
+    ASSERT_V3_NEAR(sf.p, 2, 2, 3 + zc, XTOL);
+    ASSERT_V3_NEAR(sf.n, 0.25 / 1.75, 0, sqrt(3.0) / 1.75, XTOL);
+    ASSERT_V3_NEAR(sf.ng, 0.25 / 1.75, 0, sqrt(3.0) / 1.75, XTOL);
+    /* (u, v) are the object's: the object point is (0.5, 0, 0.866). */
+    ASSERT_NEAR(sf.u, 0.5 + atan2(0.5, sqrt(0.75)) / (2 * M_PI), XTOL);
+    ASSERT_NEAR(sf.v, 0.5, XTOL);
+
+    /* Along the axes: the semi-axes 2, 1 and 0.5. */
+    r = ray_make(v3(11, 2, 3), v3(-1, 0, 0), INFINITY);
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, 8.0, XTOL);
+    scene_surface(s, &r, &hit, &sf);
+    ASSERT_V3_NEAR(sf.n, 1, 0, 0, XTOL);
+    r = ray_make(v3(1, 12, 3), v3(0, -1, 0), INFINITY);
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, 9.0, XTOL);
+    r = ray_make(v3(1, 2, 3), v3(0, 0, -4), INFINITY); /* from the centre, |d| = 4 */
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, 0.125, XTOL);
+    scene_surface(s, &r, &hit, &sf);
+    ASSERT_V3_NEAR(sf.p, 1, 2, 2.5, XTOL);
+    ASSERT_V3_NEAR(sf.n, 0, 0, -1, XTOL);
+    /* Outside the ellipsoid but inside the unscaled sphere's reach. */
+    r = ray_make(v3(1, 2.6f, 13), v3(0, 0, -1), INFINITY);
+    cr_assert(scene_intersect(s, &r, &hit));
+    r = ray_make(v3(1, 3.01f, 13), v3(0, 0, -1), INFINITY);
+    cr_assert_not(scene_intersect(s, &r, &hit));
+    cr_assert_not(scene_occluded_opaque(s, &r));
+    scene_free(s);
+}
+
+/* A mirroring transform (negative determinant) keeps normals outward: the
+ * sphere scaled by (-2, 1, 1) is met from +x at x = 2 with normal +x, and
+ * the cube [0, 1]^3 mirrored in x occupies [-1, 0] with its old +x face
+ * now facing -x. */
+Test(shapes, mirrored_shapes_keep_outward_normals)
+{
+    xform m = xform_scale(v3(-2, 1, 1));
+    scene *s = one_object(shape_sphere(v3(0, 0, 0), 1), &m);
+    ray r = ray_make(v3(5, 0, 0), v3(-1, 0, 0), INFINITY);
+    scene_hit hit;
+    surface sf;
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, 3.0, XTOL);
+    scene_surface(s, &r, &hit, &sf);
+    ASSERT_V3_NEAR(sf.n, 1, 0, 0, XTOL);
+    scene_free(s);
+
+    xform mx = xform_scale(v3(-1, 1, 1));
+    s = one_object(shape_box(v3(0, 0, 0), v3(1, 1, 1)), &mx);
+    r = ray_make(v3(-5, 0.5f, 0.5f), v3(1, 0, 0), INFINITY);
+    cr_assert(scene_intersect(s, &r, &hit));
+    ASSERT_NEAR(hit.h.t, 4.0, XTOL);
+    cr_assert_eq(hit.h.part, 1); /* the object's +x face */
+    scene_surface(s, &r, &hit, &sf);
+    ASSERT_V3_NEAR(sf.p, -1, 0.5, 0.5, XTOL);
+    ASSERT_V3_NEAR(sf.n, -1, 0, 0, XTOL);
+    scene_free(s);
+}
+
+/* ---- no self-intersection from a convex surface --------------------------- */
+
+/* Finds surface points with rays from a sphere around the shape aimed at
+ * random points of its bounds, then sends a ray from each point into a
+ * random direction of the normal's hemisphere, starting where ray_offset
+ * puts it. Half the directions are near-tangent (the normal's share between
+ * 1e-4 and 1e-2), the hardest case. None may meet the shape again. */
+static void expect_no_rehit(const char *name, shape sh, const xform *x, uint64_t seed)
+{
+    enum { RAYS = 100000 };
+    scene *s = one_object(sh, x);
+    aabb b = s->bounds[0];
+    vec3 c = aabb_center(b);
+    float R = 2.0f * v3_len(aabb_extent(b)) + 1.0f;
+    rng g = rng_seed(seed, 3);
+    int tested = 0, rehits = 0;
+    char first[256] = "";
+    while (tested < RAYS) {
+        vec3 o = v3_madd(c, rand_dir(&g), R);
+        ray r = ray_make(o, v3_sub(rand_in_box(&g, b), o), INFINITY);
+        scene_hit h;
+        if (!scene_intersect(s, &r, &h))
+            continue;
+        surface sf;
+        scene_surface(s, &r, &h, &sf);
+        vec3 d;
+        if (tested % 2 == 0) {
+            d = rand_dir(&g);
+        } else {
+            vec3 t = v3_norm(v3_cross(sf.ng, rand_dir(&g)));
+            d = v3_norm(v3_madd(t, sf.ng, 1e-4f + 1e-2f * rng_float(&g)));
+        }
+        float dn = v3_dot(d, sf.ng);
+        if (dn == 0.0f)
+            continue;
+        if (dn < 0.0f)
+            d = v3_neg(d);
+        ray out = ray_make(ray_offset(sf.p, sf.ng, d), d, INFINITY);
+        scene_hit h2;
+        bool again = scene_intersect(s, &out, &h2);
+        bool occ = scene_occluded_opaque(s, &out);
+        if ((again || occ) && rehits++ == 0)
+            snprintf(first, sizeof first,
+                     "p (%.9g %.9g %.9g) ng (%.9g %.9g %.9g) d (%.9g %.9g %.9g) t %.9g occ %d",
+                     (double)sf.p.x, (double)sf.p.y, (double)sf.p.z, (double)sf.ng.x,
+                     (double)sf.ng.y, (double)sf.ng.z, (double)d.x, (double)d.y, (double)d.z,
+                     again ? (double)h2.h.t : -1.0, occ);
+        tested++;
+    }
+    scene_free(s);
+    cr_assert_eq(rehits, 0, "%s: %d of %d rays re-hit the surface they left; first: %s", name,
+                 rehits, RAYS, first);
+}
+
+Test(shapes, convex_sphere_never_rehits_itself)
+{
+    expect_no_rehit("sphere", shape_sphere(v3(3, -2, 5), 2.5f), NULL, 101);
+    expect_no_rehit("far sphere", shape_sphere(v3(100, 40, -300), 20), NULL, 102);
+}
+
+Test(shapes, convex_box_never_rehits_itself)
+{
+    expect_no_rehit("box", shape_box(v3(-1, -2, -0.5f), v3(3, 1, 4)), NULL, 201);
+}
+
+Test(shapes, convex_cylinder_never_rehits_itself)
+{
+    expect_no_rehit("cylinder", shape_cylinder(v3(1, -1, 2), 1.5f, 3, true), NULL, 301);
+}
+
+Test(shapes, convex_transformed_shapes_never_rehit_themselves)
+{
+    xform rot = xform_rotate(v3(0, 1, 0), 45.0f), mv = xform_translate(v3(2, 1, -3));
+    xform x = xform_then(&rot, &mv);
+    expect_no_rehit("rotated box", shape_box(v3(-1, -1, -1), v3(1, 1, 1)), &x, 401);
+
+    xform sc = xform_scale(v3(2, 1, 0.5f)), r2 = xform_rotate(v3(1, 1, 0), 30.0f);
+    xform e = xform_then(&sc, &r2);
+    e = xform_then(&e, &mv);
+    expect_no_rehit("ellipsoid", shape_sphere(v3(0, 0, 0), 1), &e, 402);
+
+    xform cs = xform_scale(v3(1, 3, 1)), r3 = xform_rotate(v3(0, 0, 1), 60.0f);
+    xform cx = xform_then(&cs, &r3);
+    expect_no_rehit("stretched cylinder", shape_cylinder(v3(0, 0, 0), 1, 1, true), &cx, 403);
+}
