@@ -248,6 +248,15 @@ Test(image, missing_file_is_an_error_naming_it)
     cr_assert_null(img.rgb);
 }
 
+Test(image, a_directory_is_an_error_saying_so)
+{
+    image img = {0};
+    glint_error err = {0};
+    cr_assert_eq(image_load("/tmp", &img, &err), GLINT_ERR_INPUT);
+    cr_assert_str_eq(err.msg, "/tmp: cannot open image: Is a directory");
+    cr_assert_null(img.rgb);
+}
+
 Test(image, truncated_garbage_and_empty_files_are_errors)
 {
     uint8_t rgb[7 * 5 * 3];

@@ -14,6 +14,8 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <sys/stat.h>
+
 #include "core/error.h"
 
 #define IMAGE_MAX_FILE_BYTES (1L << 30)
@@ -46,6 +48,11 @@ glint_rc image_load(const char *path, image *out, glint_error *err)
     FILE *f = fopen(path, "rb");
     if (!f)
         return err_set(err, GLINT_ERR_INPUT, "%s: cannot open image: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot open image: %s", path, strerror(EISDIR));
+        goto out;
+    }
     if (fseek(f, 0, SEEK_END) != 0) {
         rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read image: %s", path, strerror(errno));
         goto out;

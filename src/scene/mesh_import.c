@@ -36,6 +36,15 @@ static material import_material(const struct aiMaterial *am)
     return m;
 }
 
+/* Only triangles are kept. Triangulation marks meshes that held polygons
+ * with aiPrimitiveType_NGONEncodingFlag (assimp 5.1 and later), which says
+ * how they were made, not what they are. */
+static bool is_triangle_mesh(const struct aiMesh *am)
+{
+    return (am->mPrimitiveTypes & ~(unsigned)aiPrimitiveType_NGONEncodingFlag) ==
+           aiPrimitiveType_TRIANGLE;
+}
+
 static const unsigned import_flags =
     aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
     aiProcess_GenSmoothNormals | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
@@ -56,7 +65,7 @@ static glint_rc convert(const struct aiScene *sc, const char *path, mesh_file *o
     bool any_normals = false, any_uv = false;
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *am = sc->mMeshes[i];
-        if (am->mPrimitiveTypes != aiPrimitiveType_TRIANGLE)
+        if (!is_triangle_mesh(am))
             continue;
         nv += am->mNumVertices;
         nt += am->mNumFaces;
@@ -96,7 +105,7 @@ static glint_rc convert(const struct aiScene *sc, const char *path, mesh_file *o
     uint32_t vbase = 0, t = 0;
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *am = sc->mMeshes[i];
-        if (am->mPrimitiveTypes != aiPrimitiveType_TRIANGLE)
+        if (!is_triangle_mesh(am))
             continue;
         for (unsigned v = 0; v < am->mNumVertices; v++) {
             const struct aiVector3D *p = &am->mVertices[v];
