@@ -106,6 +106,27 @@ fuzz:
 $(BUILD)/fuzz_scene: $(BUILD)/obj/fuzz/fuzz_scene.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
+# Benchmarks against POV-Ray and Embree, results in bench/RESULTS.md
+# (bench/README.md: what each row measures, settings such as BENCH_RUNS,
+# running one row alone). Always the optimised build.
+.PHONY: bench
+EMBREE_LIBS = $(shell pkg-config --libs embree3 2>/dev/null || echo -lembree3)
+bench:
+	@scripts/install-deps bench
+	@$(MAKE) --no-print-directory SAN=0 $(BUILD)/glint $(BUILD)/bench/spheres $(BUILD)/bench/raybench \
+		scenes/textures/flag.png scenes/textures/globe.png
+	BUILD=$(BUILD) bench/run
+
+$(BUILD)/bench/spheres: $(BUILD)/obj/bench/spheres.o $(BUILD)/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/bench/raybench: $(BUILD)/obj/bench/raybench.o $(BUILD)/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(EMBREE_LIBS)
+
+-include $(wildcard $(BUILD)/obj/bench/*.d)
+
 clean:
 	rm -rf build glint.png
 
