@@ -101,7 +101,7 @@ fuzz:
 	@$(MAKE) --no-print-directory BUILD=build/fuzz SAN=fuzz CC=clang build/fuzz/fuzz_scene
 	@mkdir -p build/fuzz/corpus
 	cd build/fuzz && ./fuzz_scene -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
-		-dict=../../fuzz/yaml.dict corpus ../../fuzz/corpus ../../scenes
+		-dict=../../fuzz/yaml.dict corpus ../../scenes ../../scenes/parts
 
 $(BUILD)/fuzz_scene: $(BUILD)/obj/fuzz/fuzz_scene.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
