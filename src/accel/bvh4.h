@@ -44,11 +44,12 @@ typedef struct bvh4 {
 glint_rc bvh4_from_bvh(bvh4 *out, bvh *b, glint_error *err);
 void bvh4_free(bvh4 *b);
 
-/* A leaf routine tests prims[first .. first + count): for closest-hit
- * queries it lowers *tmax to each hit it finds and returns true if it found
- * any; for any-hit queries it returns true at the first hit. */
-typedef bool (*bvh4_leaf_fn)(void *ctx, const int32_t *prims, uint32_t count, float tmin,
-                             float *tmax);
+/* A leaf routine tests the leaf's count primitives from first (for the
+ * hierarchy as built: prims[first .. first + count); an owner may renumber
+ * leaves to point into its own storage): for closest-hit queries it lowers
+ * *tmax to each hit it finds and returns true if it found any; for any-hit
+ * queries it returns true at the first hit. */
+typedef bool (*bvh4_leaf_fn)(void *ctx, uint32_t first, uint32_t count, float tmin, float *tmax);
 
 /* One entry of the traversal stack: a child to visit and the distance at
  * which the ray enters its box. */
@@ -84,7 +85,7 @@ __attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, v
 #endif
     for (;;) {
         if (cur < 0) {
-            if (leaf(ctx, b->prims + (-1 - cur), cur_count, tmin, tmax)) {
+            if (leaf(ctx, (uint32_t)(-1 - cur), cur_count, tmin, tmax)) {
                 found = true;
                 if (any)
                     return true;

@@ -15,11 +15,12 @@ static bool degenerate(vec3 a, vec3 b, vec3 c)
     return !(v3_len2(n) > 0.0f);
 }
 
-/* Copies each leaf's triangles into tri4 blocks, in node order, and points
- * the leaf's first prims entry at its first block. */
+/* Copies each leaf's triangles into tri4 blocks, in node order, and
+ * renumbers the leaf to its first block, so traversal reaches the corners
+ * without going through prims (which is then freed). */
 static glint_rc make_blocks(mesh *m, glint_error *err)
 {
-    const bvh4 *b = &m->bvh;
+    bvh4 *b = &m->bvh;
     size_t n = 0;
     for (int i = 0; i < b->nnodes; i++)
         for (int k = 0; k < 4; k++)
@@ -37,9 +38,8 @@ static glint_rc make_blocks(mesh *m, glint_error *err)
             uint32_t count = b->nodes[i].count[k];
             if (c >= 0 || count == 0)
                 continue;
-            int32_t *first = &b->prims[-1 - c];
-            int32_t t0 = *first; /* triangles are in leaf order: t0 .. t0 + count */
-            *first = next;
+            int32_t t0 = b->prims[-1 - c]; /* triangles are in leaf order: t0 .. t0 + count */
+            b->nodes[i].child[k] = -1 - next;
             for (uint32_t j = 0; j < count; j += 4, next++) {
                 tri4 *blk = &m->blocks[next];
                 for (int lane = 0; lane < 4; lane++) {
@@ -55,6 +55,9 @@ static glint_rc make_blocks(mesh *m, glint_error *err)
                 }
             }
         }
+    free(b->prims);
+    b->prims = NULL;
+    b->nprims = 0;
     return GLINT_OK;
 }
 
@@ -150,14 +153,13 @@ typedef struct leaf_ctx {
     shape_hit *hit;
 } leaf_ctx;
 
-/* A leaf's first prims entry is its first block; count triangles fill
- * (count + 3) / 4 blocks from there. */
-__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const int32_t *prims,
+/* A leaf's count triangles fill (count + 3) / 4 blocks from block first. */
+__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, uint32_t first,
                                                                uint32_t count, float tmin,
                                                                float *tmax)
 {
     leaf_ctx *c = ctx;
-    const tri4 *blk = &c->m->blocks[prims[0]];
+    const tri4 *blk = &c->m->blocks[first];
     bool found = false;
     for (uint32_t j = 0; j < count; j += 4, blk++) {
         float t[4], b1[4], b2[4];
@@ -175,11 +177,11 @@ __attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const 
     return found;
 }
 
-__attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int32_t *prims,
+__attribute__((always_inline)) static inline bool leaf_any(void *ctx, uint32_t first,
                                                            uint32_t count, float tmin, float *tmax)
 {
     leaf_ctx *c = ctx;
-    const tri4 *blk = &c->m->blocks[prims[0]];
+    const tri4 *blk = &c->m->blocks[first];
     for (uint32_t j = 0; j < count; j += 4, blk++) {
         float t[4], b1[4], b2[4];
         if (tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2))

@@ -20,8 +20,8 @@ typedef struct mesh {
     uint32_t (*tri)[3];
     int32_t *tri_material; /* per triangle scene material, or NULL */
     int nverts, ntris;
-    bvh4 bvh;         /* triangles are stored in leaf order; a leaf's first
-                         prims entry is the index of its first tri4 block */
+    bvh4 bvh;         /* triangles are stored in leaf order; a leaf names its
+                         first tri4 block (bvh.prims is not kept) */
     struct tri4 *blocks; /* each leaf's triangles, four to a block */
     int nblocks;
     aabb bounds;

@@ -208,11 +208,12 @@ __attribute__((always_inline)) static inline bool intersect_object(const scene *
     return true;
 }
 
-__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, const int32_t *prims,
+__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, uint32_t first,
                                                                uint32_t count, float tmin,
                                                                float *tmax)
 {
     leaf_ctx *c = ctx;
+    const int32_t *prims = c->s->bvh.prims + first;
     bool found = false;
     for (uint32_t i = 0; i < count; i++)
         found |= intersect_object(c->s, prims[i], c->r, tmin, tmax, c->hit);
@@ -239,12 +240,13 @@ __attribute__((always_inline)) static inline bool occludes(const scene *s, int i
     return shape_occluded(&o->shape, &lr);
 }
 
-__attribute__((always_inline)) static inline bool leaf_any(void *ctx, const int32_t *prims,
+__attribute__((always_inline)) static inline bool leaf_any(void *ctx, uint32_t first,
                                                            uint32_t count, float tmin,
                                                            float *tmax)
 {
     (void)tmin, (void)tmax;
     leaf_ctx *c = ctx;
+    const int32_t *prims = c->s->bvh.prims + first;
     for (uint32_t i = 0; i < count; i++)
         if (occludes(c->s, prims[i], c->r))
             return true;
