@@ -151,3 +151,50 @@ Test(cli, existing_output_is_replaced_whole)
     cr_expect_eq(run("-q -r 8x8 -o same.png && ls", out, sizeof out), 0);
     cr_expect_str_eq(out, "same.png\n", "no temporary files are left behind");
 }
+
+/* Writes text to name in tmpdir. */
+static void put(const char *name, const char *text)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+Test(cli, bad_scene_files_exit_2_naming_file_line_and_column)
+{
+    char out[4096];
+    put("bad.yaml", "objects:\n  - {type: sphere, center: [0, 0, -5], radius: -3}\n");
+    cr_expect_eq(run("-q bad.yaml", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: bad.yaml:2:48: radius must be > 0 (got -3)\n");
+    cr_expect_eq(run("-q nope.yaml", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: nope.yaml: cannot read scene: No such file or directory\n");
+    put("typo.yaml", "objets: []\n");
+    cr_expect_eq(run("-q typo.yaml", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: typo.yaml:1:1: unknown key 'objets' at the top level (did you "
+                          "mean 'objects'?)\n");
+    cr_expect(!exists("glint.png"), "bad input writes no image");
+}
+
+Test(cli, options_override_the_scene_settings)
+{
+    char out[4096];
+    put("small.yaml", "image: {width: 8, height: 6, samples: 9, depth: 2}\n"
+                      "lights: [{type: point, position: [0, 5, 0]}]\n"
+                      "objects: [{type: sphere, center: [0, 0, -5], radius: 1}]\n");
+    cr_expect_eq(run("-q --stats small.yaml -o a.ppm", out, sizeof out), 0, "%s", out);
+    cr_expect(strstr(out, "image:   8x6, 9 samples/pixel, depth 2"), "%s", out);
+    cr_expect_eq(run("-q --stats small.yaml -r 16x12 -s 1 -d 3 -o b.ppm", out, sizeof out), 0,
+                 "%s", out);
+    cr_expect(strstr(out, "image:   16x12, 1 samples/pixel, depth 3"), "%s", out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/b.ppm", tmpdir);
+    image img;
+    glint_error err = {0};
+    cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+    cr_expect_eq(img.width, 16);
+    cr_expect_eq(img.height, 12);
+    image_free(&img);
+}
