@@ -20,33 +20,11 @@
 #include <stb_image_write.h>
 
 #include "io/image.h"
+#include "tmpdir.h"
 
-static char dir[64];
+static void make_dir(void) { tmpdir_make("image"); }
 
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/glint-test-image-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-/* Removes dir and what the tests put in it (files and empty folders). */
-static void remove_dir(void)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    struct dirent *e;
-    char path[512];
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        if (unlink(path) != 0)
-            rmdir(path);
-    }
-    closedir(d);
-    rmdir(dir);
-}
+static void remove_dir(void) { tmpdir_remove(); }
 
 TestSuite(image, .init = make_dir, .fini = remove_dir);
 

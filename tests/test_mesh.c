@@ -29,45 +29,16 @@
 #include "scene/mesh_import.h"
 #include "scene/scene.h"
 #include "shade/material.h"
+#include "near.h"
+#include "tmpdir.h"
 
 #define TOL 1e-5
 
-#define ASSERT_NEAR(a, b, tol)                                                              \
-    cr_assert(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.9g, expected %.9g (tol %g)", \
-              #a, (double)(a), (double)(b), (double)(tol))
-
-#define ASSERT_V3_NEAR(v, ex, ey, ez, tol)                                                  \
-    cr_assert(fabs((double)(v).x - (ex)) <= (tol) && fabs((double)(v).y - (ey)) <= (tol) && \
-                  fabs((double)(v).z - (ez)) <= (tol),                                      \
-              "%s = (%.9g, %.9g, %.9g), expected (%.9g, %.9g, %.9g)", #v, (double)(v).x,    \
-              (double)(v).y, (double)(v).z, (double)(ex), (double)(ey), (double)(ez))
-
 /* ---- temporary directory ------------------------------------------------- */
 
-static char dir[64];
+static void make_dir(void) { tmpdir_make("mesh"); }
 
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/glint-test-mesh-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-static void remove_dir(void)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    struct dirent *e;
-    char path[512];
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        unlink(path);
-    }
-    closedir(d);
-    rmdir(dir);
-}
+static void remove_dir(void) { tmpdir_remove(); }
 
 TestSuite(mesh_import, .init = make_dir, .fini = remove_dir);
 

@@ -10,18 +10,9 @@
 #include <math.h>
 
 #include "shade/optics.h"
+#include "near.h"
 
 #define TOL 1e-6
-
-#define ASSERT_NEAR(a, b, tol)                                                              \
-    cr_assert(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.9g, expected %.9g (tol %g)", \
-              #a, (double)(a), (double)(b), (double)(tol))
-
-#define ASSERT_V3_NEAR(v, ex, ey, ez, tol)                                                  \
-    cr_assert(fabs((double)(v).x - (ex)) <= (tol) && fabs((double)(v).y - (ey)) <= (tol) && \
-                  fabs((double)(v).z - (ez)) <= (tol),                                      \
-              "%s = (%.9g, %.9g, %.9g), expected (%.9g, %.9g, %.9g)", #v, (double)(v).x,    \
-              (double)(v).y, (double)(v).z, (double)(ex), (double)(ey), (double)(ez))
 
 static const vec3 UP = {0.0f, 1.0f, 0.0f};
 

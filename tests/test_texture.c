@@ -14,18 +14,9 @@
 #include "geom/shape.h"
 #include "io/image.h"
 #include "shade/texture.h"
+#include "near.h"
 
 #define TOL 1e-6
-
-#define ASSERT_NEAR(a, b, tol)                                                              \
-    cr_assert(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.9g, expected %.9g (tol %g)", \
-              #a, (double)(a), (double)(b), (double)(tol))
-
-#define ASSERT_V3_NEAR(v, ex, ey, ez, tol)                                                  \
-    cr_assert(fabs((double)(v).x - (ex)) <= (tol) && fabs((double)(v).y - (ey)) <= (tol) && \
-                  fabs((double)(v).z - (ez)) <= (tol),                                      \
-              "%s = (%.9g, %.9g, %.9g), expected (%.9g, %.9g, %.9g)", #v, (double)(v).x,    \
-              (double)(v).y, (double)(v).z, (double)(ex), (double)(ey), (double)(ez))
 
 /* 2x2 image, row 0 at the top: TL TR / BL BR, one distinct value per
  * channel and texel. */
