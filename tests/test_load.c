@@ -1,4 +1,4 @@
-/* The scene loader (src/scene/load.c, yaml_doc.c): what each part of the
+/* The scene loader (src/load/): what each part of the
  * format means, that scenes/seed.yaml is exactly the built-in scene, that
  * every scene in scenes/ loads and renders, and one test per class of bad
  * input asserting the exact one-line message and GLINT_ERR_INPUT (exit
@@ -15,8 +15,8 @@
 
 #include "glint.h"
 #include "core/error.h"
-#include "scene/assets.h"
-#include "scene/load.h"
+#include "load/assets.h"
+#include "load/load.h"
 #include "scene/scene.h"
 
 #define SCENES GLINT_SOURCE_DIR "/scenes"

@@ -1,4 +1,4 @@
-/* Meshes: importing files (src/scene/mesh_import.h) and the hierarchies
+/* Meshes: importing files (src/load/mesh_import.h) and the hierarchies
  * rays traverse (src/accel/bvh.h, bvh4.h, src/geom/mesh.h, the scene's BVH
  * over objects in src/scene/scene.h).
  *
@@ -26,7 +26,7 @@
 #include "geom/mesh.h"
 #include "geom/shape.h"
 #include "geom/watertight.h"
-#include "scene/mesh_import.h"
+#include "load/mesh_import.h"
 #include "scene/scene.h"
 #include "shade/material.h"
 #include "near.h"

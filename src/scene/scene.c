@@ -42,10 +42,6 @@ void scene_free(scene *s)
     free(s);
 }
 
-void glint_scene_free(glint_scene *s) { scene_free(s); }
-
-void glint_scene_settings(const glint_scene *s, glint_settings *out) { *out = s->settings; }
-
 #define PUSH(arr, n, cap, value)                                                            \
     do {                                                                                    \
         int i_ = array_push((void **)&(arr), &(n), &(cap), sizeof *(arr));                  \

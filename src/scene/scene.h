@@ -14,7 +14,7 @@
 #include "geom/mesh.h"
 #include "geom/shape.h"
 #include "io/image.h"
-#include "render/camera.h"
+#include "scene/camera.h"
 #include "shade/light.h"
 #include "shade/material.h"
 #include "shade/texture.h"

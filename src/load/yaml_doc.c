@@ -12,7 +12,7 @@
 #include <yaml.h>
 
 #include "core/error.h"
-#include "scene/names.h"
+#include "load/names.h"
 
 /* Numbers longer than this are taken as strings: no real number needs it,
  * and it keeps conversion in a stack buffer. */

@@ -19,11 +19,11 @@
 
 #include "core/array.h"
 #include "core/error.h"
-#include "render/render.h"
-#include "scene/names.h"
+#include "load/names.h"
 #include "scene/scene.h"
-#include "scene/mesh_import.h"
-#include "scene/yaml_doc.h"
+#include "scene/settings.h"
+#include "load/mesh_import.h"
+#include "load/yaml_doc.h"
 
 /* Room for a user string in a message, escaped (ydoc_show). */
 #define SHOWN (YDOC_SHOW_MAX * 4 + 8)
@@ -1273,12 +1273,12 @@ static glint_rc load_image_settings(loader *L, uint32_t map)
     vec3 c;
     char buf[SHOWN];
     if (rc == GLINT_OK && (v = get(L, map, "width")) != YDOC_NONE) {
-        rc = read_int(L, v, "width", 1, RENDER_MAX_SIDE, &x);
+        rc = read_int(L, v, "width", 1, SETTINGS_MAX_SIDE, &x);
         if (rc == GLINT_OK && claim(L, SET_WIDTH))
             st->width = x;
     }
     if (rc == GLINT_OK && (v = get(L, map, "height")) != YDOC_NONE) {
-        rc = read_int(L, v, "height", 1, RENDER_MAX_SIDE, &x);
+        rc = read_int(L, v, "height", 1, SETTINGS_MAX_SIDE, &x);
         if (rc == GLINT_OK && claim(L, SET_HEIGHT))
             st->height = x;
     }
@@ -1288,16 +1288,15 @@ static glint_rc load_image_settings(loader *L, uint32_t map)
         L->size_node = map;
     }
     if (rc == GLINT_OK && (v = get(L, map, "samples")) != YDOC_NONE) {
-        rc = read_int(L, v, "samples", 1, RENDER_MAX_SAMPLES, &x);
-        int root = (int)lround(sqrt((double)x));
-        if (rc == GLINT_OK && root * root != x)
+        rc = read_int(L, v, "samples", 1, SETTINGS_MAX_SAMPLES, &x);
+        if (rc == GLINT_OK && settings_grid_side(x) < 0)
             rc = fail(L, v, "samples must be a perfect square (1, 4, 9, 16, ...) (got %s)",
                       shown(L, v, buf));
         if (rc == GLINT_OK && claim(L, SET_SAMPLES))
             st->samples = x;
     }
     if (rc == GLINT_OK && (v = get(L, map, "depth")) != YDOC_NONE) {
-        rc = read_int(L, v, "depth", 0, RENDER_MAX_DEPTH, &x);
+        rc = read_int(L, v, "depth", 0, SETTINGS_MAX_DEPTH, &x);
         if (rc == GLINT_OK && claim(L, SET_DEPTH))
             st->max_depth = x;
     }
@@ -1558,7 +1557,7 @@ static glint_rc finish(loader *L)
     if (rc != GLINT_OK)
         return rc;
     glint_error serr = {0};
-    if (glint_settings_check(&L->s->settings, &serr) != GLINT_OK) {
+    if (settings_check(&L->s->settings, &serr) != GLINT_OK) {
         if (L->size_file < 0)
             return err_set(L->err, GLINT_ERR_INPUT, "%s", serr.msg);
         return fail_in(L, L->size_file, L->size_node, "%s", serr.msg);
@@ -1647,10 +1646,6 @@ glint_rc scene_load_file(const char *path, scene **out, glint_error *err)
     return rc;
 }
 
-glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err)
-{
-    return scene_load_file(path, out, err);
-}
 
 glint_rc scene_read_file(void *user, const char *path, char **data, size_t *size,
                          glint_error *err)

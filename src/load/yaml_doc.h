@@ -20,8 +20,8 @@
  *
  * Errors are one line, "NAME:LINE:COLUMN: what is wrong", with 1-based line
  * and column, and GLINT_ERR_INPUT (GLINT_ERR_NOMEM when memory runs out). */
-#ifndef GLINT_SCENE_YAML_DOC_H
-#define GLINT_SCENE_YAML_DOC_H
+#ifndef GLINT_LOAD_YAML_DOC_H
+#define GLINT_LOAD_YAML_DOC_H
 
 #include <stdbool.h>
 #include <stddef.h>
