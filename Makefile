@@ -2,7 +2,10 @@
 #
 # Variants build into their own folder: build/ (optimised) and build/asan/
 # (AddressSanitizer + UBSan, used by `make test`). Every .c under src/ goes
-# into libglint.a except src/app (the command line) and src/dist.
+# into the library except src/app (the command line) and src/dist: the
+# static libglint.a and the shared libglint.so, which exports only the
+# glint_* functions of include/glint.h (hidden visibility by default, and
+# the export list in src/api/glint.map).
 
 BUILD    ?= build
 SAN      ?= 0
@@ -54,9 +57,21 @@ check: $(BUILD)/glint $(BUILD)/tests scenes/textures/flag.png scenes/textures/gl
 	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 		$(BUILD)/tests --jobs 2
 
+# Library objects serve both libraries: position-independent, and hidden
+# unless glint.h marks them GLINT_API.
+LIB_CFLAGS := -fPIC -fvisibility=hidden
+$(LIB_OBJ): CFLAGS += $(LIB_CFLAGS)
+
 $(BUILD)/libglint.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
+
+VERSION   := $(shell sed -n 's/^\#define GLINT_VERSION "\(.*\)"/\1/p' include/glint.h)
+SOVERSION := $(firstword $(subst ., ,$(VERSION)))
+
+$(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
+	$(CC) $(CFLAGS) $(LDFLAGS) -shared -Wl,-soname,libglint.so.$(SOVERSION) \
+		-Wl,--version-script=src/api/glint.map -Wl,--no-undefined -o $@ $(LIB_OBJ) $(LDLIBS)
 
 $(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)

@@ -1,10 +1,33 @@
 /* glint: a Whitted-style ray tracer, as a library.
  *
- * The flow is: get a scene (built in, or loaded from a file), read its
- * settings, change any you like, render into a float RGB film, write the film
- * to an image file. Every call that can fail returns a glint_rc and fills a
- * glint_error with a one-line message; the library never prints and never
- * exits. All functions are safe to call from any thread on distinct objects. */
+ * Flow. Get a scene: glint_scene_builtin, glint_scene_load (a YAML file), or
+ * glint_scene_new followed by glint_scene_add_* and glint_scene_build. Read
+ * its settings and camera, change any you like (on the scene, or per render),
+ * render into a float RGB film (the whole image, a region of it, or a list of
+ * tiles), then write the film to an image file.
+ *
+ * Errors. Every call that can fail returns a glint_rc and, when err is not
+ * NULL, fills *err with a one-line message. Every function checks its
+ * arguments: a NULL pointer or a value out of range is GLINT_ERR_INPUT, with
+ * a message naming the function and the argument. The library never prints
+ * and never exits.
+ *
+ * Ownership. A scene belongs to the caller from the call that made it until
+ * glint_scene_free. A film's pixels belong to the caller after glint_render
+ * or glint_film_alloc, until glint_film_free. Everything passed in by
+ * pointer (settings, camera, materials, shapes, transform steps, paths) is
+ * copied before the call returns; the library keeps no pointer to it.
+ *
+ * Threads. Functions may be called from any thread. Calls on distinct
+ * scenes and films never interfere. Several renders of one scene may run at
+ * once (rendering only reads the scene), but nothing may change a scene
+ * (add, set, build, free) while another call uses it. Loading scenes with
+ * meshes from several threads is safe: mesh imports are serialised inside.
+ *
+ * Compatibility. Structures may gain fields in later versions: start from
+ * what the library fills in (glint_scene_settings, glint_scene_camera,
+ * glint_material_default) rather than from a structure written out by hand,
+ * and zero-initialise the rest. */
 #ifndef GLINT_GLINT_H
 #define GLINT_GLINT_H
 
@@ -15,13 +38,26 @@
 extern "C" {
 #endif
 
+/* Symbols the shared library exports; everything else in it is hidden. */
+#if defined(__GNUC__)
+#define GLINT_API __attribute__((visibility("default")))
+#else
+#define GLINT_API
+#endif
+
 #define GLINT_VERSION "0.1.0"
+
+/* The version of the library linked, which may differ from the header's
+ * GLINT_VERSION when the shared library was replaced. */
+GLINT_API const char *glint_version(void);
+
+/* ---- errors -------------------------------------------------------------- */
 
 typedef enum glint_rc {
     GLINT_OK = 0,
     GLINT_ERR_NOMEM, /* out of memory */
     GLINT_ERR_IO,    /* a file could not be read or written */
-    GLINT_ERR_INPUT, /* bad input: scene, mesh, texture or settings */
+    GLINT_ERR_INPUT, /* bad input: arguments, scene, mesh, texture or settings */
     GLINT_ERR_CANCELLED,
 } glint_rc;
 
@@ -31,7 +67,9 @@ typedef struct glint_error {
 } glint_error;
 
 /* Process exit code for a result: 0 ok, 2 bad input, 1 anything else. */
-int glint_exit_code(glint_rc rc);
+GLINT_API int glint_exit_code(glint_rc rc);
+
+/* ---- settings ------------------------------------------------------------ */
 
 /* How linear film values become 8-bit pixel values. */
 typedef enum glint_transfer {
@@ -40,62 +78,264 @@ typedef enum glint_transfer {
 } glint_transfer;
 
 typedef struct glint_settings {
-    int width, height;     /* pixels */
-    int samples;           /* per pixel; a perfect square (N*N regular grid) */
-    int max_depth;         /* reflection/refraction recursion limit */
-    int threads;           /* 0: one per core */
+    int width, height;     /* pixels, 1 to 32768 each, at most 2^27 in all */
+    int samples;           /* per pixel, 1 to 1024; a perfect square (N*N regular grid) */
+    int max_depth;         /* reflection/refraction recursion limit, 0 to 64 */
+    int threads;           /* 0: one per core; at most 1024 */
     glint_transfer transfer;
 } glint_settings;
+
+/* Checks settings for a render: sizes, sample counts, memory limits. */
+GLINT_API glint_rc glint_settings_check(const glint_settings *s, glint_error *err);
+
+/* Render threads used when settings.threads is 0: one per core. */
+GLINT_API int glint_default_threads(void);
+
+/* ---- scenes -------------------------------------------------------------- */
+
+typedef struct glint_scene glint_scene;
+
+/* The assignment's nine-object scene, built. */
+GLINT_API glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
+/* A scene file (YAML, docs/scene-format.md), built; paths in it are
+ * relative to its folder. Errors name the file, line and column. */
+GLINT_API glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
+/* Frees the scene and everything in it; NULL is fine. */
+GLINT_API void glint_scene_free(glint_scene *scene);
+
+/* The settings a render uses when given none: the scene's own. */
+GLINT_API glint_rc glint_scene_settings(const glint_scene *scene, glint_settings *out,
+                                        glint_error *err);
+/* Checks (as glint_settings_check) and stores them. */
+GLINT_API glint_rc glint_scene_set_settings(glint_scene *scene, const glint_settings *s,
+                                            glint_error *err);
+
+/* ---- camera -------------------------------------------------------------- */
+
+typedef enum glint_projection {
+    GLINT_PROJECTION_PERSPECTIVE, /* a pinhole (or thin lens, with an aperture) */
+} glint_projection;
+
+/* Pixels are square: the vertical field of view follows from fov and the
+ * image's aspect ratio. */
+typedef struct glint_camera {
+    double eye[3];
+    double look_at[3];          /* not equal to eye */
+    double up[3];               /* not zero, not parallel to look_at - eye */
+    double fov;                 /* horizontal field of view, degrees, in (0, 180) */
+    double aperture;            /* lens diameter; 0 is a pinhole (the only kind today) */
+    double focus_distance;      /* > 0, or 0: the distance from eye to look_at */
+    glint_projection projection;
+} glint_camera;
+
+GLINT_API glint_rc glint_scene_camera(const glint_scene *scene, glint_camera *out,
+                                      glint_error *err);
+/* Refuses (GLINT_ERR_INPUT) a camera out of the ranges above or with a
+ * value that is not finite, and leaves the scene's camera as it was. */
+GLINT_API glint_rc glint_scene_set_camera(glint_scene *scene, const glint_camera *cam,
+                                          glint_error *err);
+
+/* ---- building a scene in code --------------------------------------------
+ * The same scene as a YAML file renders to the same bytes when it gives the
+ * same numbers. Adds return the new element's index in *index (may be NULL
+ * where no index is needed). Colours are display values unless the render's
+ * transfer is sRGB; every number must be finite. */
+
+/* An empty scene: no objects or lights, the default camera (eye at the
+ * origin looking down -z, fov 90) and settings (500x500, 1 sample, depth 5),
+ * black background, ambient 0.2. */
+GLINT_API glint_rc glint_scene_new(glint_scene **out, glint_error *err);
+
+GLINT_API glint_rc glint_scene_set_background(glint_scene *scene, const double rgb[3],
+                                              glint_error *err);
+/* Ambient light, scaled by each material's ambient; colour components >= 0. */
+GLINT_API glint_rc glint_scene_set_ambient(glint_scene *scene, const double rgb[3],
+                                           glint_error *err);
+
+/* The Whitted material of docs/scene-format.md and src/shade/material.h. */
+typedef struct glint_material {
+    double color[3];    /* base colour, components >= 0 */
+    double ambient;     /* >= 0: share of the scene's ambient light */
+    double diffuse;     /* >= 0: Lambert term */
+    double specular;    /* >= 0: Phong highlight strength */
+    double shininess;   /* >= 0: Phong exponent */
+    double reflect;     /* 0 to 1: mirror reflection */
+    double transmit;    /* 0 to 1: light passed through */
+    double ior;         /* > 0: 1 is plain transparency, otherwise refraction */
+    double tint[3];     /* filters transmitted light and shadows, components >= 0 */
+} glint_material;
+
+/* Matte white: colour 1, ambient 1, diffuse 1, specular 0, shininess 50,
+ * reflect 0, transmit 0, ior 1, tint 1 (the scene format's defaults). */
+GLINT_API glint_material glint_material_default(void);
+GLINT_API glint_rc glint_scene_add_material(glint_scene *scene, const glint_material *m,
+                                            int *index, glint_error *err);
+
+typedef enum glint_light_kind {
+    GLINT_LIGHT_POINT, /* position, colour; no falloff with distance */
+} glint_light_kind;
+
+typedef struct glint_light {
+    glint_light_kind kind;
+    double position[3];
+    double color[3]; /* carries the intensity; components >= 0, may exceed 1 */
+} glint_light;
+
+GLINT_API glint_rc glint_scene_add_light(glint_scene *scene, const glint_light *l, int *index,
+                                         glint_error *err);
+
+typedef enum glint_shape_kind {
+    GLINT_SHAPE_SPHERE,
+    GLINT_SHAPE_PLANE,
+    GLINT_SHAPE_QUAD,
+    GLINT_SHAPE_BOX,
+    GLINT_SHAPE_CYLINDER,
+    GLINT_SHAPE_TRIANGLE,
+} glint_shape_kind;
+
+/* The shapes, in their own coordinates, with the rules of the scene format.
+ * A triangle's (u, v) are (0, 0), (1, 0), (0, 1) at p0, p1, p2. */
+typedef struct glint_sphere { double center[3], radius; } glint_sphere;          /* radius > 0 */
+typedef struct glint_plane { double point[3], normal[3]; } glint_plane;          /* normal not 0 */
+typedef struct glint_quad { double origin[3], edge_u[3], edge_v[3]; } glint_quad; /* edges not parallel */
+typedef struct glint_box { double min[3], max[3]; } glint_box; /* max > min on every axis */
+typedef struct glint_cylinder {
+    double base[3]; /* centre of the bottom; the axis is +y */
+    double radius, height; /* > 0 */
+    int capped;            /* non-zero: closed ends */
+} glint_cylinder;
+typedef struct glint_triangle { double p0[3], p1[3], p2[3]; } glint_triangle; /* not on one line */
+
+typedef struct glint_shape {
+    glint_shape_kind kind;
+    union {
+        glint_sphere sphere;
+        glint_plane plane;
+        glint_quad quad;
+        glint_box box;
+        glint_cylinder cylinder;
+        glint_triangle triangle;
+    };
+} glint_shape;
+
+/* One step of a transform, as in the scene format's transform list. */
+typedef enum glint_step_kind {
+    GLINT_STEP_TRANSLATE, /* v[0..2]: the offset */
+    GLINT_STEP_ROTATE,    /* v[0..2]: axis (not zero), v[3]: degrees, right-handed */
+    GLINT_STEP_SCALE,     /* v[0..2]: factors, none 0 */
+    GLINT_STEP_SHEAR,     /* v[0..5]: xy, xz, yx, yz, zx, zy (x' = x + xy*y + xz*z, ...) */
+    GLINT_STEP_MATRIX,    /* v[0..11]: 3 rows of 4, row-major, acting on column vectors */
+} glint_step_kind;
+
+typedef struct glint_step {
+    glint_step_kind kind;
+    double v[12];
+} glint_step;
+
+typedef struct glint_object {
+    glint_shape shape;
+    int material;            /* an index from glint_scene_add_material */
+    const glint_step *steps; /* the transform, first step applied first; NULL: none */
+    int nsteps;
+} glint_object;
+
+/* Refuses a shape out of its rules, a material index not added yet, or a
+ * transform that is not invertible. */
+GLINT_API glint_rc glint_scene_add_object(glint_scene *scene, const glint_object *obj,
+                                          int *index, glint_error *err);
+
+/* Prepares the scene for rendering (bounds, the BVH). Call after the last
+ * add; a scene with objects added since its last build refuses to render. */
+GLINT_API glint_rc glint_scene_build(glint_scene *scene, glint_error *err);
+
+/* ---- rendering ----------------------------------------------------------- */
 
 typedef struct glint_film {
     int width, height;
     float *rgb; /* width*height*3 floats, row 0 at the top, linear values */
 } glint_film;
 
+/* A rectangle of pixels: x0 <= x < x1, y0 <= y < y1, (0, 0) the top left. */
+typedef struct glint_rect {
+    int x0, y0, x1, y1;
+} glint_rect;
+
 typedef struct glint_stats {
     uint64_t primary_rays, secondary_rays, shadow_rays;
     double seconds; /* wall time of the render */
 } glint_stats;
 
+/* Where a render is, passed to the progress callback. */
+typedef struct glint_progress {
+    double percent;          /* 0 to 100; exactly 100 when the last pixel is done */
+    uint64_t samples_done;   /* pixel samples finished so far */
+    uint64_t samples_total;  /* pixel samples this render traces */
+    uint64_t rays;           /* rays of every kind traced so far */
+    double seconds;          /* since the render started */
+} glint_progress;
+
+/* Every member may be NULL. The callbacks run on render threads. tile_done
+ * and progress are serialised (never two at once, one render's calls in the
+ * order their counts grow) and are called after each finished tile,
+ * tile_done first; they should return quickly, as the render waits. */
 typedef struct glint_callbacks {
-    /* Called after each finished tile (from the worker thread that rendered
-     * it; calls are serialised). done/total count tiles. */
-    void (*tile_done)(void *user, const glint_film *film, int x0, int y0, int x1, int y1,
-                      int done, int total);
-    void *user;
-    /* When non-null and set non-zero by another thread, the render stops
-     * early and returns GLINT_ERR_CANCELLED. */
-    const volatile int *cancel;
+    void *user; /* passed to every callback */
+    /* A tile finished: pixels [x0, x1) x [y0, y1) of the image are final in
+     * film (at their image position, or offset by the region's origin when
+     * the film is region-sized: see glint_render_region). */
+    void (*tile_done)(void *user, const glint_film *film, int x0, int y0, int x1, int y1);
+    void (*progress)(void *user, const glint_progress *p);
+    /* Polled before each tile by every render thread, possibly at once from
+     * several: non-zero stops the render, which then returns
+     * GLINT_ERR_CANCELLED. Tiles in flight finish first, so cancellation
+     * takes effect within one tile's time. Read an atomic flag here. */
+    int (*cancelled)(void *user);
 } glint_callbacks;
 
-typedef struct glint_scene glint_scene;
+/* Renders the whole image into *film (allocated here; free it with
+ * glint_film_free). settings NULL: the scene's own. callbacks and stats may
+ * be NULL. On any error, cancellation included, the film is left empty. */
+GLINT_API glint_rc glint_render(const glint_scene *scene, const glint_settings *settings,
+                                const glint_callbacks *callbacks, glint_film *film,
+                                glint_stats *stats, glint_error *err);
 
-/* The assignment's nine-object scene. */
-glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
-/* A scene file (YAML, docs/scene-format.md); paths in it are relative to
- * its folder. Errors name the file, line and column. */
-glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
-void glint_scene_free(glint_scene *scene);
+/* Allocates a film of width x height pixels, all zero. */
+GLINT_API glint_rc glint_film_alloc(glint_film *film, int width, int height, glint_error *err);
+/* Frees a film's pixels and empties it; NULL and an empty film are fine. */
+GLINT_API void glint_film_free(glint_film *film);
 
-/* The scene's own image settings. */
-void glint_scene_settings(const glint_scene *scene, glint_settings *out);
-/* Checks settings for a render: sizes, sample counts, memory limits. */
-glint_rc glint_settings_check(const glint_settings *s, glint_error *err);
+/* Renders the pixels of region into film, which the caller allocated
+ * either at the image's size (settings width x height: pixels land at their
+ * image position) or at the region's size (pixel (x0, y0) lands at the
+ * film's top left). Pixels outside the region are not touched, and a pixel's
+ * value does not depend on the region it was rendered in, so regions
+ * rendered apart (by threads, processes or machines) assemble into the
+ * byte-identical image. On cancellation the film keeps every tile reported
+ * done. */
+GLINT_API glint_rc glint_render_region(const glint_scene *scene, const glint_settings *settings,
+                                       const glint_rect *region,
+                                       const glint_callbacks *callbacks, glint_film *film,
+                                       glint_stats *stats, glint_error *err);
 
-/* Renders the scene into *film (allocated here; free with glint_film_free).
- * callbacks and stats may be NULL. */
-glint_rc glint_render(const glint_scene *scene, const glint_settings *settings,
-                      const glint_callbacks *callbacks, glint_film *film, glint_stats *stats,
-                      glint_error *err);
-void glint_film_free(glint_film *film);
+/* The image's tile grid: square tiles (16 pixels a side; the last row and
+ * column may be cut short), numbered row by row from the top left. A whole
+ * render hands them out in this order. */
+GLINT_API glint_rc glint_tile_count(const glint_settings *settings, int *count,
+                                    glint_error *err);
+GLINT_API glint_rc glint_tile_rect(const glint_settings *settings, int tile, glint_rect *out,
+                                   glint_error *err);
 
-/* Render threads used when settings.threads is 0: one per core. */
-int glint_default_threads(void);
+/* Renders the listed tiles (each index once, any order) into an image-sized
+ * film, as glint_render_region does for a region. */
+GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_settings *settings,
+                                      const int *tiles, int ntiles,
+                                      const glint_callbacks *callbacks, glint_film *film,
+                                      glint_stats *stats, glint_error *err);
 
 /* Writes the film to path; the format follows the extension (.png, .ppm).
  * The file appears complete or not at all. */
-glint_rc glint_film_write(const glint_film *film, glint_transfer transfer, const char *path,
-                          glint_error *err);
+GLINT_API glint_rc glint_film_write(const glint_film *film, glint_transfer transfer,
+                                    const char *path, glint_error *err);
 
 #ifdef __cplusplus
 }

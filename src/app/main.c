@@ -156,11 +156,9 @@ static int parse_args(int argc, char **argv, struct cli *c)
     return -1;
 }
 
-static void on_tile(void *user, const glint_film *film, int x0, int y0, int x1, int y1, int done,
-                    int total)
+static void on_progress(void *user, const glint_progress *p)
 {
-    (void)film, (void)x0, (void)y0, (void)x1, (void)y1;
-    progress_update(user, done, total);
+    progress_update(user, p->percent);
 }
 
 int main(int argc, char **argv)
@@ -182,7 +180,9 @@ int main(int argc, char **argv)
         goto fail;
 
     glint_settings s;
-    glint_scene_settings(scene, &s);
+    rc = glint_scene_settings(scene, &s, &err);
+    if (rc != GLINT_OK)
+        goto fail;
     if (c.width > 0) {
         s.width = c.width;
         s.height = c.height;
@@ -204,7 +204,7 @@ int main(int argc, char **argv)
     bool show = !c.quiet && isatty(STDERR_FILENO);
     if (show) {
         progress_begin(&bar, stderr);
-        cb.tile_done = on_tile;
+        cb.progress = on_progress;
         cb.user = &bar;
     }
     rc = glint_render(scene, &s, &cb, &film, &stats, &err);

@@ -18,15 +18,15 @@ void progress_begin(progress *p, FILE *out)
     p->start = now();
 }
 
-void progress_update(progress *p, int done, int total)
+void progress_update(progress *p, double percent_done)
 {
-    int percent = total > 0 ? (int)(100LL * done / total) : 100;
+    int percent = (int)percent_done;
     if (percent == p->last_percent)
         return;
     p->last_percent = percent;
     int fill = percent * BAR_WIDTH / 100;
     double elapsed = now() - p->start;
-    double eta = done > 0 ? elapsed * (total - done) / done : 0.0;
+    double eta = percent_done > 0 ? elapsed * (100.0 - percent_done) / percent_done : 0.0;
     fprintf(p->out, "\r[");
     for (int i = 0; i < BAR_WIDTH; i++)
         fputc(i < fill ? '#' : '.', p->out);

@@ -1,5 +1,5 @@
 /* progress: a one-line progress bar on a terminal, fed by the renderer's
- * tile callback. */
+ * progress callback. */
 #ifndef GLINT_APP_PROGRESS_H
 #define GLINT_APP_PROGRESS_H
 
@@ -12,7 +12,7 @@ typedef struct progress {
 } progress;
 
 void progress_begin(progress *p, FILE *out);
-void progress_update(progress *p, int done, int total);
+void progress_update(progress *p, double percent); /* 0 to 100 */
 void progress_end(progress *p);
 
 #endif

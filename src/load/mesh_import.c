@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -147,6 +148,27 @@ out:
     return GLINT_OK;
 }
 
+/* assimp keeps the reason for the last failure in one process-wide string,
+ * so imports are serialised: the message read after a failed import is that
+ * import's own, whatever other threads load at the same time. This lock is
+ * the library's only shared state; it holds no data. */
+static pthread_mutex_t import_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* Imports the file at name (data NULL) or the size bytes at data (with the
+ * format hint); on failure sets err and returns NULL. */
+static const struct aiScene *import_locked(const char *name, const void *data, size_t size,
+                                           const char *hint, glint_error *err)
+{
+    pthread_mutex_lock(&import_lock);
+    const struct aiScene *sc =
+        data ? aiImportFileFromMemory(data, (unsigned)size, import_flags, hint)
+             : aiImportFile(name, import_flags);
+    if (!sc)
+        err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, aiGetErrorString());
+    pthread_mutex_unlock(&import_lock);
+    return sc;
+}
+
 glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -154,10 +176,8 @@ glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
     if (!probe)
         return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
     fclose(probe);
-    const struct aiScene *sc = aiImportFile(path, import_flags);
-    if (!sc)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", path, aiGetErrorString());
-    return convert(sc, path, out, err);
+    const struct aiScene *sc = import_locked(path, NULL, 0, NULL, err);
+    return sc ? convert(sc, path, out, err) : GLINT_ERR_INPUT;
 }
 
 glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mesh_file *out,
@@ -170,11 +190,8 @@ glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mes
     if (size == 0 || size > UINT_MAX)
         return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name,
                        size ? "file too large" : "file is empty");
-    const struct aiScene *sc =
-        aiImportFileFromMemory(data, (unsigned)size, import_flags, hint);
-    if (!sc)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, aiGetErrorString());
-    return convert(sc, name, out, err);
+    const struct aiScene *sc = import_locked(name, data, size, hint, err);
+    return sc ? convert(sc, name, out, err) : GLINT_ERR_INPUT;
 }
 
 void mesh_file_free(mesh_file *f)

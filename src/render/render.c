@@ -18,68 +18,20 @@ typedef struct job {
     const scene *scene;
     const glint_settings *settings;
     const glint_callbacks *cb;
+    const render_work *work;
     glint_film *film;
     camera_frame frame;
     float decode[256];
     int grid; /* samples per pixel = grid * grid */
-    int tiles_x, tiles_total;
-    atomic_int next_tile;
+    int tx0, ty0, tiles_x; /* a region's first tile and its width in tiles */
+    int items;             /* tiles to render */
+    atomic_int next_item;
     atomic_int cancelled;
-    pthread_mutex_t lock; /* serialises callbacks and the done count */
-    int tiles_done;
+    double start;
+    pthread_mutex_t lock; /* serialises callbacks and the counts below */
+    uint64_t samples_done, samples_total;
     uint64_t secondary_rays, shadow_rays;
 } job;
-
-/* The N x N regular grid: sample (a, b) at ((a + 0.5) / N, (b + 0.5) / N)
- * of the pixel, so 2 x 2 gives the quarter points 0.25 and 0.75. */
-static void render_tile(job *j, trace_ctx *ctx, int tile)
-{
-    int x0 = (tile % j->tiles_x) * RENDER_TILE, y0 = (tile / j->tiles_x) * RENDER_TILE;
-    int x1 = x0 + RENDER_TILE < j->film->width ? x0 + RENDER_TILE : j->film->width;
-    int y1 = y0 + RENDER_TILE < j->film->height ? y0 + RENDER_TILE : j->film->height;
-    int n = j->grid;
-    float inv_n = 1.0f / (float)n, inv_count = 1.0f / (float)(n * n);
-    for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++) {
-            vec3 sum = v3s(0.0f);
-            for (int b = 0; b < n; b++)
-                for (int a = 0; a < n; a++) {
-                    ray r = camera_ray(&j->frame, (float)x + ((float)a + 0.5f) * inv_n,
-                                       (float)y + ((float)b + 0.5f) * inv_n);
-                    sum = v3_add(sum, whitted_trace(ctx, &r, 0));
-                }
-            float *px = j->film->rgb + ((size_t)y * (size_t)j->film->width + (size_t)x) * 3;
-            px[0] = sum.x * inv_count;
-            px[1] = sum.y * inv_count;
-            px[2] = sum.z * inv_count;
-        }
-    pthread_mutex_lock(&j->lock);
-    j->tiles_done++;
-    if (j->cb && j->cb->tile_done)
-        j->cb->tile_done(j->cb->user, j->film, x0, y0, x1, y1, j->tiles_done, j->tiles_total);
-    pthread_mutex_unlock(&j->lock);
-}
-
-static void *worker(void *arg)
-{
-    job *j = arg;
-    trace_ctx ctx = {j->scene, j->decode, j->settings->max_depth, 0, 0};
-    for (;;) {
-        if (j->cb && j->cb->cancel && *j->cb->cancel) {
-            atomic_store(&j->cancelled, 1);
-            break;
-        }
-        int t = atomic_fetch_add(&j->next_tile, 1);
-        if (t >= j->tiles_total)
-            break;
-        render_tile(j, &ctx, t);
-    }
-    pthread_mutex_lock(&j->lock);
-    j->secondary_rays += ctx.secondary_rays;
-    j->shadow_rays += ctx.shadow_rays;
-    pthread_mutex_unlock(&j->lock);
-    return NULL;
-}
 
 static double now_seconds(void)
 {
@@ -88,69 +40,180 @@ static double now_seconds(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings,
-                      const glint_callbacks *cb, glint_film *film, glint_stats *stats,
-                      glint_error *err)
+int render_tile_count(int width, int height)
 {
-    glint_rc rc = settings_check(settings, err);
-    if (rc != GLINT_OK)
-        return rc;
-    if (!sc->built)
-        return err_set(err, GLINT_ERR_INPUT, "scene was not built");
+    return ((width + RENDER_TILE - 1) / RENDER_TILE) * ((height + RENDER_TILE - 1) / RENDER_TILE);
+}
 
-    double t0 = now_seconds();
-    int w = settings->width, h = settings->height;
-    film->width = w;
-    film->height = h;
-    film->rgb = calloc((size_t)w * (size_t)h * 3, sizeof(float));
-    if (!film->rgb)
-        return err_nomem(err);
+glint_rect render_tile_rect(int width, int height, int tile)
+{
+    int tiles_x = (width + RENDER_TILE - 1) / RENDER_TILE;
+    int x0 = (tile % tiles_x) * RENDER_TILE, y0 = (tile / tiles_x) * RENDER_TILE;
+    return (glint_rect){x0, y0, x0 + RENDER_TILE < width ? x0 + RENDER_TILE : width,
+                        y0 + RENDER_TILE < height ? y0 + RENDER_TILE : height};
+}
 
-    job *j = calloc(1, sizeof *j);
-    if (!j) {
-        render_film_free(film);
-        return err_nomem(err);
+/* The pixels of work item i. */
+static glint_rect item_rect(const job *j, int i)
+{
+    const glint_settings *s = j->settings;
+    if (j->work->tiles)
+        return render_tile_rect(s->width, s->height, j->work->tiles[i]);
+    int tiles_x = (s->width + RENDER_TILE - 1) / RENDER_TILE;
+    glint_rect r = render_tile_rect(s->width, s->height,
+                                    (j->ty0 + i / j->tiles_x) * tiles_x + j->tx0 + i % j->tiles_x);
+    const glint_rect *g = &j->work->region;
+    r.x0 = r.x0 > g->x0 ? r.x0 : g->x0;
+    r.y0 = r.y0 > g->y0 ? r.y0 : g->y0;
+    r.x1 = r.x1 < g->x1 ? r.x1 : g->x1;
+    r.y1 = r.y1 < g->y1 ? r.y1 : g->y1;
+    return r;
+}
+
+/* Counts the finished tile and tells the front end, in one critical
+ * section so that the counts each callback sees only grow. */
+static void tile_finished(job *j, const trace_ctx *ctx, const trace_ctx *before, glint_rect r)
+{
+    uint64_t samples = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(j->grid * j->grid);
+    pthread_mutex_lock(&j->lock);
+    j->samples_done += samples;
+    j->secondary_rays += ctx->secondary_rays - before->secondary_rays;
+    j->shadow_rays += ctx->shadow_rays - before->shadow_rays;
+    const glint_callbacks *cb = j->cb;
+    if (cb && cb->tile_done)
+        cb->tile_done(cb->user, j->film, r.x0, r.y0, r.x1, r.y1);
+    if (cb && cb->progress) {
+        glint_progress p = {100.0 * (double)j->samples_done / (double)j->samples_total,
+                            j->samples_done, j->samples_total,
+                            j->samples_done + j->secondary_rays + j->shadow_rays,
+                            now_seconds() - j->start};
+        cb->progress(cb->user, &p);
     }
-    j->scene = sc;
-    j->settings = settings;
-    j->cb = cb;
-    j->film = film;
-    j->frame = camera_frame_make(&sc->camera, w, h);
-    image_decode_table(settings->transfer, j->decode);
-    j->grid = settings_grid_side(settings->samples);
-    j->tiles_x = (w + RENDER_TILE - 1) / RENDER_TILE;
-    j->tiles_total = j->tiles_x * ((h + RENDER_TILE - 1) / RENDER_TILE);
-    atomic_init(&j->next_tile, 0);
-    atomic_init(&j->cancelled, 0);
-    pthread_mutex_init(&j->lock, NULL);
+    pthread_mutex_unlock(&j->lock);
+}
 
-    int nthreads = settings->threads > 0 ? settings->threads : settings_default_threads();
-    if (nthreads > j->tiles_total)
-        nthreads = j->tiles_total;
+/* The N x N regular grid: sample (a, b) at ((a + 0.5) / N, (b + 0.5) / N)
+ * of the pixel, so 2 x 2 gives the quarter points 0.25 and 0.75. */
+static void render_tile(job *j, trace_ctx *ctx, glint_rect r)
+{
+    trace_ctx before = *ctx;
+    int n = j->grid;
+    float inv_n = 1.0f / (float)n, inv_count = 1.0f / (float)(n * n);
+    const render_work *w = j->work;
+    for (int y = r.y0; y < r.y1; y++)
+        for (int x = r.x0; x < r.x1; x++) {
+            vec3 sum = v3s(0.0f);
+            for (int b = 0; b < n; b++)
+                for (int a = 0; a < n; a++) {
+                    ray ry = camera_ray(&j->frame, (float)x + ((float)a + 0.5f) * inv_n,
+                                        (float)y + ((float)b + 0.5f) * inv_n);
+                    sum = v3_add(sum, whitted_trace(ctx, &ry, 0));
+                }
+            size_t at = (size_t)(y - w->film_y0) * (size_t)j->film->width + (size_t)(x - w->film_x0);
+            float *px = j->film->rgb + at * 3;
+            px[0] = sum.x * inv_count;
+            px[1] = sum.y * inv_count;
+            px[2] = sum.z * inv_count;
+        }
+    tile_finished(j, ctx, &before, r);
+}
+
+static void *worker(void *arg)
+{
+    job *j = arg;
+    trace_ctx ctx = {j->scene, j->decode, j->settings->max_depth, 0, 0};
+    const glint_callbacks *cb = j->cb;
+    for (;;) {
+        if (atomic_load(&j->cancelled))
+            break;
+        if (cb && cb->cancelled && cb->cancelled(cb->user)) {
+            atomic_store(&j->cancelled, 1);
+            break;
+        }
+        int i = atomic_fetch_add(&j->next_item, 1);
+        if (i >= j->items)
+            break;
+        render_tile(j, &ctx, item_rect(j, i));
+    }
+    return NULL;
+}
+
+/* Fills in the work's tiles and their sample count. */
+static void job_plan(job *j)
+{
+    const render_work *w = j->work;
+    uint64_t spp = (uint64_t)(j->grid * j->grid), pixels = 0;
+    if (w->tiles) {
+        j->items = w->ntiles;
+        for (int i = 0; i < w->ntiles; i++) {
+            glint_rect r = item_rect(j, i);
+            pixels += (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+        }
+    } else {
+        const glint_rect *g = &w->region;
+        j->tx0 = g->x0 / RENDER_TILE;
+        j->ty0 = g->y0 / RENDER_TILE;
+        j->tiles_x = (g->x1 - 1) / RENDER_TILE + 1 - j->tx0;
+        j->items = j->tiles_x * ((g->y1 - 1) / RENDER_TILE + 1 - j->ty0);
+        pixels = (uint64_t)(g->x1 - g->x0) * (uint64_t)(g->y1 - g->y0);
+    }
+    j->samples_total = pixels * spp;
+}
+
+/* Runs the job on settings.threads threads, the calling one included. */
+static void job_run(job *j)
+{
+    int nthreads = j->settings->threads > 0 ? j->settings->threads : settings_default_threads();
+    if (nthreads > j->items)
+        nthreads = j->items > 0 ? j->items : 1;
     pthread_t *th = calloc((size_t)nthreads, sizeof *th);
     int started = 0;
     if (th)
         for (; started < nthreads - 1; started++)
             if (pthread_create(&th[started], NULL, worker, j) != 0)
                 break;
-    worker(j); /* the calling thread works too */
+    worker(j);
     for (int i = 0; i < started; i++)
         pthread_join(th[i], NULL);
     free(th);
+}
 
+glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings,
+                    const glint_callbacks *cb, const render_work *work, glint_film *film,
+                    glint_stats *stats, glint_error *err)
+{
+    glint_rc rc = settings_check(settings, err);
+    if (rc != GLINT_OK)
+        return rc;
+    if (!sc->built)
+        return err_set(err, GLINT_ERR_INPUT, "scene was not built (objects were added since)");
+    job *j = calloc(1, sizeof *j);
+    if (!j)
+        return err_nomem(err);
+    j->start = now_seconds();
+    j->scene = sc;
+    j->settings = settings;
+    j->cb = cb;
+    j->work = work;
+    j->film = film;
+    j->frame = camera_frame_make(&sc->camera, settings->width, settings->height);
+    image_decode_table(settings->transfer, j->decode);
+    j->grid = settings_grid_side(settings->samples);
+    job_plan(j);
+    atomic_init(&j->next_item, 0);
+    atomic_init(&j->cancelled, 0);
+    pthread_mutex_init(&j->lock, NULL);
+    job_run(j);
     if (atomic_load(&j->cancelled))
         rc = err_set(err, GLINT_ERR_CANCELLED, "render cancelled");
     if (stats) {
-        int n = j->grid * j->grid;
-        stats->primary_rays = (uint64_t)w * (uint64_t)h * (uint64_t)n;
+        stats->primary_rays = j->samples_done;
         stats->secondary_rays = j->secondary_rays;
         stats->shadow_rays = j->shadow_rays;
-        stats->seconds = now_seconds() - t0;
+        stats->seconds = now_seconds() - j->start;
     }
     pthread_mutex_destroy(&j->lock);
     free(j);
-    if (rc != GLINT_OK)
-        render_film_free(film);
     return rc;
 }
 

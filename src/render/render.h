@@ -1,7 +1,9 @@
-/* render: turns a built scene into a film. The image is cut into square
- * tiles handed out from a shared counter to a pool of threads; each pixel
- * depends only on its own position, so the film is bit-identical for any
- * thread count or tile order. Front ends watch through glint_callbacks. */
+/* render: turns a built scene into film pixels. The work is a set of tiles
+ * of the image's tile grid (RENDER_TILE pixels square, numbered row by row),
+ * clipped to a region or listed one by one, handed out from a shared counter
+ * to a pool of threads; each pixel depends only on its own position, so the
+ * film is bit-identical for any thread count, tile order or split of the
+ * image into regions. Front ends watch and stop it through glint_callbacks. */
 #ifndef GLINT_RENDER_RENDER_H
 #define GLINT_RENDER_RENDER_H
 
@@ -11,11 +13,27 @@
 
 struct glint_scene;
 
-/* Renders a built scene into *film (allocated here). callbacks and stats may
- * be NULL. On any error the film is left empty. */
+/* What to render: the tiles listed, or (tiles NULL) every tile meeting
+ * region, clipped to it. The film is image-sized, or region-sized with
+ * (film_x0, film_y0) the image position of its top-left pixel. */
+typedef struct render_work {
+    glint_rect region;
+    const int *tiles;
+    int ntiles;
+    int film_x0, film_y0;
+} render_work;
+
+/* The tile grid of a width x height image. */
+int render_tile_count(int width, int height);
+glint_rect render_tile_rect(int width, int height, int tile);
+
+/* Renders the work into film (allocated by the caller, checked by it to fit
+ * the work). Settings are checked here; the scene must be built.
+ * callbacks and stats may be NULL. On cancellation the tiles reported done
+ * are in the film. */
 glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings,
-                    const glint_callbacks *callbacks, glint_film *film, glint_stats *stats,
-                    glint_error *err);
+                    const glint_callbacks *callbacks, const render_work *work, glint_film *film,
+                    glint_stats *stats, glint_error *err);
 
 /* Frees a film's pixels and empties it; NULL is fine. */
 void render_film_free(glint_film *film);

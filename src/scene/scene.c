@@ -77,6 +77,11 @@ int scene_add_mesh(scene *s, mesh *m)
     PUSH(s->meshes, s->nmeshes, s->cap_meshes, m);
 }
 
+void scene_set_camera(scene *s, const camera *c) { s->camera = *c; }
+void scene_set_settings(scene *s, const glint_settings *st) { s->settings = *st; }
+void scene_set_background(scene *s, vec3 c) { s->background = c; }
+void scene_set_ambient(scene *s, vec3 c) { s->ambient = c; }
+
 static aabb xform_bounds(const xform *x, aabb b)
 {
     if (aabb_is_empty(b))

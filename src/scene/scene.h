@@ -70,6 +70,12 @@ int scene_add_object(scene *s, const shape *sh, int material, int xform);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
 
+/* Setters for what needs no rebuild; the values are checked by the caller. */
+void scene_set_camera(scene *s, const camera *c);
+void scene_set_settings(scene *s, const glint_settings *st);
+void scene_set_background(scene *s, vec3 c);
+void scene_set_ambient(scene *s, vec3 c);
+
 /* Checks indices and computes derived data; call after the last add. */
 glint_rc scene_build(scene *s, glint_error *err);
 

@@ -44,5 +44,8 @@ glint_rc settings_check(const glint_settings *s, glint_error *err)
     if (s->threads < 0 || s->threads > SETTINGS_MAX_THREADS)
         return err_set(err, GLINT_ERR_INPUT, "threads must be 0 (all cores) to %d (got %d)",
                        SETTINGS_MAX_THREADS, s->threads);
+    if (s->transfer != GLINT_TRANSFER_NONE && s->transfer != GLINT_TRANSFER_SRGB)
+        return err_set(err, GLINT_ERR_INPUT, "transfer must be none (%d) or srgb (%d) (got %d)",
+                       GLINT_TRANSFER_NONE, GLINT_TRANSFER_SRGB, (int)s->transfer);
     return GLINT_OK;
 }
