@@ -38,7 +38,8 @@ DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
 .DEFAULT_GOAL := all
 
 all: deps
-	@$(MAKE) --no-print-directory $(BUILD)/glint scenes/textures/flag.png scenes/textures/globe.png
+	@$(MAKE) --no-print-directory $(BUILD)/glint $(BUILD)/libglint.a $(BUILD)/libglint.so \
+		scenes/textures/flag.png scenes/textures/globe.png
 
 deps:
 	@scripts/install-deps build
@@ -56,6 +57,41 @@ check: $(BUILD)/glint $(BUILD)/tests scenes/textures/flag.png scenes/textures/gl
 	scripts/check-layers
 	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 		$(BUILD)/tests --jobs 2
+ifeq ($(SAN),0)
+	@$(MAKE) --no-print-directory check-lib
+endif
+
+# The library as users get it: only glint_* exported, and a program built
+# against the installed header and glint.pc (shared and static) that runs.
+.PHONY: check-lib
+check-lib: $(BUILD)/libglint.so
+	scripts/check-exports $(BUILD)/libglint.so
+	@rm -rf $(BUILD)/stage
+	@$(MAKE) --no-print-directory install PREFIX=$(CURDIR)/$(BUILD)/stage >/dev/null
+	BUILD=$(BUILD) CC=$(CC) scripts/check-install $(CURDIR)/$(BUILD)/stage
+
+# `make install PREFIX=/usr/local DESTDIR=`: the command, both libraries,
+# the header, glint.pc, the example scenes and the documentation.
+PREFIX  ?= /usr/local
+DESTDIR ?=
+INSTALL_LIB := $(DESTDIR)$(PREFIX)/lib
+INSTALL_DOC := $(DESTDIR)$(PREFIX)/share/doc/glint
+.PHONY: install
+install: all
+	@mkdir -p $(BUILD)
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES@|$(PKGS)|' \
+		src/api/glint.pc.in > $(BUILD)/glint.pc
+	install -d $(DESTDIR)$(PREFIX)/bin $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include \
+		$(DESTDIR)$(PREFIX)/share/glint $(INSTALL_DOC)
+	install -m 755 $(BUILD)/glint $(DESTDIR)$(PREFIX)/bin/glint
+	install -m 644 $(BUILD)/libglint.a $(INSTALL_LIB)/libglint.a
+	install -m 755 $(BUILD)/libglint.so $(INSTALL_LIB)/libglint.so.$(VERSION)
+	ln -sf libglint.so.$(VERSION) $(INSTALL_LIB)/libglint.so.$(SOVERSION)
+	ln -sf libglint.so.$(SOVERSION) $(INSTALL_LIB)/libglint.so
+	install -m 644 include/glint.h $(DESTDIR)$(PREFIX)/include/glint.h
+	install -m 644 $(BUILD)/glint.pc $(INSTALL_LIB)/pkgconfig/glint.pc
+	cp -R scenes $(DESTDIR)$(PREFIX)/share/glint/
+	install -m 644 README.md docs/*.md $(INSTALL_DOC)/
 
 # Library objects serve both libraries: position-independent, and hidden
 # unless glint.h marks them GLINT_API.

@@ -22,7 +22,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         GLINT_OK)
         return 0;
     glint_settings st;
-    glint_scene_settings(s, &st);
+    glint_scene_settings(s, &st, NULL);
     st.width = 8;
     st.height = 8;
     st.samples = 1;

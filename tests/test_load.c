@@ -125,7 +125,7 @@ static void expect_error(const char *text, const char *message)
 static glint_film render_threads(const scene *s, int w, int h, int samples, int threads)
 {
     glint_settings st;
-    glint_scene_settings(s, &st);
+    glint_scene_settings(s, &st, NULL);
     st.width = w;
     st.height = h;
     if (samples > 0)
@@ -155,8 +155,8 @@ Test(load, seed_yaml_renders_exactly_like_the_builtin_scene)
     cr_assert_eq(glint_scene_builtin(&builtin, &err), GLINT_OK, "%s", err.msg);
 
     glint_settings a, b;
-    glint_scene_settings(file, &a);
-    glint_scene_settings(builtin, &b);
+    glint_scene_settings(file, &a, NULL);
+    glint_scene_settings(builtin, &b, NULL);
     cr_expect_eq(memcmp(&a, &b, sizeof a), 0, "the image settings differ");
     cr_expect_eq(file->nobjects, builtin->nobjects);
     cr_expect_eq(file->nlights, builtin->nlights);

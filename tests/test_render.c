@@ -4,6 +4,7 @@
  * (then look at it before committing). */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,7 +30,7 @@ static glint_scene *builtin(void)
 static glint_film render(glint_scene *s, int w, int h, int samples, int threads)
 {
     glint_settings st;
-    glint_scene_settings(s, &st);
+    glint_scene_settings(s, &st, NULL);
     st.width = w;
     st.height = h;
     st.samples = samples;
@@ -183,21 +184,22 @@ Test(render, settings_are_checked)
     expect_bad(s, "threads");
 }
 
-static void cancel_on_first_tile(void *user, const glint_film *f, int x0, int y0, int x1, int y1,
-                                 int done, int total)
+static void cancel_on_first_tile(void *user, const glint_film *f, int x0, int y0, int x1, int y1)
 {
-    (void)f, (void)x0, (void)y0, (void)x1, (void)y1, (void)done, (void)total;
-    *(volatile int *)user = 1;
+    (void)f, (void)x0, (void)y0, (void)x1, (void)y1;
+    atomic_store((atomic_int *)user, 1);
 }
+
+static int cancel_flag(void *user) { return atomic_load((atomic_int *)user); }
 
 Test(render, cancel_stops_the_render)
 {
     glint_scene *s = builtin();
     glint_settings st;
-    glint_scene_settings(s, &st);
+    glint_scene_settings(s, &st, NULL);
     st.threads = 1;
-    volatile int flag = 0;
-    glint_callbacks cb = {cancel_on_first_tile, (void *)&flag, &flag};
+    atomic_int flag = 0;
+    glint_callbacks cb = {.user = &flag, .tile_done = cancel_on_first_tile, .cancelled = cancel_flag};
     glint_film film = {0};
     glint_error err = {0};
     cr_expect_eq(glint_render(s, &st, &cb, &film, NULL, &err), GLINT_ERR_CANCELLED);
