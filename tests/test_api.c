@@ -3,6 +3,7 @@
  * and tile lists assemble into the whole image; progress, cancellation from
  * another thread, the camera, and the argument checks of every function. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <pthread.h>
 #include <sched.h>
 #include <stdatomic.h>
@@ -39,15 +40,9 @@ static const char scene_yaml[] =
     "  - {type: sphere, center: [0, 0, 0], radius: 1,\n"
     "     transform: [matrix: [0.5, 0, 0, 3,  0, 0.5, 0, 2,  0, 0, 0.5, -1]]}\n";
 
-#define OK(call)                                                                             \
-    do {                                                                                     \
-        glint_error e_ = {0};                                                                \
-        glint_rc rc_ = (call);                                                               \
-        (void)e_;                                                                            \
-        cr_assert_eq(rc_, GLINT_OK, "%s: %s", #call, err.msg);                               \
-    } while (0)
-
+/* The last call's error; OK asserts a call succeeded and shows why not. */
 static glint_error err;
+#define OK(call) cr_assert_eq((call), GLINT_OK, "%s: %s", #call, err.msg)
 
 static int material(glint_scene *s, glint_material m)
 {
@@ -157,3 +152,213 @@ Test(api, scene_in_code_renders_as_the_same_scene_in_yaml)
     glint_scene_free(code);
     glint_scene_free(yaml);
 }
+
+/* A small render of the built-in scene for the tests below. */
+static glint_scene *builtin(glint_settings *st, int w, int h, int threads)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_builtin(&s, &err));
+    OK(glint_scene_settings(s, st, &err));
+    st->width = w;
+    st->height = h;
+    st->samples = 1;
+    st->threads = threads;
+    return s;
+}
+
+Test(api, regions_and_tile_lists_assemble_into_the_whole_image)
+{
+    glint_settings st;
+    glint_scene *s = builtin(&st, 83, 61, 2);
+    glint_film whole = {0}, parts = {0}, tiles = {0};
+    OK(glint_render(s, &st, NULL, &whole, NULL, &err));
+    /* Four regions whose edges cut through tiles, into one image-sized film. */
+    OK(glint_film_alloc(&parts, 83, 61, &err));
+    glint_rect quarter[4] = {{0, 0, 37, 29}, {37, 0, 83, 29}, {0, 29, 37, 61}, {37, 29, 83, 61}};
+    for (int i = 0; i < 4; i++)
+        OK(glint_render_region(s, &st, &quarter[i], NULL, &parts, NULL, &err));
+    expect_same_film(&whole, &parts);
+    /* A region into a region-sized film lands at the film's top left. */
+    glint_film small = {0};
+    OK(glint_film_alloc(&small, 46, 32, &err));
+    OK(glint_render_region(s, &st, &quarter[3], NULL, &small, NULL, &err));
+    for (int y = 0; y < 32; y++)
+        cr_assert_eq(memcmp(small.rgb + (size_t)y * 46 * 3,
+                            whole.rgb + ((size_t)(29 + y) * 83 + 37) * 3, 46 * 3 * sizeof(float)),
+                     0, "row %d of the region differs", y);
+    /* Every tile, listed in reverse, in two batches. */
+    int n = 0;
+    OK(glint_tile_count(&st, &n, &err));
+    cr_assert_eq(n, 6 * 4);
+    int list[24];
+    for (int i = 0; i < n; i++)
+        list[i] = n - 1 - i;
+    OK(glint_film_alloc(&tiles, 83, 61, &err));
+    OK(glint_render_tiles(s, &st, list, 10, NULL, &tiles, NULL, &err));
+    OK(glint_render_tiles(s, &st, list + 10, n - 10, NULL, &tiles, NULL, &err));
+    expect_same_film(&whole, &tiles);
+    glint_rect r;
+    OK(glint_tile_rect(&st, n - 1, &r, &err));
+    cr_expect(r.x0 == 80 && r.y0 == 48 && r.x1 == 83 && r.y1 == 61, "last tile cut to the image");
+    glint_film_free(&whole);
+    glint_film_free(&parts);
+    glint_film_free(&small);
+    glint_film_free(&tiles);
+    glint_scene_free(s);
+}
+
+typedef struct watch {
+    double percent[1024];
+    int calls, tiles;
+    uint64_t samples_done, samples_total, rays;
+    atomic_int started, cancel;
+} watch;
+
+static void on_progress(void *user, const glint_progress *p)
+{
+    watch *w = user;
+    if (w->calls < 1024)
+        w->percent[w->calls] = p->percent;
+    w->calls++;
+    w->samples_done = p->samples_done;
+    w->samples_total = p->samples_total;
+    w->rays = p->rays;
+}
+
+static void on_tile(void *user, const glint_film *f, int x0, int y0, int x1, int y1)
+{
+    (void)f, (void)x0, (void)y0, (void)x1, (void)y1;
+    ((watch *)user)->tiles++;
+}
+
+Test(api, progress_is_monotone_and_reaches_100)
+{
+    glint_settings st;
+    glint_scene *s = builtin(&st, 100, 70, 2);
+    st.samples = 4;
+    watch *w = calloc(1, sizeof *w);
+    glint_callbacks cb = {.user = w, .tile_done = on_tile, .progress = on_progress};
+    glint_film film = {0};
+    glint_stats stats;
+    OK(glint_render(s, &st, &cb, &film, &stats, &err));
+    cr_assert_eq(w->calls, 7 * 5, "one call per tile");
+    cr_expect_eq(w->tiles, 7 * 5);
+    for (int i = 1; i < w->calls; i++)
+        cr_expect_geq(w->percent[i], w->percent[i - 1], "percent went back at call %d", i);
+    cr_expect_eq(w->percent[w->calls - 1], 100.0);
+    cr_expect_eq(w->samples_done, 100 * 70 * 4);
+    cr_expect_eq(w->samples_total, 100 * 70 * 4);
+    cr_expect_eq(w->rays, stats.primary_rays + stats.secondary_rays + stats.shadow_rays);
+    glint_film_free(&film);
+    glint_scene_free(s);
+    free(w);
+}
+
+static int is_cancelled(void *user) { return atomic_load(&((watch *)user)->cancel); }
+
+/* Holds the first tile's callback until the other thread has cancelled, so
+ * the render cannot finish first. */
+static void hold_first_tile(void *user, const glint_progress *p)
+{
+    watch *w = user;
+    on_progress(user, p);
+    if (w->calls == 1) {
+        atomic_store(&w->started, 1);
+        while (!atomic_load(&w->cancel))
+            sched_yield();
+    }
+}
+
+static void *canceller(void *user)
+{
+    watch *w = user;
+    while (!atomic_load(&w->started))
+        sched_yield();
+    atomic_store(&w->cancel, 1);
+    return NULL;
+}
+
+Test(api, cancellation_from_another_thread_stops_within_a_tile)
+{
+    glint_settings st;
+    glint_scene *s = builtin(&st, 160, 160, 2);
+    watch *w = calloc(1, sizeof *w);
+    glint_callbacks cb = {.user = w, .progress = hold_first_tile, .cancelled = is_cancelled};
+    pthread_t th;
+    cr_assert_eq(pthread_create(&th, NULL, canceller, w), 0);
+    glint_film film = {0};
+    cr_expect_eq(glint_render(s, &st, &cb, &film, NULL, &err), GLINT_ERR_CANCELLED);
+    pthread_join(th, NULL);
+    cr_expect_eq(err.code, GLINT_ERR_CANCELLED);
+    cr_expect_null(film.rgb, "a cancelled glint_render leaves no film");
+    /* The tile held and at most one tile in flight per other thread. */
+    cr_expect_leq(w->calls, 2, "%d of 100 tiles finished after the cancel", w->calls);
+    /* A region render keeps what finished. */
+    atomic_store(&w->cancel, 0);
+    atomic_store(&w->started, 0);
+    w->calls = 0;
+    cr_assert_eq(pthread_create(&th, NULL, canceller, w), 0);
+    OK(glint_film_alloc(&film, 160, 160, &err));
+    glint_rect all = {0, 0, 160, 160};
+    cr_expect_eq(glint_render_region(s, &st, &all, &cb, &film, NULL, &err), GLINT_ERR_CANCELLED);
+    pthread_join(th, NULL);
+    cr_expect_not_null(film.rgb);
+    glint_film_free(&film);
+    glint_scene_free(s);
+    free(w);
+}
+
+Test(api, camera_round_trip_and_refusals)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    glint_camera c = {{1, 2, 3}, {0, 0.5, -4}, {0, 1, 0}, 35.5, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    OK(glint_scene_set_camera(s, &c, &err));
+    glint_camera got;
+    OK(glint_scene_camera(s, &got, &err));
+    cr_expect_eq(memcmp(got.eye, c.eye, sizeof c.eye), 0);
+    cr_expect_eq(memcmp(got.look_at, c.look_at, sizeof c.look_at), 0);
+    cr_expect_eq(memcmp(got.up, c.up, sizeof c.up), 0);
+    cr_expect_eq(got.fov, 35.5);
+    cr_expect_eq(got.aperture, 0.0);
+    cr_expect_eq(got.projection, GLINT_PROJECTION_PERSPECTIVE);
+    cr_expect_float_eq(got.focus_distance, sqrt(1 + 2.25 + 49), 1e-5);
+
+    struct { const char *what, *words; glint_camera cam; } bad[] = {
+        {"eye == look_at", "differ", {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 40, 0, 0, 0}},
+        {"fov 0", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 0, 0, 0, 0}},
+        {"fov 180", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180, 0, 0, 0}},
+        {"fov NaN", "finite", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, NAN, 0, 0, 0}},
+        {"up parallel", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 2}, 40, 0, 0, 0}},
+        {"up zero", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 0}, 40, 0, 0, 0}},
+        {"aperture", "aperture", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 1, 0, 0}},
+        {"focus", "focus", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, -1, 0}},
+        {"projection", "projection", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 7}},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        err = (glint_error){0};
+        cr_expect_eq(glint_scene_set_camera(s, &bad[i].cam, &err), GLINT_ERR_INPUT, "%s",
+                     bad[i].what);
+        cr_expect_not_null(strstr(err.msg, bad[i].words), "%s: '%s'", bad[i].what, err.msg);
+    }
+    OK(glint_scene_camera(s, &got, &err));
+    cr_expect_eq(got.fov, 35.5, "a refused camera leaves the last one");
+    glint_scene_free(s);
+}
+
+Test(api, scene_settings_are_used_when_a_render_gives_none)
+{
+    glint_settings st;
+    glint_scene *s = builtin(&st, 20, 10, 1);
+    OK(glint_scene_set_settings(s, &st, &err));
+    glint_film film = {0};
+    OK(glint_render(s, NULL, NULL, &film, NULL, &err));
+    cr_expect(film.width == 20 && film.height == 10);
+    glint_film_free(&film);
+    st.transfer = (glint_transfer)7;
+    cr_expect_eq(glint_scene_set_settings(s, &st, &err), GLINT_ERR_INPUT);
+    cr_expect_not_null(strstr(err.msg, "transfer"), "%s", err.msg);
+    glint_scene_free(s);
+}
+
+Test(api, version) { cr_expect_str_eq(glint_version(), GLINT_VERSION); }
