@@ -362,3 +362,147 @@ Test(api, scene_settings_are_used_when_a_render_gives_none)
 }
 
 Test(api, version) { cr_expect_str_eq(glint_version(), GLINT_VERSION); }
+
+/* Each call is refused with GLINT_ERR_INPUT and a message holding words. */
+#define REFUSED(call, words)                                                                 \
+    do {                                                                                     \
+        err = (glint_error){0};                                                              \
+        cr_expect_eq((call), GLINT_ERR_INPUT, "%s was not refused", #call);                  \
+        cr_expect_eq(err.code, GLINT_ERR_INPUT, "%s", #call);                                \
+        cr_expect_not_null(strstr(err.msg, words), "%s: '%s'", #call, err.msg);              \
+    } while (0)
+
+Test(api, null_arguments_are_refused)
+{
+    glint_settings st;
+    glint_scene *s = builtin(&st, 16, 16, 1);
+    glint_film film = {0};
+    glint_camera cam;
+    glint_rect r = {0, 0, 16, 16};
+    int n, tiles[1] = {0};
+    glint_material m = glint_material_default();
+    glint_light l = {GLINT_LIGHT_POINT, {0, 0, 0}, {1, 1, 1}};
+    glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}}, 0, NULL, 0};
+    double rgb[3] = {0, 0, 0};
+    REFUSED(glint_scene_load(NULL, &s, &err), "path is NULL");
+    REFUSED(glint_scene_load("x.yaml", NULL, &err), "out is NULL");
+    REFUSED(glint_scene_builtin(NULL, &err), "out is NULL");
+    REFUSED(glint_scene_new(NULL, &err), "out is NULL");
+    REFUSED(glint_scene_settings(NULL, &st, &err), "scene is NULL");
+    REFUSED(glint_scene_settings(s, NULL, &err), "out is NULL");
+    REFUSED(glint_scene_set_settings(NULL, &st, &err), "scene is NULL");
+    REFUSED(glint_scene_set_settings(s, NULL, &err), "settings is NULL");
+    REFUSED(glint_settings_check(NULL, &err), "settings is NULL");
+    REFUSED(glint_scene_camera(NULL, &cam, &err), "scene is NULL");
+    REFUSED(glint_scene_camera(s, NULL, &err), "out is NULL");
+    REFUSED(glint_scene_set_camera(s, NULL, &err), "camera is NULL");
+    REFUSED(glint_scene_set_background(s, NULL, &err), "rgb is NULL");
+    REFUSED(glint_scene_set_ambient(NULL, rgb, &err), "scene is NULL");
+    REFUSED(glint_scene_add_material(s, NULL, NULL, &err), "material is NULL");
+    REFUSED(glint_scene_add_material(NULL, &m, NULL, &err), "scene is NULL");
+    REFUSED(glint_scene_add_light(s, NULL, NULL, &err), "light is NULL");
+    REFUSED(glint_scene_add_light(NULL, &l, NULL, &err), "scene is NULL");
+    REFUSED(glint_scene_add_object(s, NULL, NULL, &err), "object is NULL");
+    REFUSED(glint_scene_add_object(NULL, &o, NULL, &err), "scene is NULL");
+    o.nsteps = 1;
+    REFUSED(glint_scene_add_object(s, &o, NULL, &err), "steps is NULL");
+    REFUSED(glint_scene_build(NULL, &err), "scene is NULL");
+    REFUSED(glint_render(NULL, &st, NULL, &film, NULL, &err), "scene is NULL");
+    REFUSED(glint_render(s, &st, NULL, NULL, NULL, &err), "film is NULL");
+    REFUSED(glint_render_region(s, &st, NULL, NULL, &film, NULL, &err), "region is NULL");
+    REFUSED(glint_render_region(s, &st, &r, NULL, &film, NULL, &err), "film->rgb is NULL");
+    REFUSED(glint_render_tiles(s, &st, NULL, 1, NULL, &film, NULL, &err), "NULL");
+    REFUSED(glint_render_tiles(s, &st, tiles, 1, NULL, NULL, NULL, &err), "film is NULL");
+    REFUSED(glint_tile_count(NULL, &n, &err), "settings is NULL");
+    REFUSED(glint_tile_count(&st, NULL, &err), "count is NULL");
+    REFUSED(glint_tile_rect(&st, 0, NULL, &err), "out is NULL");
+    REFUSED(glint_film_alloc(NULL, 4, 4, &err), "film is NULL");
+    REFUSED(glint_film_write(NULL, GLINT_TRANSFER_NONE, "x.png", &err), "film is NULL");
+    REFUSED(glint_film_write(&film, GLINT_TRANSFER_NONE, "x.png", &err), "film->rgb is NULL");
+    cr_expect_eq(glint_scene_load(NULL, &s, NULL), GLINT_ERR_INPUT, "err may be NULL");
+    glint_scene_free(NULL);
+    glint_film_free(NULL);
+    glint_film_free(&film);
+    glint_scene_free(s);
+}
+
+Test(api, values_out_of_range_are_refused)
+{
+    glint_settings st;
+    glint_scene *s = builtin(&st, 40, 30, 1);
+    glint_settings bad = st;
+    bad.transfer = (glint_transfer)7;
+    REFUSED(glint_settings_check(&bad, &err), "transfer");
+    glint_film film = {0};
+    REFUSED(glint_render(s, &bad, NULL, &film, NULL, &err), "transfer");
+    cr_expect_null(film.rgb);
+    OK(glint_film_alloc(&film, 40, 30, &err));
+    REFUSED(glint_film_write(&film, (glint_transfer)7, "/tmp/x.png", &err), "transfer");
+    REFUSED(glint_film_alloc(&(glint_film){0}, 0, 5, &err), "film size");
+    glint_rect outside = {30, 20, 41, 30}, empty = {5, 5, 5, 9};
+    REFUSED(glint_render_region(s, &st, &outside, NULL, &film, NULL, &err), "not inside");
+    REFUSED(glint_render_region(s, &st, &empty, NULL, &film, NULL, &err), "empty");
+    glint_film odd = {0};
+    OK(glint_film_alloc(&odd, 7, 7, &err));
+    glint_rect r = {0, 0, 8, 8};
+    REFUSED(glint_render_region(s, &st, &r, NULL, &odd, NULL, &err), "film is 7x7");
+    int twice[2] = {1, 1}, far[1] = {6};
+    REFUSED(glint_render_tiles(s, &st, twice, 2, NULL, &film, NULL, &err), "twice");
+    REFUSED(glint_render_tiles(s, &st, far, 1, NULL, &film, NULL, &err), "out of range");
+    REFUSED(glint_render_tiles(s, &st, far, -1, NULL, &film, NULL, &err), "ntiles");
+    REFUSED(glint_tile_rect(&st, 6, &r, &err), "out of range");
+    glint_film_free(&odd);
+    glint_film_free(&film);
+    glint_scene_free(s);
+
+    OK(glint_scene_new(&s, &err));
+    glint_material m = glint_material_default();
+    m.reflect = 1.5;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err), "reflect");
+    m = glint_material_default();
+    m.ior = 0;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err), "ior");
+    m = glint_material_default();
+    m.color[1] = -1;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err), "colours");
+    glint_light l = {(glint_light_kind)3, {0, 0, 0}, {1, 1, 1}};
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "kind");
+    REFUSED(glint_scene_set_background(s, (double[3]){0, INFINITY, 0}, &err), "finite");
+    glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}}, 0, NULL, 0};
+    REFUSED(glint_scene_add_object(s, &o, NULL, &err), "material 0 was not added");
+    material(s, glint_material_default());
+    struct { const char *words; glint_shape shape; } shapes[] = {
+        {"radius", {GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, -1}}},
+        {"normal", {GLINT_SHAPE_PLANE, .plane = {{0, 0, 0}, {0, 0, 0}}}},
+        {"parallel", {GLINT_SHAPE_QUAD, .quad = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}}},
+        {"greater than min", {GLINT_SHAPE_BOX, .box = {{0, 0, 0}, {1, 0, 1}}}},
+        {"height", {GLINT_SHAPE_CYLINDER, .cylinder = {{0, 0, 0}, 1, 0, 1}}},
+        {"degenerate", {GLINT_SHAPE_TRIANGLE, .triangle = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}}},
+        {"shape kind", {(glint_shape_kind)42, .sphere = {{0, 0, 0}, 1}}},
+    };
+    for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
+        o.shape = shapes[i].shape;
+        REFUSED(glint_scene_add_object(s, &o, NULL, &err), shapes[i].words);
+    }
+    o.shape = (glint_shape){GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}};
+    glint_step steps[][1] = {{{GLINT_STEP_SCALE, {1, 0, 1}}},
+                             {{GLINT_STEP_ROTATE, {0, 0, 0, 30}}},
+                             {{GLINT_STEP_MATRIX, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0}}},
+                             {{GLINT_STEP_SHEAR, {1, 0, 1}}},
+                             {{(glint_step_kind)9, {0}}}};
+    const char *step_words[] = {"scale", "axis", "not invertible", "not invertible", "kind 9"};
+    for (int i = 0; i < 5; i++) {
+        o.steps = steps[i];
+        o.nsteps = 1;
+        REFUSED(glint_scene_add_object(s, &o, NULL, &err), step_words[i]);
+    }
+    /* A scene changed after its build refuses to render until built again. */
+    o.nsteps = 0;
+    OK(glint_scene_build(s, &err));
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    REFUSED(glint_render(s, NULL, NULL, &film, NULL, &err), "not built");
+    OK(glint_scene_build(s, &err));
+    OK(glint_render(s, NULL, NULL, &film, NULL, &err));
+    glint_film_free(&film);
+    glint_scene_free(s);
+}
