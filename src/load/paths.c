@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/text.h"
+
 /* ---- paths ------------------------------------------------------------ */
 
 /* Drops empty and "." segments and folds "name/.." pairs, in place; an
@@ -78,22 +80,10 @@ char *path_dir(const char *path)
  * naming it stay on one line; NULL when out of memory. */
 char *path_printable(const char *path)
 {
-    size_t n = 0;
-    for (const char *p = path; *p; p++)
-        n += (unsigned char)*p < 0x20 || *p == 0x7f ? 4 : 1;
-    char *out = malloc(n + 1), *o = out;
-    if (!out)
-        return NULL;
-    for (const char *p = path; *p; p++) {
-        unsigned char c = (unsigned char)*p;
-        if (c < 0x20 || c == 0x7f) {
-            snprintf(o, 5, "\\x%02X", c);
-            o += 4;
-        } else {
-            *o++ = (char)c;
-        }
-    }
-    *o = '\0';
+    size_t len = strlen(path), cap = text_escape_room(len);
+    char *out = malloc(cap);
+    if (out)
+        text_escape(path, len, len, out, cap);
     return out;
 }
 
