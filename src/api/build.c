@@ -253,9 +253,10 @@ glint_rc glint_scene_add_object(glint_scene *s, const glint_object *in, int *ind
         return api_null(err, fn, !s ? "scene" : !in ? "object" : "object->steps");
     if (in->nsteps < 0)
         return api_bad(err, fn, "nsteps must be >= 0 (got %d)", in->nsteps);
-    if (in->material < 0 || in->material >= s->nmaterials)
+    int nmaterials = scene_material_count(s);
+    if (in->material < 0 || in->material >= nmaterials)
         return api_bad(err, fn, "material %d was not added (the scene has %d)", in->material,
-                       s->nmaterials);
+                       nmaterials);
     shape sh;
     glint_rc rc = make_shape(&in->shape, &sh, err);
     int xf;

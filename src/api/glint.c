@@ -53,7 +53,7 @@ glint_rc glint_scene_settings(const glint_scene *s, glint_settings *out, glint_e
 {
     if (!s || !out)
         return api_null(err, __func__, !s ? "scene" : "out");
-    *out = s->settings;
+    *out = scene_settings(s);
     return GLINT_OK;
 }
 
@@ -82,7 +82,8 @@ glint_rc glint_scene_camera(const glint_scene *s, glint_camera *out, glint_error
 {
     if (!s || !out)
         return api_null(err, __func__, !s ? "scene" : "out");
-    const camera *c = &s->camera;
+    camera cam = scene_camera(s);
+    const camera *c = &cam;
     memset(out, 0, sizeof *out);
     const vec3 *from[3] = {&c->eye, &c->target, &c->up};
     double *to[3] = {out->eye, out->look_at, out->up};
@@ -145,10 +146,12 @@ void glint_film_free(glint_film *film) { render_film_free(film); }
 
 /* The settings a render uses, checked: the given ones or the scene's. */
 static glint_rc render_settings(const glint_scene *sc, const glint_settings **settings,
-                                glint_error *err)
+                                glint_settings *own, glint_error *err)
 {
-    if (!*settings)
-        *settings = &sc->settings;
+    if (!*settings) {
+        *own = scene_settings(sc);
+        *settings = own;
+    }
     return settings_check(*settings, err);
 }
 
@@ -158,7 +161,8 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
 {
     if (!sc || !film)
         return api_null(err, __func__, !sc ? "scene" : "film");
-    glint_rc rc = render_settings(sc, &settings, err);
+    glint_settings own;
+    glint_rc rc = render_settings(sc, &settings, &own, err);
     if (rc != GLINT_OK)
         return rc;
     rc = glint_film_alloc(film, settings->width, settings->height, err);
@@ -178,7 +182,8 @@ glint_rc glint_render_region(const glint_scene *sc, const glint_settings *settin
     static const char fn[] = "glint_render_region";
     if (!sc || !g || !film || !film->rgb)
         return api_null(err, fn, !sc ? "scene" : !g ? "region" : !film ? "film" : "film->rgb");
-    glint_rc rc = render_settings(sc, &settings, err);
+    glint_settings own;
+    glint_rc rc = render_settings(sc, &settings, &own, err);
     if (rc != GLINT_OK)
         return rc;
     int w = settings->width, h = settings->height;
@@ -251,7 +256,8 @@ glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *setting
         return api_null(err, fn, !sc ? "scene" : !film ? "film" : !film->rgb ? "film->rgb" : "tiles");
     if (ntiles < 0)
         return api_bad(err, fn, "ntiles must be >= 0 (got %d)", ntiles);
-    glint_rc rc = render_settings(sc, &settings, err);
+    glint_settings own;
+    glint_rc rc = render_settings(sc, &settings, &own, err);
     if (rc != GLINT_OK)
         return rc;
     if (film->width != settings->width || film->height != settings->height)
