@@ -152,6 +152,35 @@ GLINT_API glint_rc glint_scene_set_background(glint_scene *scene, const double r
 GLINT_API glint_rc glint_scene_set_ambient(glint_scene *scene, const double rgb[3],
                                            glint_error *err);
 
+typedef enum glint_texture_kind {
+    GLINT_TEXTURE_IMAGE,   /* a picture read from file */
+    GLINT_TEXTURE_CHECKER, /* a chequer of even and odd */
+} glint_texture_kind;
+
+typedef enum glint_wrap {
+    GLINT_WRAP_REPEAT,
+    GLINT_WRAP_CLAMP,
+} glint_wrap;
+
+/* Colour as a function of the surface's (u, v), as in the scene format:
+ * before lookup u' = u * scale[0] + offset[0], v' = v * scale[1] + offset[1]. */
+typedef struct glint_texture {
+    glint_texture_kind kind;
+    const char *file;       /* IMAGE: PNG, JPEG, ... (read by the add); v = 0 is its bottom row */
+    glint_wrap wrap[2];     /* IMAGE: along u and v */
+    double even[3], odd[3]; /* CHECKER: colours of the two kinds of square, components >= 0 */
+    double scale[2];        /* not 0; a chequer has scale[0] x scale[1] squares on the unit square */
+    double offset[2];
+} glint_texture;
+
+/* The scene format's defaults for a kind: no file, repeat, even 1, odd 0,
+ * scale 1, offset 0. */
+GLINT_API glint_texture glint_texture_default(glint_texture_kind kind);
+/* Reads an image texture's file now: a file that cannot be read or decoded
+ * is GLINT_ERR_INPUT naming it. */
+GLINT_API glint_rc glint_scene_add_texture(glint_scene *scene, const glint_texture *t,
+                                           int *index, glint_error *err);
+
 /* The Whitted material of docs/scene-format.md and src/shade/material.h. */
 typedef struct glint_material {
     double color[3];    /* base colour, components >= 0 */
@@ -163,10 +192,13 @@ typedef struct glint_material {
     double transmit;    /* 0 to 1: light passed through */
     double ior;         /* > 0: 1 is plain transparency, otherwise refraction */
     double tint[3];     /* filters transmitted light and shadows, components >= 0 */
+    int texture;        /* -1: none; else an index from glint_scene_add_texture,
+                           whose colour multiplies color */
 } glint_material;
 
 /* Matte white: colour 1, ambient 1, diffuse 1, specular 0, shininess 50,
- * reflect 0, transmit 0, ior 1, tint 1 (the scene format's defaults). */
+ * reflect 0, transmit 0, ior 1, tint 1, no texture (the scene format's
+ * defaults). */
 GLINT_API glint_material glint_material_default(void);
 GLINT_API glint_rc glint_scene_add_material(glint_scene *scene, const glint_material *m,
                                             int *index, glint_error *err);

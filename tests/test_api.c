@@ -13,7 +13,8 @@
 #include "glint.h"
 #include "tmpdir.h"
 
-/* Every shape, every transform step, each kind of material, two lights. */
+/* Every shape, every transform step, each kind of material and texture,
+ * two lights. */
 static const char scene_yaml[] =
     "image: {width: 64, height: 48, samples: 4, depth: 5, background: [0.1, 0.2, 0.3]}\n"
     "camera: {eye: [0, 2, 10], look_at: [0, 0, 0], up: [0, 1, 0], fov: 50}\n"
@@ -26,9 +27,14 @@ static const char scene_yaml[] =
     "  glass: {specular: 1, shininess: 200, transmit: 0.9, ior: 1.5}\n"
     "  clear: {color: [0.9, 0.3, 0.2], transmit: 0.5, tint: [1, 0.5, 0.25]}\n"
     "  matte: {color: [0.5, 0.75, 0.25], ambient: 0.5, diffuse: 0.75}\n"
+    "  floor: {texture: {type: checker, even: [0.9, 0.9, 0.8], odd: [0.1, 0.2, 0.3], scale: [0.5, 0.25],\n"
+    "          offset: [0.5, 0]}}\n"
+    "  globe: {specular: 0.5, texture: {type: image, file: " GLINT_SOURCE_DIR "/scenes/textures/globe.png,\n"
+    "          wrap: [repeat, clamp], scale: [2, 1]}}\n"
     "objects:\n"
-    "  - {type: plane, point: [0, -1, 0], normal: [0, 1, 0], material: matte}\n"
+    "  - {type: plane, point: [0, -1, 0], normal: [0, 1, 0], material: floor}\n"
     "  - {type: sphere, center: [-2, 0, 0], radius: 1, material: mirror}\n"
+    "  - {type: sphere, center: [3, 1.5, -1], radius: 1, material: globe}\n"
     "  - {type: sphere, center: [1, 0.5, 2], radius: 0.75, material: glass}\n"
     "  - {type: quad, origin: [-3, -1, -3], edge_u: [6, 0, 0], edge_v: [0, 4, 0], material: matte}\n"
     "  - {type: box, min: [-0.5, -1, -0.5], max: [0.5, 0, 0.5], material: clear,\n"
@@ -74,7 +80,7 @@ static glint_scene *scene_in_code(void)
     OK(glint_scene_add_light(s, &l2, NULL, &err));
 
     glint_material m = glint_material_default();
-    m = (glint_material){{0.2, 0.3, 0.9}, 1, 1, 1, 80, 0.75, 0, 1, {1, 1, 1}};
+    m = (glint_material){{0.2, 0.3, 0.9}, 1, 1, 1, 80, 0.75, 0, 1, {1, 1, 1}, -1};
     int mirror = material(s, m);
     m = glint_material_default();
     m.specular = 1, m.shininess = 200, m.transmit = 0.9, m.ior = 1.5;
@@ -87,9 +93,25 @@ static glint_scene *scene_in_code(void)
     m.color[0] = 0.5, m.color[1] = 0.75, m.color[2] = 0.25, m.ambient = 0.5, m.diffuse = 0.75;
     int matte = material(s, m);
     int white = material(s, glint_material_default());
+    glint_texture t = glint_texture_default(GLINT_TEXTURE_CHECKER);
+    t.even[0] = t.even[1] = 0.9, t.even[2] = 0.8;
+    t.odd[0] = 0.1, t.odd[1] = 0.2, t.odd[2] = 0.3;
+    t.scale[0] = 0.5, t.scale[1] = 0.25, t.offset[0] = 0.5;
+    m = glint_material_default();
+    OK(glint_scene_add_texture(s, &t, &m.texture, &err));
+    int floor = material(s, m);
+    t = glint_texture_default(GLINT_TEXTURE_IMAGE);
+    t.file = GLINT_SOURCE_DIR "/scenes/textures/globe.png";
+    t.wrap[1] = GLINT_WRAP_CLAMP;
+    t.scale[0] = 2;
+    m = glint_material_default();
+    m.specular = 0.5;
+    OK(glint_scene_add_texture(s, &t, &m.texture, &err));
+    int globe = material(s, m);
 
-    object(s, (glint_shape){GLINT_SHAPE_PLANE, .plane = {{0, -1, 0}, {0, 1, 0}}}, matte, NULL, 0);
+    object(s, (glint_shape){GLINT_SHAPE_PLANE, .plane = {{0, -1, 0}, {0, 1, 0}}}, floor, NULL, 0);
     object(s, (glint_shape){GLINT_SHAPE_SPHERE, .sphere = {{-2, 0, 0}, 1}}, mirror, NULL, 0);
+    object(s, (glint_shape){GLINT_SHAPE_SPHERE, .sphere = {{3, 1.5, -1}, 1}}, globe, NULL, 0);
     object(s, (glint_shape){GLINT_SHAPE_SPHERE, .sphere = {{1, 0.5, 2}, 0.75}}, glass, NULL, 0);
     object(s, (glint_shape){GLINT_SHAPE_QUAD, .quad = {{-3, -1, -3}, {6, 0, 0}, {0, 4, 0}}}, matte,
            NULL, 0);
@@ -465,6 +487,20 @@ Test(api, values_out_of_range_are_refused)
     m = glint_material_default();
     m.color[1] = -1;
     REFUSED(glint_scene_add_material(s, &m, NULL, &err), "colours");
+    m = glint_material_default();
+    m.texture = 0;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err), "texture 0 was not added");
+    glint_texture t = glint_texture_default(GLINT_TEXTURE_IMAGE);
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "file is NULL");
+    t.file = "/nonexistent/picture.png";
+    cr_expect_neq(glint_scene_add_texture(s, &t, NULL, &err), GLINT_OK);
+    cr_expect_not_null(strstr(err.msg, "picture.png"), "%s", err.msg);
+    t = glint_texture_default(GLINT_TEXTURE_CHECKER);
+    t.scale[1] = 0;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "scale");
+    t = glint_texture_default((glint_texture_kind)5);
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "kind 5");
+    REFUSED(glint_scene_add_texture(s, NULL, NULL, &err), "texture is NULL");
     glint_light l = {(glint_light_kind)3, {0, 0, 0}, {1, 1, 1}};
     REFUSED(glint_scene_add_light(s, &l, NULL, &err), "kind");
     REFUSED(glint_scene_set_background(s, (double[3]){0, INFINITY, 0}, &err), "finite");

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/mat4.h"
 #include "geom/shape.h"
+#include "io/image.h"
 #include "scene/scene.h"
 
 glint_rc glint_scene_new(glint_scene **out, glint_error *err)
@@ -50,7 +51,7 @@ glint_material glint_material_default(void)
 {
     return (glint_material){.color = {1, 1, 1}, .ambient = 1, .diffuse = 1, .specular = 0,
                             .shininess = 50, .reflect = 0, .transmit = 0, .ior = 1,
-                            .tint = {1, 1, 1}};
+                            .tint = {1, 1, 1}, .texture = -1};
 }
 
 /* Stores the index of a new element, or says memory ran out. */
@@ -80,6 +81,10 @@ glint_rc glint_scene_add_material(glint_scene *s, const glint_material *in, int 
                        in->reflect, in->transmit);
     if (!((float)in->ior > 0.0f))
         return api_bad(err, fn, "ior must be > 0 (got %g)", in->ior);
+    int ntextures = scene_texture_count(s);
+    if (in->texture < -1 || in->texture >= ntextures)
+        return api_bad(err, fn, "texture %d was not added (the scene has %d)", in->texture,
+                       ntextures);
     material m = material_default();
     m.color = api_vec3(in->color);
     m.ambient = (float)in->ambient;
@@ -90,7 +95,70 @@ glint_rc glint_scene_add_material(glint_scene *s, const glint_material *in, int 
     m.transmit = (float)in->transmit;
     m.ior = (float)in->ior;
     m.tint = api_vec3(in->tint);
+    m.texture = in->texture;
     return added(scene_add_material(s, &m), index, err);
+}
+
+glint_texture glint_texture_default(glint_texture_kind kind)
+{
+    return (glint_texture){.kind = kind, .file = NULL, .wrap = {GLINT_WRAP_REPEAT, GLINT_WRAP_REPEAT},
+                           .even = {1, 1, 1}, .odd = {0, 0, 0}, .scale = {1, 1}, .offset = {0, 0}};
+}
+
+/* Reads the image file and adds it to the scene; *index gets its place. */
+static glint_rc add_image(glint_scene *s, const char *path, int *index, glint_error *err)
+{
+    image img;
+    glint_rc rc = image_load(path, &img, err);
+    if (rc != GLINT_OK)
+        return rc;
+    *index = scene_add_image(s, &img);
+    if (*index < 0) {
+        image_free(&img);
+        return err_nomem(err);
+    }
+    return GLINT_OK;
+}
+
+glint_rc glint_scene_add_texture(glint_scene *s, const glint_texture *in, int *index,
+                                 glint_error *err)
+{
+    static const char fn[] = "glint_scene_add_texture";
+    if (!s || !in)
+        return api_null(err, fn, !s ? "scene" : "texture");
+    if ((unsigned)in->kind > GLINT_TEXTURE_CHECKER)
+        return api_bad(err, fn, "texture kind %d is not one of glint_texture_kind",
+                       (int)in->kind);
+    if (!api_finite(in->scale, 2) || !api_finite(in->offset, 2) ||
+        (float)in->scale[0] == 0.0f || (float)in->scale[1] == 0.0f)
+        return api_bad(err, fn, "scale must not be 0 and scale and offset must be finite");
+    texture t;
+    switch (in->kind) {
+    case GLINT_TEXTURE_IMAGE: {
+        if (!in->file)
+            return api_null(err, fn, "texture->file");
+        if ((unsigned)in->wrap[0] > GLINT_WRAP_CLAMP || (unsigned)in->wrap[1] > GLINT_WRAP_CLAMP)
+            return api_bad(err, fn, "wrap must be GLINT_WRAP_REPEAT or GLINT_WRAP_CLAMP");
+        int img = -1;
+        glint_rc rc = add_image(s, in->file, &img, err);
+        if (rc != GLINT_OK)
+            return rc;
+        t = texture_image(img);
+        t.wrap_u = in->wrap[0] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
+        t.wrap_v = in->wrap[1] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
+        break;
+    }
+    case GLINT_TEXTURE_CHECKER:
+        if (!color_ok(in->even) || !color_ok(in->odd))
+            return api_bad(err, fn, "colour components must be finite and >= 0");
+        t = texture_checker(api_vec3(in->even), api_vec3(in->odd), 1.0f, 1.0f);
+        break;
+    }
+    t.scale_u = (float)in->scale[0];
+    t.scale_v = (float)in->scale[1];
+    t.offset_u = (float)in->offset[0];
+    t.offset_v = (float)in->offset[1];
+    return added(scene_add_texture(s, &t), index, err);
 }
 
 glint_rc glint_scene_add_light(glint_scene *s, const glint_light *in, int *index,

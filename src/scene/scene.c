@@ -109,6 +109,8 @@ int scene_object_count(const scene *s) { return s->nobjects; }
 
 int scene_material_count(const scene *s) { return s->nmaterials; }
 
+int scene_texture_count(const scene *s) { return s->ntextures; }
+
 const struct mesh *scene_mesh(const scene *s, int index) { return s->meshes[index]; }
 
 static aabb xform_bounds(const xform *x, aabb b)
