@@ -223,6 +223,7 @@ typedef enum glint_shape_kind {
     GLINT_SHAPE_BOX,
     GLINT_SHAPE_CYLINDER,
     GLINT_SHAPE_TRIANGLE,
+    GLINT_SHAPE_MESH,
 } glint_shape_kind;
 
 /* The shapes, in their own coordinates, with the rules of the scene format.
@@ -237,6 +238,7 @@ typedef struct glint_cylinder {
     int capped;            /* non-zero: closed ends */
 } glint_cylinder;
 typedef struct glint_triangle { double p0[3], p1[3], p2[3]; } glint_triangle; /* not on one line */
+typedef struct glint_mesh { int index; } glint_mesh; /* from glint_scene_add_mesh */
 
 typedef struct glint_shape {
     glint_shape_kind kind;
@@ -247,6 +249,7 @@ typedef struct glint_shape {
         glint_box box;
         glint_cylinder cylinder;
         glint_triangle triangle;
+        glint_mesh mesh;
     };
 } glint_shape;
 
@@ -264,9 +267,16 @@ typedef struct glint_step {
     double v[12];
 } glint_step;
 
+/* Reads a triangle mesh file (OBJ, PLY, STL, OFF, glTF, or any format
+ * assimp reads) with its own materials, for objects to place: each object
+ * with a GLINT_SHAPE_MESH shape is an instance sharing its triangles. */
+GLINT_API glint_rc glint_scene_add_mesh(glint_scene *scene, const char *path, int *index,
+                                        glint_error *err);
+
 typedef struct glint_object {
     glint_shape shape;
-    int material;            /* an index from glint_scene_add_material */
+    int material;            /* an index from glint_scene_add_material; for a
+                                mesh, -1: the file's own materials */
     const glint_step *steps; /* the transform, first step applied first; NULL: none */
     int nsteps;
 } glint_object;

@@ -44,7 +44,13 @@ static const char scene_yaml[] =
     "  - {type: triangle, p0: [-3, 2, -2], p1: [-1, 2, -2], p2: [-2, 3.5, -2], material: clear,\n"
     "     transform: [shear: {xy: 0.25}]}\n"
     "  - {type: sphere, center: [0, 0, 0], radius: 1,\n"
-    "     transform: [matrix: [0.5, 0, 0, 3,  0, 0.5, 0, 2,  0, 0, 0.5, -1]]}\n";
+    "     transform: [matrix: [0.5, 0, 0, 3,  0, 0.5, 0, 2,  0, 0, 0.5, -1]]}\n"
+    "  - {type: mesh, file: tetra.obj, material: mirror, transform: [scale: 1.5, translate: [-3, -1, 1]]}\n"
+    "  - {type: mesh, file: tetra.obj, transform: [translate: [2, 1, 3]]}\n";
+
+/* A tetrahedron, written beside the scene. */
+static const char tetra_obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
 /* The last call's error; OK asserts a call succeeded and shows why not. */
 static glint_error err;
@@ -63,7 +69,7 @@ static void object(glint_scene *s, glint_shape shape, int mat, const glint_step 
     OK(glint_scene_add_object(s, &o, NULL, &err));
 }
 
-/* scene_yaml, written in code. */
+/* scene_yaml, written in code; the mesh file is in dir. */
 static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
@@ -129,22 +135,34 @@ static glint_scene *scene_in_code(void)
            clear, tri_steps, 1);
     glint_step mat_steps[] = {{GLINT_STEP_MATRIX, {0.5, 0, 0, 3, 0, 0.5, 0, 2, 0, 0, 0.5, -1}}};
     object(s, (glint_shape){GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}}, white, mat_steps, 1);
+    char path[128];
+    snprintf(path, sizeof path, "%s/tetra.obj", dir);
+    int tetra = -1;
+    OK(glint_scene_add_mesh(s, path, &tetra, &err));
+    glint_step big[] = {{GLINT_STEP_SCALE, {1.5, 1.5, 1.5}}, {GLINT_STEP_TRANSLATE, {-3, -1, 1}}};
+    glint_step moved[] = {{GLINT_STEP_TRANSLATE, {2, 1, 3}}};
+    object(s, (glint_shape){GLINT_SHAPE_MESH, .mesh = {tetra}}, mirror, big, 2);
+    object(s, (glint_shape){GLINT_SHAPE_MESH, .mesh = {tetra}}, -1, moved, 1);
     OK(glint_scene_build(s, &err));
     return s;
 }
 
-static glint_scene *scene_from_yaml(void)
+static void write_file(const char *name, const char *text)
 {
-    tmpdir_make("api");
     char path[128];
-    snprintf(path, sizeof path, "%s/scene.yaml", dir);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     FILE *f = fopen(path, "w");
     cr_assert_not_null(f);
-    fputs(scene_yaml, f);
+    fputs(text, f);
     fclose(f);
+}
+
+static glint_scene *scene_from_yaml(void)
+{
+    char path[128];
+    snprintf(path, sizeof path, "%s/scene.yaml", dir);
     glint_scene *s = NULL;
     OK(glint_scene_load(path, &s, &err));
-    tmpdir_remove();
     return s;
 }
 
@@ -158,7 +176,11 @@ static void expect_same_film(const glint_film *a, const glint_film *b)
 
 Test(api, scene_in_code_renders_as_the_same_scene_in_yaml)
 {
+    tmpdir_make("api");
+    write_file("scene.yaml", scene_yaml);
+    write_file("tetra.obj", tetra_obj);
     glint_scene *code = scene_in_code(), *yaml = scene_from_yaml();
+    tmpdir_remove();
     glint_film a = {0}, b = {0};
     OK(glint_render(code, NULL, NULL, &a, NULL, &err));
     OK(glint_render(yaml, NULL, NULL, &b, NULL, &err));
@@ -501,6 +523,8 @@ Test(api, values_out_of_range_are_refused)
     t = glint_texture_default((glint_texture_kind)5);
     REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "kind 5");
     REFUSED(glint_scene_add_texture(s, NULL, NULL, &err), "texture is NULL");
+    REFUSED(glint_scene_add_mesh(s, NULL, NULL, &err), "path is NULL");
+    REFUSED(glint_scene_add_mesh(s, "/nonexistent/m.obj", NULL, &err), "m.obj");
     glint_light l = {(glint_light_kind)3, {0, 0, 0}, {1, 1, 1}};
     REFUSED(glint_scene_add_light(s, &l, NULL, &err), "kind");
     REFUSED(glint_scene_set_background(s, (double[3]){0, INFINITY, 0}, &err), "finite");
@@ -514,6 +538,7 @@ Test(api, values_out_of_range_are_refused)
         {"greater than min", {GLINT_SHAPE_BOX, .box = {{0, 0, 0}, {1, 0, 1}}}},
         {"height", {GLINT_SHAPE_CYLINDER, .cylinder = {{0, 0, 0}, 1, 0, 1}}},
         {"degenerate", {GLINT_SHAPE_TRIANGLE, .triangle = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}}},
+        {"mesh 0 was not added", {GLINT_SHAPE_MESH, .mesh = {0}}},
         {"shape kind", {(glint_shape_kind)42, .sphere = {{0, 0, 0}, 1}}},
     };
     for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {

@@ -11,6 +11,7 @@
 #include "core/mat4.h"
 #include "geom/shape.h"
 #include "io/image.h"
+#include "load/mesh_import.h"
 #include "scene/scene.h"
 
 glint_rc glint_scene_new(glint_scene **out, glint_error *err)
@@ -178,7 +179,8 @@ glint_rc glint_scene_add_light(glint_scene *s, const glint_light *in, int *index
 }
 
 /* The shape with the scene format's rules (docs/scene-format.md). */
-static glint_rc make_shape(const glint_shape *in, shape *out, glint_error *err)
+static glint_rc make_shape(const glint_scene *s, const glint_shape *in, shape *out,
+                           glint_error *err)
 {
     static const char fn[] = "glint_scene_add_object";
     switch (in->kind) {
@@ -234,6 +236,12 @@ static glint_rc make_shape(const glint_shape *in, shape *out, glint_error *err)
         *out = shape_triangle(p0, p1, p2);
         return GLINT_OK;
     }
+    case GLINT_SHAPE_MESH:
+        if (in->mesh.index < 0 || in->mesh.index >= scene_mesh_count(s))
+            return api_bad(err, fn, "mesh %d was not added (the scene has %d)", in->mesh.index,
+                           scene_mesh_count(s));
+        *out = shape_mesh(scene_mesh(s, in->mesh.index));
+        return GLINT_OK;
     }
     return api_bad(err, fn, "shape kind %d is not one of glint_shape_kind", (int)in->kind);
 }
@@ -322,17 +330,33 @@ glint_rc glint_scene_add_object(glint_scene *s, const glint_object *in, int *ind
     if (in->nsteps < 0)
         return api_bad(err, fn, "nsteps must be >= 0 (got %d)", in->nsteps);
     int nmaterials = scene_material_count(s);
-    if (in->material < 0 || in->material >= nmaterials)
+    bool own = in->material == -1 && in->shape.kind == GLINT_SHAPE_MESH;
+    if (!own && (in->material < 0 || in->material >= nmaterials))
         return api_bad(err, fn, "material %d was not added (the scene has %d)", in->material,
                        nmaterials);
     shape sh;
-    glint_rc rc = make_shape(&in->shape, &sh, err);
+    glint_rc rc = make_shape(s, &in->shape, &sh, err);
     int xf;
     if (rc == GLINT_OK)
         rc = make_xform(s, in, &xf, err);
     if (rc != GLINT_OK)
         return rc;
     return added(scene_add_object(s, &sh, in->material, xf), index, err);
+}
+
+glint_rc glint_scene_add_mesh(glint_scene *s, const char *path, int *index, glint_error *err)
+{
+    if (!s || !path)
+        return api_null(err, __func__, !s ? "scene" : "path");
+    mesh_file mf = {0};
+    glint_rc rc = mesh_import(path, &mf, err);
+    int i = -1;
+    if (rc == GLINT_OK)
+        rc = mesh_file_add(s, &mf, &i, err);
+    mesh_file_free(&mf);
+    if (rc == GLINT_OK && index)
+        *index = i;
+    return rc;
 }
 
 glint_rc glint_scene_build(glint_scene *s, glint_error *err)

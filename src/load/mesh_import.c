@@ -14,6 +14,7 @@
 #include <assimp/scene.h>
 
 #include "core/error.h"
+#include "scene/scene.h"
 
 /* Meshes larger than this are refused before allocating. */
 #define MESH_MAX_TRIANGLES (1 << 27)
@@ -192,6 +193,21 @@ glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mes
                        size ? "file too large" : "file is empty");
     const struct aiScene *sc = import_locked(name, data, size, hint, err);
     return sc ? convert(sc, name, out, err) : GLINT_ERR_INPUT;
+}
+
+glint_rc mesh_file_add(scene *s, mesh_file *f, int *index, glint_error *err)
+{
+    int base = scene_material_count(s);
+    for (int i = 0; i < f->nmaterials; i++)
+        if (scene_add_material(s, &f->materials[i]) < 0)
+            return err_nomem(err);
+    for (int t = 0; t < f->mesh->ntris; t++)
+        f->mesh->tri_material[t] += base;
+    *index = scene_add_mesh(s, f->mesh);
+    if (*index < 0)
+        return err_nomem(err);
+    f->mesh = NULL;
+    return GLINT_OK;
 }
 
 void mesh_file_free(mesh_file *f)

@@ -23,6 +23,10 @@ glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err);
  * a glTF's external buffers) are not found this way. */
 glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mesh_file *out,
                             glint_error *err);
+/* Adds the file's materials and then its mesh to s, renumbering the
+ * triangles' materials to the scene's; the scene takes the mesh (f->mesh
+ * becomes NULL). *index gets the mesh's place among the scene's meshes. */
+glint_rc mesh_file_add(struct glint_scene *s, mesh_file *f, int *index, glint_error *err);
 /* Frees what mesh_import returned and the caller did not take. */
 void mesh_file_free(mesh_file *f);
 

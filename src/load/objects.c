@@ -115,20 +115,9 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
         rc = load_fail(L, v, "%s", merr.msg);
         goto out;
     }
-    int base = scene_material_count(L->s);
-    for (int i = 0; i < mf.nmaterials; i++)
-        if (scene_add_material(L->s, &mf.materials[i]) < 0) {
-            rc = err_nomem(L->err);
-            goto out;
-        }
-    for (int t = 0; t < mf.mesh->ntris; t++)
-        mf.mesh->tri_material[t] += base;
-    index = scene_add_mesh(L->s, mf.mesh);
-    if (index < 0) {
-        rc = err_nomem(L->err);
+    rc = mesh_file_add(L->s, &mf, &index, L->err);
+    if (rc != GLINT_OK)
         goto out;
-    }
-    mf.mesh = NULL; /* the scene owns it now */
     if (!names_put(&L->meshes, resolved, strlen(resolved), index)) {
         rc = err_nomem(L->err);
         goto out;

@@ -111,6 +111,8 @@ int scene_material_count(const scene *s) { return s->nmaterials; }
 
 int scene_texture_count(const scene *s) { return s->ntextures; }
 
+int scene_mesh_count(const scene *s) { return s->nmeshes; }
+
 const struct mesh *scene_mesh(const scene *s, int index) { return s->meshes[index]; }
 
 static aabb xform_bounds(const xform *x, aabb b)

@@ -87,6 +87,7 @@ vec3 scene_ambient(const scene *s);
 int scene_object_count(const scene *s);
 int scene_material_count(const scene *s);
 int scene_texture_count(const scene *s);
+int scene_mesh_count(const scene *s);
 const struct mesh *scene_mesh(const scene *s, int index);
 
 /* Checks indices and computes derived data; call after the last add. */
