@@ -201,16 +201,3 @@ void glint_film_free(glint_film *film)
     film->rgb = NULL;
     film->width = film->height = 0;
 }
-
-glint_rc glint_film_write(const glint_film *film, glint_transfer transfer, const char *path,
-                          glint_error *err)
-{
-    size_t n = (size_t)film->width * (size_t)film->height * 3;
-    uint8_t *px = malloc(n ? n : 1);
-    if (!px)
-        return err_nomem(err);
-    image_quantize(film->rgb, n, transfer, px);
-    glint_rc rc = image_write(path, film->width, film->height, px, err);
-    free(px);
-    return rc;
-}
