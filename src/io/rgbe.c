@@ -7,7 +7,8 @@
  * given), the resolution line "-Y H +X W" (rows top to bottom; the other
  * seven orientations are refused), then H scanlines, each flat or in the
  * new run-length form. Decoded values are the bucket centres, (m + 0.5) 2^(e-136),
- * as Radiance's colr_color does. */
+ * as Radiance's colr_color does, except that a zero mantissa stays exactly 0
+ * (pure colours keep their zero channels). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -124,7 +125,7 @@ static bool read_scanline(cursor *c, uint8_t *row, long width, bool *truncated)
 
 static float component(uint8_t m, uint8_t e)
 {
-    return e ? ((float)m + 0.5f) * ldexpf(1.0f, (int)e - 136) : 0.0f;
+    return e && m ? ((float)m + 0.5f) * ldexpf(1.0f, (int)e - 136) : 0.0f;
 }
 
 glint_rc rgbe_decode(const uint8_t *data, size_t size, const char *name, image *out,
