@@ -23,18 +23,18 @@
 typedef struct image image;
 
 /* A growable byte buffer. */
-typedef struct bytes {
+typedef struct bytebuf {
     uint8_t *data;
     size_t len, cap;
-} bytes;
+} bytebuf;
 
 /* Makes room for n more bytes and returns where they go (len grows by n),
  * or NULL when memory runs out. */
-uint8_t *bytes_grow(bytes *b, size_t n);
+uint8_t *bytes_grow(bytebuf *b, size_t n);
 /* Makes room for n more bytes without counting them (cap >= len + n). */
-bool bytes_reserve(bytes *b, size_t n);
-bool bytes_append(bytes *b, const void *data, size_t n);
-void bytes_free(bytes *b);
+bool bytes_reserve(bytebuf *b, size_t n);
+bool bytes_append(bytebuf *b, const void *data, size_t n);
+void bytes_free(bytebuf *b);
 
 /* A film to encode: linear float RGB, optional coverage in [0, 1]. */
 typedef struct raster {
@@ -67,17 +67,17 @@ glint_rc exr_decode(const uint8_t *data, size_t size, const char *name, image *o
 glint_rc legacy_decode(const uint8_t *data, size_t size, const char *name, image *out,
                        glint_error *err);
 
-glint_rc png_encode(const raster *r, bytes *out, glint_error *err);
-glint_rc pnm_encode(const raster *r, bytes *out, glint_error *err);
-glint_rc jpeg_encode(const raster *r, bytes *out, glint_error *err);
-glint_rc rgbe_encode(const raster *r, bytes *out, glint_error *err);
-glint_rc pfm_encode(const raster *r, bytes *out, glint_error *err);
-glint_rc exr_encode(const raster *r, bytes *out, glint_error *err);
+glint_rc png_encode(const raster *r, bytebuf *out, glint_error *err);
+glint_rc pnm_encode(const raster *r, bytebuf *out, glint_error *err);
+glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err);
+glint_rc rgbe_encode(const raster *r, bytebuf *out, glint_error *err);
+glint_rc pfm_encode(const raster *r, bytebuf *out, glint_error *err);
+glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err);
 
 /* The fast PNG writer's core, also used by the benchmark: 8- or 16-bit
  * samples (16-bit ones in native order, written big-endian), 1 to 4
  * channels, rows packed. */
 glint_rc png_encode_pixels(int width, int height, int channels, int bits, const void *pixels,
-                           bytes *out, glint_error *err);
+                           bytebuf *out, glint_error *err);
 
 #endif

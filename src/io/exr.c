@@ -21,7 +21,7 @@
 /* The stream behind a context, and the library's last message (its error
  * handler must not print: library code never does). */
 typedef struct exr_stream {
-    bytes *out;          /* writing */
+    bytebuf *out;          /* writing */
     const uint8_t *data; /* reading */
     size_t size;
     bool nomem;
@@ -136,7 +136,7 @@ static exr_result_t write_chunks(exr_context_t ctx, const raster *r)
     return e;
 }
 
-glint_rc exr_encode(const raster *r, bytes *out, glint_error *err)
+glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err)
 {
     exr_stream s = {.out = out};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;

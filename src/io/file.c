@@ -284,6 +284,8 @@ glint_rc file_check_output(const char *path, glint_error *err)
                        ? GLINT_OK
                        : err_set(err, GLINT_ERR_INPUT, "%s: cannot write: %s", path,
                                  strerror(errno));
+    } else if (errno == ENAMETOOLONG) {
+        return err_set(err, GLINT_ERR_INPUT, "%s: file name is too long", path);
     } else if (errno != ENOENT) {
         return err_set(err, GLINT_ERR_INPUT, "%s: %s", path, strerror(errno));
     }

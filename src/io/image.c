@@ -17,7 +17,7 @@
 
 /* ---- byte buffers and shared messages ----------------------------------- */
 
-bool bytes_reserve(bytes *b, size_t n)
+bool bytes_reserve(bytebuf *b, size_t n)
 {
     if (n > SIZE_MAX / 4 - b->len)
         return false;
@@ -34,7 +34,7 @@ bool bytes_reserve(bytes *b, size_t n)
     return true;
 }
 
-uint8_t *bytes_grow(bytes *b, size_t n)
+uint8_t *bytes_grow(bytebuf *b, size_t n)
 {
     if (!bytes_reserve(b, n))
         return NULL;
@@ -43,7 +43,7 @@ uint8_t *bytes_grow(bytes *b, size_t n)
     return at;
 }
 
-bool bytes_append(bytes *b, const void *data, size_t n)
+bool bytes_append(bytebuf *b, const void *data, size_t n)
 {
     uint8_t *p = bytes_grow(b, n);
     if (!p)
@@ -53,10 +53,10 @@ bool bytes_append(bytes *b, const void *data, size_t n)
     return true;
 }
 
-void bytes_free(bytes *b)
+void bytes_free(bytebuf *b)
 {
     free(b->data);
-    *b = (bytes){0};
+    *b = (bytebuf){0};
 }
 
 glint_rc codec_check_size(uint64_t width, uint64_t height, const char *name, glint_error *err)

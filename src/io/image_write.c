@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "codec.h"
 #include "core/error.h"
@@ -107,9 +108,17 @@ static glint_rc resolve(const char *path, const glint_write_options *o, resolved
     if (o->transfer != GLINT_TRANSFER_NONE && o->transfer != GLINT_TRANSFER_SRGB)
         return err_set(err, GLINT_ERR_INPUT, "%s: unknown transfer function %d", shown,
                        (int)o->transfer);
+    /* a folder is named as such before its name is judged as a format */
+    struct stat st;
+    bool exists = strcmp(path, "-") != 0 && stat(path, &st) == 0;
+    if (exists && S_ISDIR(st.st_mode))
+        return err_set(err, GLINT_ERR_INPUT, "%s: is a directory", shown);
     r->format = o->format;
     if (r->format == GLINT_FORMAT_AUTO)
-        r->format = strcmp(path, "-") == 0 ? GLINT_FORMAT_PNG : lookup(extension(path));
+        r->format = lookup(extension(path));
+    /* standard output, devices and pipes have no extension to go by: PNG */
+    if (r->format == GLINT_FORMAT_AUTO && (!strcmp(path, "-") || (exists && !S_ISREG(st.st_mode))))
+        r->format = GLINT_FORMAT_PNG;
     if (r->format == GLINT_FORMAT_AUTO) {
         const char *ext = extension(path);
         return ext[0] ? err_set(err, GLINT_ERR_INPUT,
@@ -143,7 +152,7 @@ glint_rc image_write_check(const char *path, const glint_write_options *opts, gl
     return rc != GLINT_OK ? rc : file_check_output(path, err);
 }
 
-static glint_rc encode(const raster *r, glint_format f, bytes *out, glint_error *err)
+static glint_rc encode(const raster *r, glint_format f, bytebuf *out, glint_error *err)
 {
     switch (f) {
     case GLINT_FORMAT_AUTO:
@@ -180,7 +189,7 @@ glint_rc image_write_film(const char *path, int width, int height, const float *
         .bits = res.bits,
         .quality = res.quality,
     };
-    bytes out = {0};
+    bytebuf out = {0};
     rc = encode(&r, res.format, &out, err);
     if (rc == GLINT_OK)
         rc = file_write(path, out.data, out.len, err);

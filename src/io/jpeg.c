@@ -108,7 +108,7 @@ glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *
     return GLINT_OK;
 }
 
-glint_rc jpeg_encode(const raster *r, bytes *out, glint_error *err)
+glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err)
 {
     struct jpeg_compress_struct cinfo;
     jpeg_failure f;

@@ -21,6 +21,7 @@
 static glint_rc spng_failure(int e, const char *name, glint_error *err)
 {
     switch (e) {
+    case SPNG_IO_EOF:
     case SPNG_EOF:
     case SPNG_EIDAT_TOO_SHORT:
         return codec_truncated(name, err);
@@ -97,7 +98,7 @@ static void put_crc(uint8_t *type_and_data, size_t n, uint8_t *dst)
     put_be32(dst, crc32_gzip_refl(0, type_and_data, n));
 }
 
-static bool put_chunk(bytes *out, const char type[4], const uint8_t *data, uint32_t n)
+static bool put_chunk(bytebuf *out, const char type[4], const uint8_t *data, uint32_t n)
 {
     uint8_t *p = bytes_grow(out, 12 + (size_t)n);
     if (!p)
@@ -112,7 +113,7 @@ static bool put_chunk(bytes *out, const char type[4], const uint8_t *data, uint3
 
 /* Feeds n bytes to the compressor, appending what comes out to out; with
  * last set, runs until the stream is closed. */
-static bool deflate_feed(struct isal_zstream *z, bytes *out, const uint8_t *in, size_t n,
+static bool deflate_feed(struct isal_zstream *z, bytebuf *out, const uint8_t *in, size_t n,
                          bool last)
 {
     z->next_in = (uint8_t *)in;
@@ -136,7 +137,7 @@ static bool deflate_feed(struct isal_zstream *z, bytes *out, const uint8_t *in, 
 }
 
 /* Turns the compressed stream at out[start..] into IDAT chunks in place. */
-static bool wrap_idat(bytes *out, size_t start)
+static bool wrap_idat(bytebuf *out, size_t start)
 {
     size_t zlen = out->len - start;
     size_t k = zlen ? (zlen + PNG_CHUNK_MAX - 1) / PNG_CHUNK_MAX : 1;
@@ -184,7 +185,7 @@ typedef struct png_rows {
     uint8_t *level_buf, *batch, *be[2];
 } png_rows;
 
-static bool compress_rows(png_rows *s, bytes *out, int width, int height, int channels, int bits,
+static bool compress_rows(png_rows *s, bytebuf *out, int width, int height, int channels, int bits,
                           const void *pixels)
 {
     size_t samples = (size_t)width * (size_t)channels;
@@ -227,7 +228,7 @@ static bool compress_rows(png_rows *s, bytes *out, int width, int height, int ch
 }
 
 glint_rc png_encode_pixels(int width, int height, int channels, int bits, const void *pixels,
-                           bytes *out, glint_error *err)
+                           bytebuf *out, glint_error *err)
 {
     static const uint8_t color_type[5] = {0, 0, 4, 2, 6}; /* grey, grey+alpha, RGB, RGBA */
     if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
@@ -251,7 +252,7 @@ glint_rc png_encode_pixels(int width, int height, int channels, int bits, const 
     return ok ? GLINT_OK : err_nomem(err);
 }
 
-glint_rc png_encode(const raster *r, bytes *out, glint_error *err)
+glint_rc png_encode(const raster *r, bytebuf *out, glint_error *err)
 {
     int ch = r->alpha ? 4 : 3;
     size_t n = (size_t)r->width * (size_t)r->height;

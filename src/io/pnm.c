@@ -104,7 +104,7 @@ glint_rc pnm_decode(const uint8_t *data, size_t size, const char *name, image *o
     return GLINT_OK;
 }
 
-glint_rc pnm_encode(const raster *r, bytes *out, glint_error *err)
+glint_rc pnm_encode(const raster *r, bytebuf *out, glint_error *err)
 {
     size_t n = (size_t)r->width * (size_t)r->height * 3;
     char header[64];
@@ -200,7 +200,7 @@ glint_rc pfm_decode(const uint8_t *data, size_t size, const char *name, image *o
     return GLINT_OK;
 }
 
-glint_rc pfm_encode(const raster *r, bytes *out, glint_error *err)
+glint_rc pfm_encode(const raster *r, bytebuf *out, glint_error *err)
 {
     size_t w = (size_t)r->width, h = (size_t)r->height;
     char header[64];

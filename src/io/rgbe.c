@@ -68,7 +68,8 @@ static glint_rc read_header(cursor *c, const char *name, long *w, long *h, glint
     return codec_check_size((uint64_t)*w, (uint64_t)*h, name, err);
 }
 
-/* One component of one new-style run-length scanline into dst[0], dst[4]... */
+/* One component of one new-style run-length scanline into dst[0], dst[4]...
+ * Data that stops early leaves the cursor at its end (truncation). */
 static bool read_component(cursor *c, uint8_t *dst, long width)
 {
     long x = 0;
@@ -78,7 +79,9 @@ static bool read_component(cursor *c, uint8_t *dst, long width)
         int code = *c->p++;
         if (code > 128) { /* a run */
             long n = code - 128;
-            if (n > width - x || c->p >= c->end)
+            if (c->p >= c->end)
+                return false;
+            if (n > width - x)
                 return false;
             uint8_t v = *c->p++;
             for (long i = 0; i < n; i++)
@@ -86,8 +89,12 @@ static bool read_component(cursor *c, uint8_t *dst, long width)
             x += n;
         } else { /* code literal bytes; 0 is invalid */
             long n = code;
-            if (n == 0 || n > width - x || c->end - c->p < n)
+            if (n == 0 || n > width - x)
                 return false;
+            if (c->end - c->p < n) {
+                c->p = c->end;
+                return false;
+            }
             for (long i = 0; i < n; i++)
                 dst[4 * (x + i)] = c->p[i];
             c->p += n;
@@ -193,7 +200,7 @@ static void to_rgbe(const float *rgb, uint8_t q[4])
 }
 
 /* Runs of 4 or more equal bytes as run codes, the rest as literals. */
-static bool write_component(bytes *out, const uint8_t *src, long width)
+static bool write_component(bytebuf *out, const uint8_t *src, long width)
 {
     long x = 0;
     while (x < width) {
@@ -228,7 +235,7 @@ static bool write_component(bytes *out, const uint8_t *src, long width)
     return true;
 }
 
-glint_rc rgbe_encode(const raster *r, bytes *out, glint_error *err)
+glint_rc rgbe_encode(const raster *r, bytebuf *out, glint_error *err)
 {
     long w = r->width, h = r->height;
     char header[128];
