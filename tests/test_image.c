@@ -953,3 +953,24 @@ Test(image, a_read_only_folder_is_refused)
     cr_assert(strstr(err.msg, "Permission denied"), "%s", err.msg);
     rmdir(in_dir("ro"));
 }
+
+/* ---- inputs found by fuzzing (fuzz/fuzz_texture.c) ---------------------- */
+
+/* A 34-byte run-length TGA declaring 8248x22571 pixels (under the pixel
+ * limit) kept stb_image decoding for seconds: a header claiming more pixels
+ * than its bytes can encode is refused at once. */
+Test(image, fuzz_tiny_tga_claiming_186_megapixels_is_truncated)
+{
+    static const uint8_t tga[34] = {
+        0x00, 0x00, 0x0a, 0x00, 0x00, 0xa4, 0x29, 0x75, 0x39, 0x2d, 0x59, 0x20,
+        0x38, 0x20, 0x2b, 0x58, 0x20, 0x38, 0x0a, 0x8c, 0xcc, 0x50, 0x66, 0x0a,
+        0x90, 0xdc, 0xa0, 0x44, 0xb0, 0x54, 0x18, 0x64, 0x28, 0xec};
+    image img = {0};
+    glint_error err = {0};
+    cr_assert_eq(image_load_memory(tga, sizeof tga, "t.tga", &img, &err), GLINT_ERR_INPUT);
+    cr_assert_str_eq(err.msg, "t.tga: file is truncated");
+    /* the same for a Radiance header over a few bytes of runs */
+    const char hdr[] = "#?RADIANCE\n\n-Y 8000 +X 8000\n\x02\x02\x1f\x40\xff\x00";
+    cr_assert_eq(image_load_memory(hdr, sizeof hdr - 1, "t.hdr", &img, &err), GLINT_ERR_INPUT);
+    cr_assert_str_eq(err.msg, "t.hdr: file is truncated");
+}

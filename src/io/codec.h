@@ -48,6 +48,12 @@ typedef struct raster {
 
 /* "name: image WxH is too large (limit N pixels)" or an empty-size error. */
 glint_rc codec_check_size(uint64_t width, uint64_t height, const char *name, glint_error *err);
+/* A header may claim far more pixels than its data can encode (a few
+ * bytes of run-length codes declaring 100 million pixels): when
+ * width * height exceeds size * per_byte, the most any byte of the format
+ * can expand to, the file is truncated, said before memory is asked for. */
+glint_rc codec_check_data(uint64_t width, uint64_t height, size_t size, uint64_t per_byte,
+                          const char *name, glint_error *err);
 /* "name: file is truncated" */
 glint_rc codec_truncated(const char *name, glint_error *err);
 

@@ -284,6 +284,10 @@ glint_rc exr_decode(const uint8_t *data, size_t size, const char *name, image *o
         goto out;
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
     rc = codec_check_size(w > 0 ? (uint64_t)w : 0, h > 0 ? (uint64_t)h : 0, name, err);
+    /* ZIP (deflate) expands at most about 1032 times, RLE 64 times; 4096
+     * pixels per byte leaves room for half-float grey */
+    if (rc == GLINT_OK)
+        rc = codec_check_data((uint64_t)w, (uint64_t)h, size, 4096, name, err);
     if (rc != GLINT_OK)
         goto out;
     px = calloc((size_t)w * (size_t)h * 3, sizeof *px);

@@ -72,6 +72,14 @@ glint_rc codec_check_size(uint64_t width, uint64_t height, const char *name, gli
     return GLINT_OK;
 }
 
+glint_rc codec_check_data(uint64_t width, uint64_t height, size_t size, uint64_t per_byte,
+                          const char *name, glint_error *err)
+{
+    if (width * height / per_byte > (uint64_t)size)
+        return codec_truncated(name, err);
+    return GLINT_OK;
+}
+
 glint_rc codec_truncated(const char *name, glint_error *err)
 {
     return err_set(err, GLINT_ERR_INPUT, "%s: file is truncated", name);

@@ -22,6 +22,10 @@ glint_rc legacy_decode(const uint8_t *data, size_t size, const char *name, image
         return err_set(err, GLINT_ERR_INPUT, "%s: broken BMP, TGA or GIF file (%s)", name,
                        stbi_failure_reason());
     glint_rc rc = codec_check_size(w > 0 ? (uint64_t)w : 0, h > 0 ? (uint64_t)h : 0, name, err);
+    /* TGA and BMP run lengths reach 128 and 255 pixels per 2 bytes; GIF's
+     * LZW codes at most 4096 pixels per 12-bit code */
+    if (rc == GLINT_OK)
+        rc = codec_check_data((uint64_t)w, (uint64_t)h, size, 4096, name, err);
     if (rc != GLINT_OK)
         return rc;
     unsigned char *px = stbi_load_from_memory(data, (int)size, &w, &h, &comp, 3);

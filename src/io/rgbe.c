@@ -141,6 +141,9 @@ glint_rc rgbe_decode(const uint8_t *data, size_t size, const char *name, image *
     cursor c = {data, data + size};
     long w, h;
     glint_rc rc = read_header(&c, name, &w, &h, err);
+    /* a 2-byte run covers at most 127 pixels of one of 4 components */
+    if (rc == GLINT_OK)
+        rc = codec_check_data((uint64_t)w, (uint64_t)h, (size_t)(c.end - c.p), 32, name, err);
     if (rc != GLINT_OK)
         return rc;
     float *px = malloc((size_t)w * (size_t)h * 3 * sizeof *px);
