@@ -53,6 +53,7 @@ test:
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 check
 
 check: $(BUILD)/glint $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
+	scripts/check-layers
 	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 		$(BUILD)/tests --jobs 2
 

@@ -46,7 +46,7 @@
 #include <unistd.h>
 
 #include "core/rng.h"
-#include "scene/mesh_import.h"
+#include "load/mesh_import.h"
 #include "scene/scene.h"
 
 _Static_assert(sizeof(vec3) == 12, "vertex arrays are shared with Embree as FLOAT3");

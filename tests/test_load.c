@@ -1,4 +1,4 @@
-/* The scene loader (src/scene/load.c, yaml_doc.c): what each part of the
+/* The scene loader (src/load/): what each part of the
  * format means, that scenes/seed.yaml is exactly the built-in scene, that
  * every scene in scenes/ loads and renders, and one test per class of bad
  * input asserting the exact one-line message and GLINT_ERR_INPUT (exit
@@ -15,9 +15,10 @@
 
 #include "glint.h"
 #include "core/error.h"
-#include "scene/assets.h"
-#include "scene/load.h"
+#include "load/assets.h"
+#include "load/load.h"
 #include "scene/scene.h"
+#include "film.h"
 
 #define SCENES GLINT_SOURCE_DIR "/scenes"
 
@@ -122,24 +123,9 @@ static void expect_error(const char *text, const char *message)
     expect_error_with(text, NULL, message);
 }
 
-static glint_film render_threads(const scene *s, int w, int h, int samples, int threads)
-{
-    glint_settings st;
-    glint_scene_settings(s, &st);
-    st.width = w;
-    st.height = h;
-    if (samples > 0)
-        st.samples = samples;
-    st.threads = threads;
-    glint_film film = {0};
-    glint_error err = {0};
-    cr_assert_eq(glint_render(s, &st, NULL, &film, NULL, &err), GLINT_OK, "%s", err.msg);
-    return film;
-}
-
 static glint_film render(const scene *s, int w, int h, int samples)
 {
-    return render_threads(s, w, h, samples, 2);
+    return test_render(s, w, h, samples, 2);
 }
 
 /* ---- the seed scene and the gallery ----------------------------------- */
@@ -190,7 +176,7 @@ Test(load, every_scene_in_scenes_loads_and_renders)
         cr_expect_gt(peak, 0.05f, "%s renders black", g.gl_pathv[i]);
         /* Every feature renders the same for any thread count. */
         for (int threads = 1; threads <= 3; threads += 2) {
-            glint_film other = render_threads(s, 64, 64, 1, threads);
+            glint_film other = test_render(s, 64, 64, 1, threads);
             cr_expect_eq(memcmp(film.rgb, other.rgb, sizeof(float) * 64 * 64 * 3), 0,
                          "%s differs with %d threads", g.gl_pathv[i], threads);
             glint_film_free(&other);

@@ -1,4 +1,4 @@
-/* Meshes: importing files (src/scene/mesh_import.h) and the hierarchies
+/* Meshes: importing files (src/load/mesh_import.h) and the hierarchies
  * rays traverse (src/accel/bvh.h, bvh4.h, src/geom/mesh.h, the scene's BVH
  * over objects in src/scene/scene.h).
  *
@@ -26,7 +26,7 @@
 #include "geom/mesh.h"
 #include "geom/shape.h"
 #include "geom/watertight.h"
-#include "scene/mesh_import.h"
+#include "load/mesh_import.h"
 #include "scene/scene.h"
 #include "shade/material.h"
 #include "near.h"
@@ -489,17 +489,6 @@ Test(mesh_import, garbage_and_missing_files_are_input_errors)
 
 /* ---- hierarchies against brute force -------------------------------------- */
 
-static vec3 rand_dir(rng *g)
-{
-    for (;;) {
-        vec3 v = v3(2.0f * rng_float(g) - 1.0f, 2.0f * rng_float(g) - 1.0f,
-                    2.0f * rng_float(g) - 1.0f);
-        float l2 = v3_len2(v);
-        if (l2 > 1e-4f && l2 <= 1.0f)
-            return v3_scale(v, 1.0f / sqrtf(l2));
-    }
-}
-
 static vec3 rand_in(rng *g, float lo, float hi)
 {
     return v3(lo + (hi - lo) * rng_float(g), lo + (hi - lo) * rng_float(g),
@@ -574,7 +563,7 @@ Test(bvh, mesh_bvh_matches_brute_force)
             vec3 c = v3_scale(v3_add(v3_add(m->pos[v[0]], m->pos[v[1]]), m->pos[v[2]]), 1.0f / 3);
             d = v3_sub(c, o);
         } else {
-            d = rand_dir(&g);
+            d = rng_unit_dir(&g);
         }
         float tmax = i % 3 == 0 ? 30.0f * rng_float(&g) : INFINITY;
         ray r = ray_make(o, d, tmax);
@@ -708,7 +697,7 @@ Test(bvh, scene_bvh_matches_brute_force)
         }
         int xi = -1;
         if (i % 3 == 0) { /* rotated and stretched about its own place */
-            xform a = xform_translate(v3_neg(c)), b = xform_rotate(rand_dir(&g), 360 * rng_float(&g)),
+            xform a = xform_translate(v3_neg(c)), b = xform_rotate(rng_unit_dir(&g), 360 * rng_float(&g)),
                   sc = xform_scale(v3(1, 0.5f + rng_float(&g), 1)), d = xform_translate(c);
             xform x = xform_then(&a, &sc);
             x = xform_then(&x, &b);
@@ -726,7 +715,7 @@ Test(bvh, scene_bvh_matches_brute_force)
     int hits = 0;
     for (int i = 0; i < RAYS; i++) {
         vec3 o = rand_in(&g, -25, 25);
-        ray r = ray_make(o, rand_dir(&g), i % 4 == 0 ? 40.0f * rng_float(&g) : INFINITY);
+        ray r = ray_make(o, rng_unit_dir(&g), i % 4 == 0 ? 40.0f * rng_float(&g) : INFINITY);
         /* brute force: every object, its ray in object space */
         float best = r.tmax;
         int best_obj = -1;

@@ -9,6 +9,7 @@
 
 #include "glint.h"
 #include "io/image.h"
+#include "film.h"
 
 #define GOLDEN GLINT_SOURCE_DIR "/tests/golden/builtin-100.png"
 
@@ -26,24 +27,10 @@ static glint_scene *builtin(void)
     return s;
 }
 
-static glint_film render(glint_scene *s, int w, int h, int samples, int threads)
-{
-    glint_settings st;
-    glint_scene_settings(s, &st);
-    st.width = w;
-    st.height = h;
-    st.samples = samples;
-    st.threads = threads;
-    glint_film film = {0};
-    glint_error err = {0};
-    cr_assert_eq(glint_render(s, &st, NULL, &film, NULL, &err), GLINT_OK, "%s", err.msg);
-    return film;
-}
-
 Test(render, builtin_matches_golden_image)
 {
     glint_scene *s = builtin();
-    glint_film film = render(s, 100, 100, 4, 0);
+    glint_film film = test_render(s, 100, 100, 4, 0);
     size_t n = 100 * 100 * 3;
     uint8_t *px = malloc(n);
     image_quantize(film.rgb, n, GLINT_TRANSFER_NONE, px);
@@ -78,7 +65,7 @@ Test(render, builtin_is_not_blank)
     /* Guards the golden test against a reference that is itself broken:
      * the scene has bright, dark and coloured areas. */
     glint_scene *s = builtin();
-    glint_film film = render(s, 64, 64, 1, 0);
+    glint_film film = test_render(s, 64, 64, 1, 0);
     float lo = INFINITY, hi = -INFINITY, chroma = 0.0f;
     for (int i = 0; i < 64 * 64; i++) {
         const float *p = film.rgb + i * 3;
@@ -97,8 +84,8 @@ Test(render, builtin_is_not_blank)
 Test(render, same_render_is_bit_identical)
 {
     glint_scene *s = builtin();
-    glint_film a = render(s, 120, 80, 4, 0);
-    glint_film b = render(s, 120, 80, 4, 0);
+    glint_film a = test_render(s, 120, 80, 4, 0);
+    glint_film b = test_render(s, 120, 80, 4, 0);
     cr_assert_eq(memcmp(a.rgb, b.rgb, sizeof(float) * 120 * 80 * 3), 0);
     glint_film_free(&a);
     glint_film_free(&b);
@@ -108,10 +95,10 @@ Test(render, same_render_is_bit_identical)
 Test(render, thread_count_does_not_change_pixels)
 {
     glint_scene *s = builtin();
-    glint_film ref = render(s, 97, 61, 4, 1);
+    glint_film ref = test_render(s, 97, 61, 4, 1);
     int counts[] = {2, 3, 8};
     for (size_t i = 0; i < sizeof counts / sizeof *counts; i++) {
-        glint_film f = render(s, 97, 61, 4, counts[i]);
+        glint_film f = test_render(s, 97, 61, 4, counts[i]);
         cr_expect_eq(memcmp(ref.rgb, f.rgb, sizeof(float) * 97 * 61 * 3), 0, "%d threads",
                      counts[i]);
         glint_film_free(&f);
@@ -126,8 +113,8 @@ Test(render, one_sample_grid_hits_pixel_centres_and_2x2_the_quarter_points)
      * centres of the pixels of an image twice the size: so a 2x2 render
      * equals a 1-sample render at double size, box-filtered. */
     glint_scene *s = builtin();
-    glint_film big = render(s, 64, 64, 1, 0);
-    glint_film aa = render(s, 32, 32, 4, 0);
+    glint_film big = test_render(s, 64, 64, 1, 0);
+    glint_film aa = test_render(s, 32, 32, 4, 0);
     double sum_d = 0.0;
     int off = 0;
     for (int y = 0; y < 32; y++)

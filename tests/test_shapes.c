@@ -61,18 +61,6 @@ static void expect_hit(const shape *s, ray r, double t, vec3 p, vec3 n, double u
     }
 }
 
-/* Uniform direction on the unit sphere (rejection from the cube). */
-static vec3 rand_dir(rng *g)
-{
-    for (;;) {
-        vec3 v = v3(2.0f * rng_float(g) - 1.0f, 2.0f * rng_float(g) - 1.0f,
-                    2.0f * rng_float(g) - 1.0f);
-        float l2 = v3_len2(v);
-        if (l2 > 1e-4f && l2 <= 1.0f)
-            return v3_scale(v, 1.0f / sqrtf(l2));
-    }
-}
-
 static vec3 rand_in_box(rng *g, aabb b)
 {
     return v3(b.lo.x + (b.hi.x - b.lo.x) * rng_float(g), b.lo.y + (b.hi.y - b.lo.y) * rng_float(g),
@@ -500,7 +488,7 @@ Test(shapes, triangle_shared_edge_is_watertight)
     for (int i = 0; i < 20000; i++) {
         float s = 0.01f + 0.98f * rng_float(&g);
         vec3 target = v3(s, s, 0);
-        vec3 o = v3_madd(target, rand_dir(&g), 1.0f + 10.0f * rng_float(&g));
+        vec3 o = v3_madd(target, rng_unit_dir(&g), 1.0f + 10.0f * rng_float(&g));
         if (fabsf(o.z) < 1e-3f)
             continue;
         ray r = ray_make(o, v3_sub(target, o), INFINITY);
@@ -536,7 +524,7 @@ Test(shapes, occluded_agrees_with_intersect_on_random_rays)
         int hits = 0;
         for (int i = 0; i < 10000; i++) {
             vec3 o = v3(6 * rng_float(&g) - 3, 6 * rng_float(&g) - 3, 6 * rng_float(&g) - 3);
-            vec3 d = v3_scale(rand_dir(&g), 0.5f + 1.5f * rng_float(&g));
+            vec3 d = v3_scale(rng_unit_dir(&g), 0.5f + 1.5f * rng_float(&g));
             if (i % 2 && !aabb_is_empty(b)) /* aimed at the shape's bounds, grown by 0.5 */
                 d = v3_sub(rand_in_box(&g, (aabb){v3_sub(b.lo, v3s(0.5f)), v3_add(b.hi, v3s(0.5f))}), o);
             float tmax = i % 3 == 0 ? INFINITY : 6.0f * rng_float(&g);
@@ -711,7 +699,7 @@ static void expect_no_rehit(const char *name, shape sh, const xform *x, uint64_t
     int tested = 0, rehits = 0;
     char first[256] = "";
     while (tested < RAYS) {
-        vec3 o = v3_madd(c, rand_dir(&g), R);
+        vec3 o = v3_madd(c, rng_unit_dir(&g), R);
         ray r = ray_make(o, v3_sub(rand_in_box(&g, b), o), INFINITY);
         scene_hit h;
         if (!scene_intersect(s, &r, &h))
@@ -720,9 +708,9 @@ static void expect_no_rehit(const char *name, shape sh, const xform *x, uint64_t
         scene_surface(s, &r, &h, &sf);
         vec3 d;
         if (tested % 2 == 0) {
-            d = rand_dir(&g);
+            d = rng_unit_dir(&g);
         } else {
-            vec3 t = v3_norm(v3_cross(sf.ng, rand_dir(&g)));
+            vec3 t = v3_norm(v3_cross(sf.ng, rng_unit_dir(&g)));
             d = v3_norm(v3_madd(t, sf.ng, 1e-4f + 1e-2f * rng_float(&g)));
         }
         float dn = v3_dot(d, sf.ng);

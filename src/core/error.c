@@ -19,18 +19,3 @@ glint_rc err_nomem(glint_error *err)
 {
     return err_set(err, GLINT_ERR_NOMEM, "out of memory");
 }
-
-int glint_exit_code(glint_rc rc)
-{
-    switch (rc) {
-    case GLINT_OK:
-        return 0;
-    case GLINT_ERR_INPUT:
-        return 2;
-    case GLINT_ERR_NOMEM:
-    case GLINT_ERR_IO:
-    case GLINT_ERR_CANCELLED:
-        return 1;
-    }
-    return 1;
-}

@@ -5,7 +5,10 @@
 #ifndef GLINT_CORE_RNG_H
 #define GLINT_CORE_RNG_H
 
+#include <math.h>
 #include <stdint.h>
+
+#include "vec3.h"
 
 typedef struct rng {
     uint64_t state, inc;
@@ -31,5 +34,17 @@ static inline rng rng_seed(uint64_t seed, uint64_t stream)
 
 /* Uniform float in [0, 1). */
 static inline float rng_float(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+
+/* Uniform direction on the unit sphere, by rejection from the cube. */
+static inline vec3 rng_unit_dir(rng *g)
+{
+    for (;;) {
+        vec3 v = v3(2.0f * rng_float(g) - 1.0f, 2.0f * rng_float(g) - 1.0f,
+                    2.0f * rng_float(g) - 1.0f);
+        float l2 = v3_len2(v);
+        if (l2 > 1e-4f && l2 <= 1.0f)
+            return v3_scale(v, 1.0f / sqrtf(l2));
+    }
+}
 
 #endif

@@ -9,49 +9,10 @@
 
 #include "core/error.h"
 #include "io/image.h"
-#include "render/camera.h"
+#include "scene/settings.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
-#include "shade/whitted.h"
-
-int glint_default_threads(void) { return render_default_threads(); }
-
-int render_default_threads(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > RENDER_MAX_THREADS ? RENDER_MAX_THREADS : (int)n;
-}
-
-static int isqrt_exact(int n)
-{
-    int r = (int)lround(sqrt((double)n));
-    return r * r == n ? r : -1;
-}
-
-glint_rc glint_settings_check(const glint_settings *s, glint_error *err)
-{
-    if (s->width < 1 || s->height < 1 || s->width > RENDER_MAX_SIDE || s->height > RENDER_MAX_SIDE)
-        return err_set(err, GLINT_ERR_INPUT, "resolution %dx%d is out of range (1 to %d per side)",
-                       s->width, s->height, RENDER_MAX_SIDE);
-    if ((uint64_t)s->width * (uint64_t)s->height > RENDER_MAX_PIXELS)
-        return err_set(err, GLINT_ERR_INPUT,
-                       "resolution %dx%d needs more than the %u-pixel limit", s->width,
-                       s->height, RENDER_MAX_PIXELS);
-    if (s->samples < 1 || s->samples > RENDER_MAX_SAMPLES)
-        return err_set(err, GLINT_ERR_INPUT, "samples per pixel must be 1 to %d (got %d)",
-                       RENDER_MAX_SAMPLES, s->samples);
-    if (isqrt_exact(s->samples) < 0)
-        return err_set(err, GLINT_ERR_INPUT,
-                       "samples per pixel must be a perfect square (1, 4, 9, 16, ...) "
-                       "for the regular grid (got %d)",
-                       s->samples);
-    if (s->max_depth < 0 || s->max_depth > RENDER_MAX_DEPTH)
-        return err_set(err, GLINT_ERR_INPUT, "recursion depth must be 0 to %d (got %d)",
-                       RENDER_MAX_DEPTH, s->max_depth);
-    if (s->threads < 0 || s->threads > RENDER_MAX_THREADS)
-        return err_set(err, GLINT_ERR_INPUT, "threads must be 0 (all cores) to %d (got %d)",
-                       RENDER_MAX_THREADS, s->threads);
-    return GLINT_OK;
-}
+#include "trace/whitted.h"
 
 typedef struct job {
     const scene *scene;
@@ -127,11 +88,11 @@ static double now_seconds(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
+glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings,
                       const glint_callbacks *cb, glint_film *film, glint_stats *stats,
                       glint_error *err)
 {
-    glint_rc rc = glint_settings_check(settings, err);
+    glint_rc rc = settings_check(settings, err);
     if (rc != GLINT_OK)
         return rc;
     if (!sc->built)
@@ -147,7 +108,7 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
 
     job *j = calloc(1, sizeof *j);
     if (!j) {
-        glint_film_free(film);
+        render_film_free(film);
         return err_nomem(err);
     }
     j->scene = sc;
@@ -156,14 +117,14 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
     j->film = film;
     j->frame = camera_frame_make(&sc->camera, w, h);
     image_decode_table(settings->transfer, j->decode);
-    j->grid = isqrt_exact(settings->samples);
+    j->grid = settings_grid_side(settings->samples);
     j->tiles_x = (w + RENDER_TILE - 1) / RENDER_TILE;
     j->tiles_total = j->tiles_x * ((h + RENDER_TILE - 1) / RENDER_TILE);
     atomic_init(&j->next_tile, 0);
     atomic_init(&j->cancelled, 0);
     pthread_mutex_init(&j->lock, NULL);
 
-    int nthreads = settings->threads > 0 ? settings->threads : render_default_threads();
+    int nthreads = settings->threads > 0 ? settings->threads : settings_default_threads();
     if (nthreads > j->tiles_total)
         nthreads = j->tiles_total;
     pthread_t *th = calloc((size_t)nthreads, sizeof *th);
@@ -189,11 +150,11 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
     pthread_mutex_destroy(&j->lock);
     free(j);
     if (rc != GLINT_OK)
-        glint_film_free(film);
+        render_film_free(film);
     return rc;
 }
 
-void glint_film_free(glint_film *film)
+void render_film_free(glint_film *film)
 {
     if (!film)
         return;

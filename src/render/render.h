@@ -9,14 +9,15 @@
 
 #define RENDER_TILE 16
 
-/* Limits that glint_settings_check enforces before anything is allocated. */
-#define RENDER_MAX_SIDE 32768
-#define RENDER_MAX_PIXELS (1u << 27) /* 134M pixels: a 1.5 GiB float film */
-#define RENDER_MAX_SAMPLES 1024      /* 32 x 32 */
-#define RENDER_MAX_DEPTH 64
-#define RENDER_MAX_THREADS 1024
+struct glint_scene;
 
-/* Threads a render with settings.threads == 0 uses. */
-int render_default_threads(void);
+/* Renders a built scene into *film (allocated here). callbacks and stats may
+ * be NULL. On any error the film is left empty. */
+glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings,
+                    const glint_callbacks *callbacks, glint_film *film, glint_stats *stats,
+                    glint_error *err);
+
+/* Frees a film's pixels and empties it; NULL is fine. */
+void render_film_free(glint_film *film);
 
 #endif

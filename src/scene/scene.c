@@ -42,10 +42,6 @@ void scene_free(scene *s)
     free(s);
 }
 
-void glint_scene_free(glint_scene *s) { scene_free(s); }
-
-void glint_scene_settings(const glint_scene *s, glint_settings *out) { *out = s->settings; }
-
 #define PUSH(arr, n, cap, value)                                                            \
     do {                                                                                    \
         int i_ = array_push((void **)&(arr), &(n), &(cap), sizeof *(arr));                  \
@@ -80,6 +76,40 @@ int scene_add_mesh(scene *s, mesh *m)
 {
     PUSH(s->meshes, s->nmeshes, s->cap_meshes, m);
 }
+
+void scene_set_camera(scene *s, const camera *c) { s->camera = *c; }
+
+void scene_set_settings(scene *s, const glint_settings *st) { s->settings = *st; }
+
+void scene_set_background(scene *s, vec3 color) { s->background = color; }
+
+void scene_set_ambient(scene *s, vec3 color) { s->ambient = color; }
+
+void scene_set_material_texture(scene *s, int mat, int tex)
+{
+    s->materials[mat].texture = tex;
+    s->built = false;
+}
+
+void scene_set_object_material(scene *s, int obj, int mat)
+{
+    s->objects[obj].material = mat;
+    s->built = false;
+}
+
+camera scene_camera(const scene *s) { return s->camera; }
+
+glint_settings scene_settings(const scene *s) { return s->settings; }
+
+vec3 scene_background(const scene *s) { return s->background; }
+
+vec3 scene_ambient(const scene *s) { return s->ambient; }
+
+int scene_object_count(const scene *s) { return s->nobjects; }
+
+int scene_material_count(const scene *s) { return s->nmaterials; }
+
+const struct mesh *scene_mesh(const scene *s, int index) { return s->meshes[index]; }
 
 static aabb xform_bounds(const xform *x, aabb b)
 {

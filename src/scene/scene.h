@@ -14,7 +14,7 @@
 #include "geom/mesh.h"
 #include "geom/shape.h"
 #include "io/image.h"
-#include "render/camera.h"
+#include "scene/camera.h"
 #include "shade/light.h"
 #include "shade/material.h"
 #include "shade/texture.h"
@@ -69,6 +69,24 @@ int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
+
+/* The scene-wide values a front end sets; each marks the scene unbuilt. */
+void scene_set_camera(scene *s, const camera *c);
+void scene_set_settings(scene *s, const glint_settings *st);
+void scene_set_background(scene *s, vec3 color);
+void scene_set_ambient(scene *s, vec3 color);
+/* Names resolved after their users were added: a material's texture and an
+ * object's material (indices as returned by the adds). */
+void scene_set_material_texture(scene *s, int mat, int tex);
+void scene_set_object_material(scene *s, int obj, int mat);
+
+camera scene_camera(const scene *s);
+glint_settings scene_settings(const scene *s);
+vec3 scene_background(const scene *s);
+vec3 scene_ambient(const scene *s);
+int scene_object_count(const scene *s);
+int scene_material_count(const scene *s);
+const struct mesh *scene_mesh(const scene *s, int index);
 
 /* Checks indices and computes derived data; call after the last add. */
 glint_rc scene_build(scene *s, glint_error *err);

@@ -1,8 +1,8 @@
 /* camera: a pinhole camera given by eye, target, up and horizontal field of
  * view. Pixels are square, so the vertical field follows from the image's
  * aspect ratio. A camera_frame is the camera prepared for one image size. */
-#ifndef GLINT_RENDER_CAMERA_H
-#define GLINT_RENDER_CAMERA_H
+#ifndef GLINT_SCENE_CAMERA_H
+#define GLINT_SCENE_CAMERA_H
 
 #include "core/ray.h"
 

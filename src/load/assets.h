@@ -1,8 +1,8 @@
 /* assets: files compiled into the library (the built-in scene and its
  * textures), found by name. The table is generated at build time by
  * tools/embed.c; names are paths as scenes/ holds them ("textures/flag.png"). */
-#ifndef GLINT_SCENE_ASSETS_H
-#define GLINT_SCENE_ASSETS_H
+#ifndef GLINT_LOAD_ASSETS_H
+#define GLINT_LOAD_ASSETS_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -22,7 +22,7 @@ extern const struct asset assets[];
 
 bool asset_find(const char *name, const unsigned char **data, size_t *size);
 
-/* A scene_reader (scene/load.h) serving the assets: a copy of the asset
+/* A scene_reader (load/load.h) serving the assets: a copy of the asset
  * named path, or "No such file or directory". user is unused. */
 glint_rc asset_read(void *user, const char *path, char **data, size_t *size, glint_error *err);
 

@@ -1,7 +1,7 @@
 /* mesh_import: triangle meshes from files (OBJ, PLY, STL, OFF, glTF and
  * everything else assimp reads), flattened into one glint mesh. */
-#ifndef GLINT_SCENE_MESH_IMPORT_H
-#define GLINT_SCENE_MESH_IMPORT_H
+#ifndef GLINT_LOAD_MESH_IMPORT_H
+#define GLINT_LOAD_MESH_IMPORT_H
 
 #include "glint.h"
 #include "geom/mesh.h"

@@ -20,8 +20,8 @@
  *
  * Errors are one line, "NAME:LINE:COLUMN: what is wrong", with 1-based line
  * and column, and GLINT_ERR_INPUT (GLINT_ERR_NOMEM when memory runs out). */
-#ifndef GLINT_SCENE_YAML_DOC_H
-#define GLINT_SCENE_YAML_DOC_H
+#ifndef GLINT_LOAD_YAML_DOC_H
+#define GLINT_LOAD_YAML_DOC_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -94,6 +94,11 @@ static inline uint32_t ydoc_value(const ydoc *d, const ynode *n, uint32_t i)
 
 /* The value under key in mapping n, or YDOC_NONE. */
 uint32_t ydoc_get(const ydoc *d, const ynode *map, const char *key);
+
+/* The kind a plain (unquoted, untagged) scalar has by its form in the core
+ * schema: null, bool (*is_true), number (*is_int for the integer forms) or
+ * string. */
+ynode_kind ydoc_plain_kind(const char *s, size_t len, bool *is_true, bool *is_int);
 
 /* "null", "a boolean", "a number", "a string", "a sequence", "a mapping". */
 const char *ydoc_kind_name(ynode_kind kind);

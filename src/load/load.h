@@ -11,10 +11,10 @@
  * the format, it bounds what a file can make it do: file size
  * (LOAD_MAX_FILE_BYTES), nesting and alias expansion (yaml_doc.h), include
  * depth and count, and the number of objects; sizes and sample counts are
- * checked against the renderer's limits (render.h) before anything is
+ * checked against the render limits (scene/settings.h) before anything is
  * allocated for them. On failure nothing leaks and *out is untouched. */
-#ifndef GLINT_SCENE_LOAD_H
-#define GLINT_SCENE_LOAD_H
+#ifndef GLINT_LOAD_LOAD_H
+#define GLINT_LOAD_LOAD_H
 
 #include <stddef.h>
 #include "glint.h"
@@ -50,7 +50,7 @@ glint_rc scene_load_file(const char *path, scene **out, glint_error *err);
 glint_rc scene_load_text(const char *text, size_t len, const char *name, const char *base_dir,
                          scene_reader reader, void *user, scene **out, glint_error *err);
 
-/* Public entry point (to move to glint.h): scene_load_file. */
-glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
+/* The built-in scene: scenes/seed.yaml and its textures, compiled in. */
+glint_rc scene_load_builtin(scene **out, glint_error *err);
 
 #endif

@@ -3,10 +3,10 @@
  * with the two textures it names, and read by the same loader as any scene
  * file, so `glint` and `glint scenes/seed.yaml` cannot drift apart. */
 #include "core/error.h"
-#include "scene/assets.h"
-#include "scene/load.h"
+#include "load/assets.h"
+#include "load/load.h"
 
-glint_rc glint_scene_builtin(glint_scene **out, glint_error *err)
+glint_rc scene_load_builtin(scene **out, glint_error *err)
 {
     const unsigned char *text;
     size_t size;

@@ -2,8 +2,8 @@
  * Illumination Model for Shaded Display" (CACM 1980): Phong local shading
  * with shadow rays to each light, plus reflected and transmitted rays, as
  * spelled out in material.h. */
-#ifndef GLINT_SHADE_WHITTED_H
-#define GLINT_SHADE_WHITTED_H
+#ifndef GLINT_TRACE_WHITTED_H
+#define GLINT_TRACE_WHITTED_H
 
 #include <stdint.h>
 #include "core/ray.h"

@@ -7,8 +7,8 @@
  * Also home to the "did you mean" suggestions that error messages offer:
  * the nearest candidate by Levenshtein distance (ASCII case ignored), if it
  * is close enough. */
-#ifndef GLINT_SCENE_NAMES_H
-#define GLINT_SCENE_NAMES_H
+#ifndef GLINT_LOAD_NAMES_H
+#define GLINT_LOAD_NAMES_H
 
 #include <stdbool.h>
 #include <stddef.h>

@@ -1,0 +1,197 @@
+/* loader: what the parts of the scene-file front end share. A load runs in
+ * two passes. The first walks the scene file, then each of its includes in
+ * turn (depth first), adding lights, textures, images, materials,
+ * transforms and objects to the scene as it meets them; names used before
+ * they are known are noted as references. The second (load.c) resolves
+ * those references, checks the settings as a whole and builds the scene.
+ * Every tree stays alive until the end so that late errors can still point
+ * at the node they are about.
+ *
+ * One file per part of the format: keys.c (reading keys and values, with
+ * the messages), paths.c (paths and files named in a scene), settings.c
+ * (image and camera), lights.c, materials.c (textures and materials),
+ * transform.c, objects.c (shapes, meshes, objects), load.c (files,
+ * includes, the second pass). Each section builds the scene only through
+ * scene_add_* and the scene's setters.
+ *
+ * Internal to src/load: nothing here is part of the public API. */
+#ifndef GLINT_LOAD_LOADER_H
+#define GLINT_LOAD_LOADER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "load/load.h"
+#include "load/names.h"
+#include "load/yaml_doc.h"
+#include "scene/scene.h"
+
+/* Room for a user string in a message, escaped (ydoc_show). */
+#define SHOWN (YDOC_SHOW_MAX * 4 + 8)
+
+typedef struct lfile {
+    char *name; /* shown in messages */
+    char *key;  /* tidied path, for finding include cycles */
+    char *dir;  /* folder that relative paths resolve against; "" for none */
+    char *data; /* the text while it is parsed, when the loader read it */
+    ydoc *doc;
+} lfile;
+
+/* A name used by a material (for a texture) or an object (for a material),
+ * to be resolved once every file has been read. */
+typedef struct ref {
+    int index; /* the material or object */
+    int file;
+    uint32_t node; /* the name */
+} ref;
+
+/* Where a texture or material name was defined, and what it names. */
+typedef struct def {
+    int file;
+    uint32_t node;
+    int index;
+} def;
+
+/* Settings a file may set; the first file to set one wins (includers are
+ * read before what they include). */
+enum {
+    SET_WIDTH = 1 << 0,
+    SET_HEIGHT = 1 << 1,
+    SET_SAMPLES = 1 << 2,
+    SET_DEPTH = 1 << 3,
+    SET_BACKGROUND = 1 << 4,
+    SET_TRANSFER = 1 << 5,
+    SET_EYE = 1 << 6,
+    SET_LOOK_AT = 1 << 7,
+    SET_UP = 1 << 8,
+    SET_FOV = 1 << 9,
+    SET_AMBIENT = 1 << 10,
+};
+
+typedef struct loader {
+    scene *s;
+    scene_reader reader;
+    void *user;
+    glint_error *err;
+    lfile *files;
+    int nfiles, cap_files;
+    int cur; /* the file being read */
+    /* The include chain: files open inside one another, and in each the
+     * include entry being followed. */
+    int chain[LOAD_MAX_INCLUDE_DEPTH];
+    uint32_t via[LOAD_MAX_INCLUDE_DEPTH];
+    int depth;
+    names texture_names, material_names; /* name -> index into defs */
+    def *defs;
+    int ndefs, cap_defs;
+    names images; /* resolved path -> index into the scene's images */
+    names meshes; /* resolved path -> index into the scene's meshes */
+    ref *texture_refs, *material_refs;
+    int ntexture_refs, cap_texture_refs, nmaterial_refs, cap_material_refs;
+    int default_material; /* -1 until an object needs it */
+    unsigned set;
+    /* Scene-wide values, handed to the scene once every file is read. */
+    glint_settings settings;
+    camera camera;
+    vec3 background, ambient;
+    int size_file, camera_file; /* where the image size and camera were set; -1: nowhere */
+    uint32_t size_node, camera_node;
+} loader;
+
+
+/* ---- messages (keys.c) ------------------------------------------------ */
+
+/* Fails with "FILE:LINE:COL: message" at node at of file. */
+glint_rc load_fail_in(loader *L, int file, uint32_t at, const char *fmt, ...) GLINT_PRINTF(4, 5);
+/* The same in the file being read. */
+glint_rc load_fail(loader *L, uint32_t at, const char *fmt, ...) GLINT_PRINTF(3, 4);
+const ydoc *load_doc(const loader *L);
+const ynode *load_node(const loader *L, uint32_t i);
+/* A scalar's text made printable, into buf (SHOWN bytes). */
+const char *load_shown(const loader *L, uint32_t i, char *buf);
+/* "expected WHAT for 'KEY', got ..." at v. */
+glint_rc load_expected(loader *L, uint32_t v, const char *what, const char *key);
+
+/* ---- keys of a mapping (keys.c) --------------------------------------- */
+
+/* Refuses the first key of map that is not in valid (a NULL-terminated
+ * list); where says where the mapping is ("in sphere", "at the top level"). */
+glint_rc load_check_keys(loader *L, uint32_t map, const char *const *valid, const char *where);
+/* The value under key, or YDOC_NONE. */
+uint32_t load_get(const loader *L, uint32_t map, const char *key);
+/* The value under key, which must be there; what names the mapping. */
+glint_rc load_need(loader *L, uint32_t map, const char *key, const char *what, uint32_t *v);
+glint_rc load_want_map(loader *L, uint32_t v, const char *key);
+/* Each item of the sequence v through item; key names the list. */
+glint_rc load_list(loader *L, uint32_t v, const char *key, glint_rc (*item)(loader *, uint32_t));
+/* Whether this file may set the setting (a SET_* bit): no file read before
+ * it did. */
+bool load_claim(loader *L, unsigned bit);
+/* Notes a name to resolve after every file is read. */
+glint_rc load_add_ref(loader *L, ref **refs, int *n, int *cap, int index, uint32_t name);
+
+/* ---- values (keys.c); key names the value in messages ------------------ */
+
+glint_rc load_number(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_positive(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_nonneg(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_unit(loader *L, uint32_t v, const char *key, float *out); /* [0, 1] */
+glint_rc load_nonzero(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_int(loader *L, uint32_t v, const char *key, int lo, int hi, int *out);
+glint_rc load_bool(loader *L, uint32_t v, const char *key, bool *out);
+/* n numbers in a sequence; what describes it ("[x, y, z]"). */
+glint_rc load_numbers(loader *L, uint32_t v, const char *key, const char *what, int n,
+                      float *out);
+glint_rc load_vec3(loader *L, uint32_t v, const char *key, vec3 *out);
+glint_rc load_nonzero_vec3(loader *L, uint32_t v, const char *key, vec3 *out);
+/* A colour: a number (grey) or [r, g, b], no component below 0. */
+glint_rc load_color(loader *L, uint32_t v, const char *key, vec3 *out);
+/* A string out of valid (NULL-terminated); *out its index; what names the
+ * kind of thing ("object type"). */
+glint_rc load_enum(loader *L, uint32_t v, const char *key, const char *what,
+                   const char *const *valid, int *out);
+/* A name (of a material or texture): a non-empty string or a number. */
+glint_rc load_name(loader *L, uint32_t v, const char *what);
+/* A path written in the file: a non-empty string without NUL bytes. */
+glint_rc load_path_key(loader *L, uint32_t v, const char *key);
+/* Required fields of a mapping. */
+glint_rc load_need_vec3(loader *L, uint32_t map, const char *key, const char *what, vec3 *out);
+glint_rc load_need_positive(loader *L, uint32_t map, const char *key, const char *what,
+                            float *out);
+
+/* ---- paths and files (paths.c) ---------------------------------------- */
+
+/* dir joined to rel (unless rel is absolute or dir is empty), tidied
+ * ("a/./b/../c" is "a/c"); NULL when out of memory. */
+char *path_join(const char *dir, const char *rel);
+/* The folder part of a path: "a/b.yaml" -> "a", "b.yaml" -> "", "/b" -> "/". */
+char *path_dir(const char *path);
+/* A copy with control bytes escaped as \xNN, so that messages naming it
+ * stay on one line; NULL when out of memory. */
+char *path_printable(const char *path);
+/* "cannot read KIND 'written' (resolved): reason", or the size-limit
+ * message when reason is NULL. */
+glint_rc load_cannot_read(loader *L, uint32_t at, const char *kind, const char *written,
+                          const char *resolved, const char *reason);
+/* Reads a file named in the scene through the reader. written is the path
+ * as written, resolved the path the reader gets; kind says what the file is
+ * for ("include", "texture"). */
+glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char *resolved,
+                         const char *kind, char **data, size_t *size);
+
+/* ---- sections: each reads one part of the format into the scene -------- */
+
+glint_rc load_image_settings(loader *L, uint32_t map); /* settings.c: image: */
+glint_rc load_camera(loader *L, uint32_t map);         /* settings.c: camera: */
+glint_rc load_light(loader *L, uint32_t map);          /* lights.c: one item of lights: */
+/* materials.c: a texture or material mapping, added; *index gets it. */
+glint_rc load_texture(loader *L, uint32_t map, int *index);
+glint_rc load_material(loader *L, uint32_t map, int *index);
+/* materials.c: textures: or materials: at the top level. */
+glint_rc load_named(loader *L, uint32_t map, bool textures);
+/* transform.c: a list of steps; *index the scene's xform or -1 for none. */
+glint_rc load_transform(loader *L, uint32_t list, int *index);
+glint_rc load_object(loader *L, uint32_t map); /* objects.c: one item of objects: */
+
+#endif

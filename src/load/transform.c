@@ -1,0 +1,229 @@
+/* transform: lists of steps (translate, rotate, scale, shear, matrix),
+ * composed first applied first, into one affine xform per object. */
+#include "loader.h"
+
+#include <math.h>
+#include <stdio.h>
+
+/* ---- transforms ------------------------------------------------------- */
+
+/* In step_kind order. */
+static const char *const transform_keys[] = {"translate", "rotate_x", "rotate_y", "rotate_z",
+                                             "rotate",    "scale",    "shear",    "matrix",
+                                             NULL};
+
+typedef enum step_kind {
+    STEP_TRANSLATE,
+    STEP_ROTATE_X,
+    STEP_ROTATE_Y,
+    STEP_ROTATE_Z,
+    STEP_ROTATE,
+    STEP_SCALE,
+    STEP_SHEAR,
+    STEP_MATRIX,
+    STEP_COUNT
+} step_kind;
+_Static_assert(sizeof transform_keys / sizeof *transform_keys == STEP_COUNT + 1,
+               "transform_keys names every step_kind, in order");
+static const char *const rotate_keys[] = {"axis", "angle", NULL};
+static const char *const shear_keys[] = {"xy", "xz", "yx", "yz", "zx", "zy", NULL};
+
+static bool xform_is_finite(const xform *x)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (!isfinite(x->fwd.m[i][j]) || !isfinite(x->inv.m[i][j]))
+                return false;
+    return true;
+}
+
+static glint_rc step_rotate(loader *L, uint32_t v, const char *key, xform *out)
+{
+    uint32_t axis, angle;
+    vec3 a;
+    float deg;
+    glint_rc rc = load_want_map(L, v, key);
+    if (rc == GLINT_OK)
+        rc = load_check_keys(L, v, rotate_keys, "in rotate");
+    if (rc == GLINT_OK)
+        rc = load_need(L, v, "axis", "rotate", &axis);
+    if (rc == GLINT_OK)
+        rc = load_need(L, v, "angle", "rotate", &angle);
+    if (rc == GLINT_OK)
+        rc = load_nonzero_vec3(L, axis, "axis", &a);
+    if (rc == GLINT_OK)
+        rc = load_number(L, angle, "angle", &deg);
+    if (rc == GLINT_OK)
+        *out = xform_rotate(a, deg);
+    return rc;
+}
+
+/* A number (uniform) or [sx, sy, sz], no factor 0. */
+static glint_rc step_scale(loader *L, uint32_t v, const char *key, xform *out)
+{
+    float f[3];
+    glint_rc rc;
+    if (load_node(L, v)->kind == YNODE_NUMBER) {
+        rc = load_nonzero(L, v, key, &f[0]);
+        f[1] = f[2] = f[0];
+    } else if (load_node(L, v)->kind == YNODE_SEQ) {
+        rc = load_numbers(L, v, key, "a number or [sx, sy, sz]", 3, f);
+        for (int i = 0; rc == GLINT_OK && i < 3; i++)
+            rc = load_nonzero(L, ydoc_item(load_doc(L), load_node(L, v), (uint32_t)i), key, &f[i]);
+    } else {
+        rc = load_expected(L, v, "a number or [sx, sy, sz]", key);
+    }
+    if (rc == GLINT_OK)
+        *out = xform_scale(v3(f[0], f[1], f[2]));
+    return rc;
+}
+
+/* {xy: k, ...}: the first axis moves by k times the second. */
+static glint_rc step_shear(loader *L, uint32_t v, const char *key, xform *out)
+{
+    static const int at[6][2] = {{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}};
+    glint_rc rc = load_want_map(L, v, key);
+    if (rc == GLINT_OK)
+        rc = load_check_keys(L, v, shear_keys, "in shear");
+    mat4 sm = mat4_identity();
+    for (int i = 0; rc == GLINT_OK && i < 6; i++) {
+        uint32_t c = load_get(L, v, shear_keys[i]);
+        if (c != YDOC_NONE)
+            rc = load_number(L, c, shear_keys[i], &sm.m[at[i][0]][at[i][1]]);
+    }
+    if (rc == GLINT_OK && !xform_from_matrix(&sm, out))
+        rc = load_fail(L, v, "shear is not invertible (it flattens space)");
+    return rc;
+}
+
+/* 12 numbers (three rows) or 16 with the affine last row. */
+static glint_rc step_matrix(loader *L, uint32_t v, const char *key, xform *out)
+{
+    const ynode *s = load_node(L, v);
+    float f[16];
+    glint_rc rc = GLINT_OK;
+    if (s->kind != YNODE_SEQ)
+        return load_expected(L, v, "12 or 16 numbers", key);
+    if (s->count != 12 && s->count != 16)
+        return load_fail(L, v, "expected 12 or 16 numbers for 'matrix', got %u", s->count);
+    for (uint32_t i = 0; rc == GLINT_OK && i < s->count; i++)
+        rc = load_number(L, ydoc_item(load_doc(L), s, i), key, &f[i]);
+    if (rc != GLINT_OK)
+        return rc;
+    if (s->count == 16 && !(f[12] == 0.0f && f[13] == 0.0f && f[14] == 0.0f && f[15] == 1.0f))
+        return load_fail(L, ydoc_item(load_doc(L), s, 12),
+                         "the last row of a 16-number matrix must be 0, 0, 0, 1 (transforms "
+                         "are affine)");
+    mat4 mm = mat4_identity();
+    for (int i = 0; i < 12; i++)
+        mm.m[i / 4][i % 4] = f[i];
+    if (!xform_from_matrix(&mm, out))
+        return load_fail(L, v, "matrix is not invertible");
+    return GLINT_OK;
+}
+
+/* The value of one step of kind, as a transform. */
+static glint_rc step_value(loader *L, step_kind kind, uint32_t v, xform *out)
+{
+    const char *key = transform_keys[kind];
+    glint_rc rc = GLINT_OK;
+    vec3 a;
+    float deg;
+    switch (kind) {
+    case STEP_TRANSLATE:
+        rc = load_vec3(L, v, key, &a);
+        if (rc == GLINT_OK)
+            *out = xform_translate(a);
+        return rc;
+    case STEP_ROTATE_X:
+    case STEP_ROTATE_Y:
+    case STEP_ROTATE_Z:
+        rc = load_number(L, v, key, &deg);
+        if (rc == GLINT_OK)
+            *out = xform_rotate(v3(kind == STEP_ROTATE_X, kind == STEP_ROTATE_Y,
+                                   kind == STEP_ROTATE_Z),
+                                deg);
+        return rc;
+    case STEP_ROTATE:
+        return step_rotate(L, v, key, out);
+    case STEP_SCALE:
+        return step_scale(L, v, key, out);
+    case STEP_SHEAR:
+        return step_shear(L, v, key, out);
+    case STEP_MATRIX:
+        return step_matrix(L, v, key, out);
+    case STEP_COUNT:
+        break;
+    }
+    return rc;
+}
+
+/* One step: a mapping with one key naming its kind. */
+static glint_rc load_step(loader *L, uint32_t step, xform *out)
+{
+    const ynode *m = load_node(L, step);
+    if (m->kind != YNODE_MAP || m->count != 1) {
+        char got[SHOWN + 32];
+        ydoc_describe(load_doc(L), m, got, sizeof got);
+        if (m->kind == YNODE_MAP)
+            snprintf(got, sizeof got, "a mapping with %u keys", m->count);
+        return load_fail(L, step,
+                         "a transform step is a mapping with one key, such as {translate: [1, 2, "
+                         "3]}, got %s",
+                         got);
+    }
+    uint32_t k = ydoc_key(load_doc(L), m, 0), v = ydoc_value(load_doc(L), m, 0);
+    int kind;
+    glint_rc rc = load_enum(L, k, "transform", "transform", transform_keys, &kind);
+    if (rc == GLINT_OK)
+        rc = step_value(L, (step_kind)kind, v, out);
+    if (rc == GLINT_OK && !xform_is_finite(out))
+        rc = load_fail(L, v, "%s makes the transform degenerate (not invertible in floats)",
+                       transform_keys[kind]);
+    return rc;
+}
+
+/* Composes the steps of list onto *acc (*any: whether acc holds any step
+ * yet). A step may itself be a list of steps, so that a transform written
+ * once under an anchor can be used inside others. */
+static glint_rc load_steps(loader *L, uint32_t list, xform *acc, bool *any)
+{
+    const ynode *s = load_node(L, list);
+    for (uint32_t i = 0; i < s->count; i++) {
+        uint32_t item = ydoc_item(load_doc(L), s, i);
+        glint_rc rc;
+        if (load_node(L, item)->kind == YNODE_SEQ) {
+            rc = load_steps(L, item, acc, any);
+            if (rc != GLINT_OK)
+                return rc;
+            continue;
+        }
+        xform step;
+        rc = load_step(L, item, &step);
+        if (rc != GLINT_OK)
+            return rc;
+        *acc = *any ? xform_then(acc, &step) : step;
+        *any = true;
+        if (!xform_is_finite(acc))
+            return load_fail(L, item,
+                        "this step makes the transform degenerate (not invertible in floats)");
+    }
+    return GLINT_OK;
+}
+
+/* A list of steps, first applied first; *index gets the scene's xform, or
+ * -1 when there are no steps. */
+glint_rc load_transform(loader *L, uint32_t list, int *index)
+{
+    *index = -1;
+    if (load_node(L, list)->kind != YNODE_SEQ)
+        return load_expected(L, list, "a list of steps", "transform");
+    xform acc = xform_identity();
+    bool any = false;
+    glint_rc rc = load_steps(L, list, &acc, &any);
+    if (rc != GLINT_OK || !any)
+        return rc;
+    *index = scene_add_xform(L->s, &acc);
+    return *index < 0 ? err_nomem(L->err) : GLINT_OK;
+}
+

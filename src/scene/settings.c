@@ -1,0 +1,48 @@
+#include "settings.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <unistd.h>
+
+#include "core/error.h"
+
+int settings_default_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > SETTINGS_MAX_THREADS ? SETTINGS_MAX_THREADS : (int)n;
+}
+
+int settings_grid_side(int samples)
+{
+    if (samples < 1)
+        return -1;
+    int r = (int)lround(sqrt((double)samples));
+    return r * r == samples ? r : -1;
+}
+
+glint_rc settings_check(const glint_settings *s, glint_error *err)
+{
+    if (s->width < 1 || s->height < 1 || s->width > SETTINGS_MAX_SIDE ||
+        s->height > SETTINGS_MAX_SIDE)
+        return err_set(err, GLINT_ERR_INPUT, "resolution %dx%d is out of range (1 to %d per side)",
+                       s->width, s->height, SETTINGS_MAX_SIDE);
+    if ((uint64_t)s->width * (uint64_t)s->height > SETTINGS_MAX_PIXELS)
+        return err_set(err, GLINT_ERR_INPUT,
+                       "resolution %dx%d needs more than the %u-pixel limit", s->width,
+                       s->height, SETTINGS_MAX_PIXELS);
+    if (s->samples < 1 || s->samples > SETTINGS_MAX_SAMPLES)
+        return err_set(err, GLINT_ERR_INPUT, "samples per pixel must be 1 to %d (got %d)",
+                       SETTINGS_MAX_SAMPLES, s->samples);
+    if (settings_grid_side(s->samples) < 0)
+        return err_set(err, GLINT_ERR_INPUT,
+                       "samples per pixel must be a perfect square (1, 4, 9, 16, ...) "
+                       "for the regular grid (got %d)",
+                       s->samples);
+    if (s->max_depth < 0 || s->max_depth > SETTINGS_MAX_DEPTH)
+        return err_set(err, GLINT_ERR_INPUT, "recursion depth must be 0 to %d (got %d)",
+                       SETTINGS_MAX_DEPTH, s->max_depth);
+    if (s->threads < 0 || s->threads > SETTINGS_MAX_THREADS)
+        return err_set(err, GLINT_ERR_INPUT, "threads must be 0 (all cores) to %d (got %d)",
+                       SETTINGS_MAX_THREADS, s->threads);
+    return GLINT_OK;
+}
