@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #include "core/error.h"
-#include "io/image.h"
+#include "io/image_write.h"
 #include "load/load.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -71,18 +71,29 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
 
 void glint_film_free(glint_film *film) { render_film_free(film); }
 
-glint_rc glint_film_write(const glint_film *film, glint_transfer transfer, const char *path,
-                          glint_error *err)
+glint_rc glint_film_write(const glint_film *film, const char *path,
+                          const glint_write_options *opts, glint_error *err)
 {
     if (!film || !film->rgb || !path)
         return err_set(err, GLINT_ERR_INPUT, "glint_film_write: %s is NULL",
                        !path ? "path" : "film");
-    size_t n = (size_t)film->width * (size_t)film->height * 3;
-    uint8_t *px = malloc(n ? n : 1);
-    if (!px)
-        return err_nomem(err);
-    image_quantize(film->rgb, n, transfer, px);
-    glint_rc rc = image_write(path, film->width, film->height, px, err);
-    free(px);
-    return rc;
+    if (film->width <= 0 || film->height <= 0)
+        return err_set(err, GLINT_ERR_INPUT, "glint_film_write: film is %dx%d", film->width,
+                       film->height);
+    return image_write_film(path, film->width, film->height, film->rgb, opts, err);
+}
+
+glint_rc glint_output_check(const char *path, const glint_write_options *opts, glint_error *err)
+{
+    if (!path)
+        return err_set(err, GLINT_ERR_INPUT, "glint_output_check: path is NULL");
+    return image_write_check(path, opts, err);
+}
+
+glint_rc glint_format_parse(const char *name, glint_format *out, glint_error *err)
+{
+    if (!name || !out)
+        return err_set(err, GLINT_ERR_INPUT, "glint_format_parse: %s is NULL",
+                       !name ? "name" : "out");
+    return image_format_parse(name, out, err);
 }
