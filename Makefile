@@ -10,9 +10,12 @@
 BUILD    ?= build
 SAN      ?= 0
 CC       ?= cc
-PKGS     := yaml-0.1 stb assimp
+PKGS     := yaml-0.1 stb assimp spng libjpeg libisal
+# OpenEXR's C library alone (OpenEXRCore), not its C++ ones
+EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
+EXR_LIBS   := $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore-3_1)
 
-CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXR_CFLAGS)
 CFLAGS   := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswitch-enum -Werror=implicit-function-declaration -g -pthread
 ifeq ($(SAN),1)
 CFLAGS   += -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
@@ -23,7 +26,7 @@ LDFLAGS  += -fsanitize=fuzzer,address,undefined
 else
 CFLAGS   += -O2
 endif
-LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm -pthread
+LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthread
 
 LIB_SRC  := $(shell find src -name '*.c' -not -path 'src/app/*' -not -path 'src/dist/*' | sort)
 APP_SRC  := $(wildcard src/app/*.c)
@@ -144,19 +147,39 @@ $(GEN_SRC): $(BUILD)/tools/embed scenes/seed.yaml $(BUILD)/gen/flag.png $(BUILD)
 	$(BUILD)/tools/embed $@ seed.yaml=scenes/seed.yaml \
 		textures/flag.png=$(BUILD)/gen/flag.png textures/globe.png=$(BUILD)/gen/globe.png
 
-# Coverage-guided fuzzing of the scene loader with libFuzzer (clang):
-# `make fuzz FUZZ_SECONDS=1800`. New inputs collect in build/fuzz/corpus;
-# crashes are written to build/fuzz/ as crash-* files.
+# Coverage-guided fuzzing with libFuzzer (clang):
+# `make fuzz [TARGET=scene|texture] FUZZ_SECONDS=1800`. Target T is
+# fuzz/fuzz_T.c; its seeds and dictionary are FUZZ_ARGS_T. New inputs collect
+# in build/fuzz/corpus-T (build/fuzz/corpus for the scene loader); crashes
+# are written to build/fuzz/ as crash-* files.
 FUZZ_SECONDS ?= 60
+TARGET ?= scene
+FUZZ_CORPUS_scene   := corpus
+FUZZ_ARGS_scene     := -dict=../../fuzz/yaml.dict ../../scenes ../../scenes/parts
+FUZZ_PREP_texture   := fuzz-seeds-texture
+FUZZ_ARGS_texture   := -dict=../../fuzz/image.dict seeds-texture
 fuzz:
 	@scripts/install-deps fuzz
-	@$(MAKE) --no-print-directory BUILD=build/fuzz SAN=fuzz CC=clang build/fuzz/fuzz_scene
-	@mkdir -p build/fuzz/corpus
-	cd build/fuzz && ./fuzz_scene -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
-		-dict=../../fuzz/yaml.dict corpus ../../scenes ../../scenes/parts
+	@test -f fuzz/fuzz_$(TARGET).c || { echo "make fuzz: no target fuzz/fuzz_$(TARGET).c" >&2; exit 2; }
+	@$(MAKE) --no-print-directory BUILD=build/fuzz SAN=fuzz CC=clang build/fuzz/fuzz_$(TARGET)
+	@$(MAKE) --no-print-directory $(FUZZ_PREP_$(TARGET))
+	@mkdir -p build/fuzz/$(or $(FUZZ_CORPUS_$(TARGET)),corpus-$(TARGET))
+	cd build/fuzz && ./fuzz_$(TARGET) -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
+		$(or $(FUZZ_CORPUS_$(TARGET)),corpus-$(TARGET)) $(FUZZ_ARGS_$(TARGET))
 
-$(BUILD)/fuzz_scene: $(BUILD)/obj/fuzz/fuzz_scene.o $(BUILD)/libglint.a
+$(BUILD)/fuzz_%: $(BUILD)/obj/fuzz/fuzz_%.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+# Seeds for the texture target: one small file per format, made by the
+# optimised build's writers (tools/fuzzseeds.c).
+.PHONY: fuzz-seeds-texture
+fuzz-seeds-texture: build/tools/fuzzseeds
+	@mkdir -p build/fuzz/seeds-texture
+	build/tools/fuzzseeds build/fuzz/seeds-texture
+
+build/tools/fuzzseeds: tools/fuzzseeds.c build/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) -std=c11 -O2 -Wall -Wextra $(CPPFLAGS) -o $@ $^ $(LDLIBS)
 
 # Benchmarks against POV-Ray and Embree, results in bench/RESULTS.md
 # (bench/README.md: what each row measures, settings such as BENCH_RUNS,

@@ -374,10 +374,43 @@ GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_sett
                                       const glint_callbacks *callbacks, glint_film *film,
                                       glint_stats *stats, glint_error *err);
 
-/* Writes the film to path; the format follows the extension (.png, .ppm).
- * The file appears complete or not at all. */
-GLINT_API glint_rc glint_film_write(const glint_film *film, glint_transfer transfer,
-                                    const char *path, glint_error *err);
+/* Image file formats for glint_film_write. */
+typedef enum glint_format {
+    GLINT_FORMAT_AUTO, /* from the file name's extension; PNG for "-" */
+    GLINT_FORMAT_PNG,  /* .png: 8 or 16 bits, RGB or RGBA */
+    GLINT_FORMAT_PPM,  /* .ppm: binary PPM, 8 or 16 bits */
+    GLINT_FORMAT_JPEG, /* .jpg, .jpeg: 8 bits, lossy */
+    GLINT_FORMAT_HDR,  /* .hdr: Radiance RGBE, linear */
+    GLINT_FORMAT_PFM,  /* .pfm: 32-bit float, linear */
+    GLINT_FORMAT_EXR,  /* .exr: OpenEXR half (16) or float (32), RGB or RGBA, linear */
+} glint_format;
+
+/* How glint_film_write writes. Zero-initialised options are the defaults. */
+typedef struct glint_write_options {
+    glint_format format;     /* GLINT_FORMAT_AUTO: from the extension */
+    glint_transfer transfer; /* 8- and 16-bit formats: how film values become pixels */
+    int quality;             /* JPEG, 1..100; 0: 90 */
+    int bits;                /* per channel; 0: the format's default (PNG, PPM 8; EXR 16);
+                                PNG and PPM take 8 or 16, EXR 16 or 32, PFM 32, JPEG 8 */
+    const float *alpha;      /* NULL, or width*height coverage values in [0, 1] (linear):
+                                PNG and EXR get an alpha channel; other formats ignore it */
+} glint_write_options;
+
+/* Writes the film to path ("-": standard output). Float formats (.hdr,
+ * .pfm, .exr) take the linear film as it is; the others quantise it through
+ * the transfer function. The file is encoded in memory first, then written
+ * beside the target and renamed into place, so it appears complete or not at
+ * all (details: README.md, "Output files"). opts may be NULL (defaults). */
+GLINT_API glint_rc glint_film_write(const glint_film *film, const char *path,
+                                    const glint_write_options *opts, glint_error *err);
+
+/* Checks, before a render, that glint_film_write(path, opts) can work: a
+ * known format and bit depth for it, not a directory or a read-only file, an
+ * existing folder where a file can be created. Errors are GLINT_ERR_INPUT. */
+GLINT_API glint_rc glint_output_check(const char *path, const glint_write_options *opts, glint_error *err);
+
+/* A format from its name or extension ("png", "jpg", "exr"...). */
+GLINT_API glint_rc glint_format_parse(const char *name, glint_format *out, glint_error *err);
 
 #ifdef __cplusplus
 }

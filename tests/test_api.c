@@ -461,8 +461,10 @@ Test(api, null_arguments_are_refused)
     REFUSED(glint_tile_count(&st, NULL, &err), "count is NULL");
     REFUSED(glint_tile_rect(&st, 0, NULL, &err), "out is NULL");
     REFUSED(glint_film_alloc(NULL, 4, 4, &err), "film is NULL");
-    REFUSED(glint_film_write(NULL, GLINT_TRANSFER_NONE, "x.png", &err), "film is NULL");
-    REFUSED(glint_film_write(&film, GLINT_TRANSFER_NONE, "x.png", &err), "film->rgb is NULL");
+    REFUSED(glint_film_write(NULL, "x.png", NULL, &err), "film is NULL");
+    REFUSED(glint_film_write(&film, "x.png", NULL, &err), "film->rgb is NULL");
+    REFUSED(glint_output_check(NULL, NULL, &err), "path is NULL");
+    REFUSED(glint_format_parse(NULL, NULL, &err), "name is NULL");
     cr_expect_eq(glint_scene_load(NULL, &s, NULL), GLINT_ERR_INPUT, "err may be NULL");
     glint_scene_free(NULL);
     glint_film_free(NULL);
@@ -481,7 +483,8 @@ Test(api, values_out_of_range_are_refused)
     REFUSED(glint_render(s, &bad, NULL, &film, NULL, &err), "transfer");
     cr_expect_null(film.rgb);
     OK(glint_film_alloc(&film, 40, 30, &err));
-    REFUSED(glint_film_write(&film, (glint_transfer)7, "/tmp/x.png", &err), "transfer");
+    glint_write_options opts = {.transfer = (glint_transfer)7};
+    REFUSED(glint_film_write(&film, "/tmp/glint-api-refused.png", &opts, &err), "transfer");
     REFUSED(glint_film_alloc(&(glint_film){0}, 0, 5, &err), "film size");
     glint_rect outside = {30, 20, 41, 30}, empty = {5, 5, 5, 9};
     REFUSED(glint_render_region(s, &st, &outside, NULL, &film, NULL, &err), "not inside");

@@ -118,7 +118,7 @@ Test(cli, bad_options_exit_2_with_one_line)
         {"-s 8", "glint: samples per pixel must be a perfect square (1, 4, 9, 16, ...) for the regular grid (got 8)\n"},
         {"-r 40000x10", "glint: resolution 40000x10 is out of range (1 to 32768 per side)\n"},
         {"a.yaml b.yaml", "glint: more than one scene given ('a.yaml' and 'b.yaml') (try 'glint --help')\n"},
-        {"-q -r 8x8 -o out.gif", "glint: out.gif: unknown output format '.gif' (use .png or .ppm)\n"},
+        {"-q -r 8x8 -o out.gif", "glint: out.gif: unknown output format '.gif' (use .png, .ppm, .jpg, .hdr, .pfm or .exr)\n"},
     };
     char out[4096];
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
@@ -128,11 +128,11 @@ Test(cli, bad_options_exit_2_with_one_line)
     cr_expect(!exists("glint.png") && !exists("out.gif"), "bad input writes no image");
 }
 
-Test(cli, unwritable_output_exits_1_and_leaves_nothing)
+Test(cli, output_in_a_missing_folder_exits_2_and_leaves_nothing)
 {
     char out[4096];
-    cr_expect_eq(run("-q -r 8x8 -o missing-dir/x.png", out, sizeof out), 1);
-    cr_expect(strstr(out, "glint: missing-dir/x.png: cannot write: No such file or directory"), "%s", out);
+    cr_expect_eq(run("-q -r 8x8 -o missing-dir/x.png", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: missing-dir/x.png: folder 'missing-dir' does not exist\n");
     cr_expect(!exists("missing-dir"));
 }
 
@@ -197,4 +197,114 @@ Test(cli, options_override_the_scene_settings)
     cr_expect_eq(img.width, 16);
     cr_expect_eq(img.height, 12);
     image_free(&img);
+}
+
+/* Runs a shell script in tmpdir with $GLINT naming the binary; returns the
+ * exit code and fills out with what the script writes to stdout+stderr
+ * (redirections inside the script stay its own). */
+static int run_sh(const char *script, char *out, size_t outlen)
+{
+    const char *bin = getenv("GLINT_BIN");
+    cr_assert_not_null(bin, "GLINT_BIN must name the glint binary");
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "cd '%s' && GLINT='%s%s%s' && { %s; } 2>&1", tmpdir,
+             bin[0] == '/' ? "" : GLINT_SOURCE_DIR, bin[0] == '/' ? "" : "/", bin, script);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    size_t n = fread(out, 1, outlen - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    cr_assert(WIFEXITED(status), "the script did not exit normally: %s", out);
+    return WEXITSTATUS(status);
+}
+
+/* ---- output files --------------------------------------------------------- */
+
+/* Output names are judged before the scene is rendered: these settings
+ * (8000x8000 at 64 samples) would take minutes, but every case exits 2 with
+ * one line at once, and nothing is written. */
+Test(cli, bad_output_names_exit_2_before_rendering)
+{
+    char out[4096];
+    cr_assert_eq(run("-q -r 8x8 -o sub.png && mkdir somedir sub.png.d && chmod 0444 sub.png", out,
+                     sizeof out), 0, "%s", out);
+    static const struct bad_case cases[] = {
+        {"-r 8000x8000 -s 64 -o x.gif", "glint: x.gif: unknown output format '.gif' (use .png, "
+                                       ".ppm, .jpg, .hdr, .pfm or .exr)\n"},
+        {"-r 8000x8000 -s 64 -o somedir", "glint: somedir: is a directory\n"},
+        {"-r 8000x8000 -s 64 -o nowhere/x.png", "glint: nowhere/x.png: folder 'nowhere' does not exist\n"},
+        {"-r 8000x8000 -s 64 -o sub.png", "glint: sub.png: file is read-only (mode 0444)\n"},
+        {"-r 8000x8000 -s 64 -o x.jpg --bits 16", "glint: x.jpg: 16 bits per channel is not possible in .jpg\n"},
+        {"--format gif", "glint: --format: unknown image format 'gif' (use png, ppm, jpg, hdr, pfm or exr) (try 'glint --help')\n"},
+        {"--quality 0", "glint: --quality: expected a whole number from 1 to 100, got '0' (try 'glint --help')\n"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        cr_expect_eq(run(cases[i].args, out, sizeof out), 2, "glint %s", cases[i].args);
+        cr_expect_str_eq(out, cases[i].message, "glint %s", cases[i].args);
+    }
+    cr_expect_eq(run_sh("ls -A . somedir", out, sizeof out), 0);
+    cr_expect_str_eq(out, ".:\nsomedir\nsub.png\nsub.png.d\n\nsomedir:\n",
+                     "the checks leave no file behind");
+    cr_expect(!exists("x.gif") && !exists("x.jpg"), "nothing written");
+}
+
+/* "-o -" writes to standard output: PNG unless --format says otherwise. */
+Test(cli, dash_writes_the_image_to_standard_output)
+{
+    char out[4096];
+    cr_assert_eq(run("-q -r 16x8 -o - > std.png", out, sizeof out), 0, "%s", out);
+    cr_assert_eq(run("-q -r 16x8 --format ppm -o - > std.ppm", out, sizeof out), 0, "%s", out);
+    const char *names[] = {"std.png", "std.ppm"};
+    for (int i = 0; i < 2; i++) {
+        char path[256];
+        snprintf(path, sizeof path, "%s/%s", tmpdir, names[i]);
+        image img;
+        glint_error err = {0};
+        cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+        cr_expect_eq(img.width, 16);
+        cr_expect_eq(img.height, 8);
+        image_free(&img);
+    }
+    cr_expect_eq(run("-q -r 8x8 --format exr -o - | head -c 4 | od -An -tx1", out, sizeof out), 0);
+    cr_expect_str_eq(out, " 76 2f 31 01\n", "EXR magic number");
+}
+
+/* Write errors on standard output and devices are exit 1 with the reason. */
+Test(cli, write_errors_exit_1)
+{
+    char out[4096];
+    cr_expect_eq(run_sh("\"$GLINT\" --help > /dev/full", out, sizeof out), 1);
+    cr_expect_str_eq(out, "glint: cannot write to standard output: No space left on device\n");
+    cr_expect_eq(run_sh("\"$GLINT\" --version > /dev/full", out, sizeof out), 1);
+    cr_expect_eq(run("-q -r 8x8 -o /dev/full", out, sizeof out), 1);
+    cr_expect_str_eq(out, "glint: /dev/full: cannot write: No space left on device\n");
+    cr_expect_eq(run_sh("\"$GLINT\" -q -r 8x8 -o - > /dev/full", out, sizeof out), 1);
+    cr_expect_str_eq(out, "glint: standard output: cannot write: No space left on device\n");
+    cr_expect_eq(run_sh("ln -s /dev/full full.png && \"$GLINT\" -q -r 8x8 -o full.png", out,
+                        sizeof out), 1, "a link to /dev/full");
+    cr_expect_str_eq(out, "glint: full.png: cannot write: No space left on device\n");
+}
+
+/* Every format by extension, and the options that shape them. */
+Test(cli, every_output_format_by_extension)
+{
+    char out[4096];
+    const char *args[] = {"-o a.ppm", "-o a.jpg --quality 80", "-o a.hdr", "-o a.pfm",
+                          "-o a.exr", "-o b.exr --bits 32", "-o b.png --bits 16",
+                          "-o b.ppm --bits 16"};
+    const char *files[] = {"a.ppm", "a.jpg", "a.hdr", "a.pfm", "a.exr", "b.exr", "b.png",
+                           "b.ppm"};
+    for (size_t i = 0; i < sizeof args / sizeof *args; i++) {
+        char cmd[256];
+        snprintf(cmd, sizeof cmd, "-q -r 24x16 %s", args[i]);
+        cr_assert_eq(run(cmd, out, sizeof out), 0, "glint %s: %s", cmd, out);
+        char path[256];
+        snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
+        image img;
+        glint_error err = {0};
+        cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+        cr_expect_eq(img.width, 24, "%s", files[i]);
+        cr_expect_eq(img.height, 16, "%s", files[i]);
+        image_free(&img);
+    }
 }

@@ -647,7 +647,7 @@ Test(load_errors, missing_or_unreadable_files)
                       "scene.yaml:1:35: cannot read texture './textures/locked.png' "
                       "(textures/locked.png): Permission denied");
     expect_error_with("textures: {t: {type: image, file: textures/bad.png}}\n", files,
-                      "scene.yaml:1:35: textures/bad.png: not a readable image (unknown image type)");
+                      "scene.yaml:1:35: textures/bad.png: not an image glint reads (PNG, JPEG, HDR, EXR, PFM, PPM, BMP, TGA, GIF)");
     expect_error_with("include: [parts/nope.yaml]\n", files,
                       "scene.yaml:1:11: cannot read include 'parts/nope.yaml': No such file or "
                       "directory");

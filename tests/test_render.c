@@ -37,7 +37,7 @@ Test(render, builtin_matches_golden_image)
     image_quantize(film.rgb, n, GLINT_TRANSFER_NONE, px);
     if (getenv("GLINT_UPDATE_GOLDEN")) {
         glint_error err = {0};
-        cr_assert_eq(image_write(GOLDEN, 100, 100, px, &err), GLINT_OK, "%s", err.msg);
+        cr_assert_eq(glint_film_write(&film, GOLDEN, NULL, &err), GLINT_OK, "%s", err.msg);
     }
     image ref;
     glint_error err = {0};

@@ -32,7 +32,7 @@ static image img2;
 static void setup(void)
 {
     image_decode_table(GLINT_TRANSFER_NONE, decode);
-    img2 = (image){2, 2, px2};
+    img2 = (image){2, 2, px2, NULL};
 }
 
 /* Expected colour: the mean of the listed texels (by index into px2). */
@@ -99,7 +99,7 @@ Test(texture, image_is_continuous_across_the_seam_with_repeat, .init = setup)
         for (int x = 0; x < 4; x++)
             for (int k = 0; k < 3; k++)
                 px[(y * 4 + x) * 3 + k] = (uint8_t)(60 * x + 20 * y + 7 * k);
-    image img = {4, 2, px};
+    image img = {4, 2, px, NULL};
     texture t = texture_image(0);
     cr_assert_eq(t.wrap_u, WRAP_REPEAT);
     for (float v = 0.0f; v <= 1.0f; v += 0.125f) {

@@ -10,7 +10,7 @@
 
 #include "api/check.h"
 #include "core/error.h"
-#include "io/image.h"
+#include "io/image_write.h"
 #include "load/load.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -275,22 +275,26 @@ glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *setting
     return render_run(sc, settings, callbacks, &work, film, stats, err);
 }
 
-glint_rc glint_film_write(const glint_film *film, glint_transfer transfer, const char *path,
-                          glint_error *err)
+glint_rc glint_film_write(const glint_film *film, const char *path,
+                          const glint_write_options *opts, glint_error *err)
 {
     if (!film || !film->rgb || !path)
         return api_null(err, __func__, !film ? "film" : !path ? "path" : "film->rgb");
-    if (film->width < 1 || film->height < 1)
-        return api_bad(err, __func__, "film size %dx%d is empty", film->width, film->height);
-    if (transfer != GLINT_TRANSFER_NONE && transfer != GLINT_TRANSFER_SRGB)
-        return api_bad(err, __func__, "transfer must be none (%d) or srgb (%d) (got %d)",
-                       GLINT_TRANSFER_NONE, GLINT_TRANSFER_SRGB, (int)transfer);
-    size_t n = (size_t)film->width * (size_t)film->height * 3;
-    uint8_t *px = malloc(n);
-    if (!px)
-        return err_nomem(err);
-    image_quantize(film->rgb, n, transfer, px);
-    glint_rc rc = image_write(path, film->width, film->height, px, err);
-    free(px);
-    return rc;
+    if (film->width <= 0 || film->height <= 0)
+        return api_bad(err, __func__, "film is %dx%d", film->width, film->height);
+    return image_write_film(path, film->width, film->height, film->rgb, opts, err);
+}
+
+glint_rc glint_output_check(const char *path, const glint_write_options *opts, glint_error *err)
+{
+    if (!path)
+        return api_null(err, __func__, "path");
+    return image_write_check(path, opts, err);
+}
+
+glint_rc glint_format_parse(const char *name, glint_format *out, glint_error *err)
+{
+    if (!name || !out)
+        return api_null(err, __func__, !name ? "name" : "out");
+    return image_format_parse(name, out, err);
 }

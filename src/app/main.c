@@ -17,7 +17,12 @@ static const char usage[] =
     "usage: glint [options] [SCENE.yaml]\n"
     "Renders SCENE.yaml, or with no scene the built-in nine-object scene.\n"
     "\n"
-    "  -o, --output FILE      output image, .png (default glint.png) or .ppm\n"
+    "  -o, --output FILE      output image (default glint.png); '-' for standard output\n"
+    "                         .png .ppm .jpg .hdr .pfm .exr, by extension or --format\n"
+    "      --format F         png, ppm, jpg, hdr, pfm or exr, whatever the name\n"
+    "      --quality N        JPEG quality, 1 to 100 (default 90)\n"
+    "      --bits N           bits per channel: PNG, PPM 8 (default) or 16;\n"
+    "                         EXR 16 (half, default) or 32 (float)\n"
     "  -r, --resolution WxH   image size, overriding the scene's\n"
     "  -s, --spp N            samples per pixel, a perfect square (4 = 2x2 grid)\n"
     "  -d, --depth N          reflection/refraction recursion limit\n"
@@ -30,7 +35,7 @@ static const char usage[] =
     "\n"
     "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input.\n";
 
-enum { OPT_STATS = 256, OPT_TRANSFER };
+enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS };
 
 static const struct option long_options[] = {
     {"output", required_argument, NULL, 'o'},
@@ -39,6 +44,9 @@ static const struct option long_options[] = {
     {"depth", required_argument, NULL, 'd'},
     {"threads", required_argument, NULL, 't'},
     {"transfer", required_argument, NULL, OPT_TRANSFER},
+    {"format", required_argument, NULL, OPT_FORMAT},
+    {"quality", required_argument, NULL, OPT_QUALITY},
+    {"bits", required_argument, NULL, OPT_BITS},
     {"stats", no_argument, NULL, OPT_STATS},
     {"quiet", no_argument, NULL, 'q'},
     {"help", no_argument, NULL, 'h'},
@@ -52,6 +60,7 @@ struct cli {
     int width, height, samples, depth, threads; /* -1: not given */
     int transfer;
     bool stats, quiet;
+    glint_write_options write; /* format, quality, bits from the command line */
 };
 
 __attribute__((format(printf, 1, 2))) static int usage_error(const char *fmt, ...)
@@ -91,10 +100,21 @@ static bool parse_resolution(const char *s, int *w, int *h)
     return parse_int(buf, 1, INT_MAX, w) && parse_int(x + 1, 1, INT_MAX, h);
 }
 
+/* Exit code after printing to standard output: 1 when it could not be
+ * written (a full disk, /dev/full, a closed pipe). */
+static int flush_stdout(void)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "glint: cannot write to standard output: %s\n", strerror(errno));
+        return 1;
+    }
+    return 0;
+}
+
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
-    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false};
+    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, {0}};
     opterr = 0;
     int opt;
     while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:qhV", long_options, NULL)) != -1) {
@@ -126,6 +146,21 @@ static int parse_args(int argc, char **argv, struct cli *c)
             else
                 return usage_error("--transfer: expected none or srgb, got '%s'", optarg);
             break;
+        case OPT_FORMAT: {
+            glint_error err;
+            if (glint_format_parse(optarg, &c->write.format, &err) != GLINT_OK)
+                return usage_error("--format: %s", err.msg);
+            break;
+        }
+        case OPT_QUALITY:
+            if (!parse_int(optarg, 1, 100, &c->write.quality))
+                return usage_error("--quality: expected a whole number from 1 to 100, got '%s'",
+                                   optarg);
+            break;
+        case OPT_BITS:
+            if (!parse_int(optarg, 8, 32, &c->write.bits))
+                return usage_error("--bits: expected 8, 16 or 32, got '%s'", optarg);
+            break;
         case OPT_STATS:
             c->stats = true;
             break;
@@ -134,10 +169,10 @@ static int parse_args(int argc, char **argv, struct cli *c)
             break;
         case 'h':
             fputs(usage, stdout);
-            return 0;
+            return flush_stdout();
         case 'V':
             printf("glint %s\n", GLINT_VERSION);
-            return 0;
+            return flush_stdout();
         case ':':
             if (optopt)
                 return usage_error("-%c needs a value", optopt);
@@ -173,6 +208,11 @@ int main(int argc, char **argv)
     glint_film film = {0};
     glint_stats stats = {0};
     glint_rc rc;
+
+    /* a bad output name fails now, not after the render */
+    rc = glint_output_check(c.output, &c.write, &err);
+    if (rc != GLINT_OK)
+        goto fail;
 
     rc = c.scene_path ? glint_scene_load(c.scene_path, &scene, &err)
                       : glint_scene_builtin(&scene, &err);
@@ -212,7 +252,8 @@ int main(int argc, char **argv)
         progress_end(&bar);
     if (rc != GLINT_OK)
         goto fail;
-    rc = glint_film_write(&film, s.transfer, c.output, &err);
+    c.write.transfer = s.transfer;
+    rc = glint_film_write(&film, c.output, &c.write, &err);
     if (rc != GLINT_OK)
         goto fail;
 

@@ -1,86 +1,188 @@
+/* image: reading files, telling formats apart by their first bytes, and the
+ * 8-bit conversions shared by readers and writers. */
 #include "image.h"
 
 #include <errno.h>
 #include <fcntl.h>
-#include <stdatomic.h>
-#include <stdbool.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
-#include <stb_image.h>
-#include <stb_image_write.h>
-
-#include <sys/stat.h>
-
+#include "codec.h"
 #include "core/error.h"
 
-#define IMAGE_MAX_FILE_BYTES (1L << 30)
+/* ---- byte buffers and shared messages ----------------------------------- */
+
+bool bytes_reserve(bytebuf *b, size_t n)
+{
+    if (n > SIZE_MAX / 4 - b->len)
+        return false;
+    if (b->len + n > b->cap) {
+        size_t cap = b->cap ? b->cap : 4096;
+        while (cap < b->len + n)
+            cap *= 2;
+        uint8_t *p = realloc(b->data, cap);
+        if (!p)
+            return false;
+        b->data = p;
+        b->cap = cap;
+    }
+    return true;
+}
+
+uint8_t *bytes_grow(bytebuf *b, size_t n)
+{
+    if (!bytes_reserve(b, n))
+        return NULL;
+    uint8_t *at = b->data + b->len;
+    b->len += n;
+    return at;
+}
+
+bool bytes_append(bytebuf *b, const void *data, size_t n)
+{
+    uint8_t *p = bytes_grow(b, n);
+    if (!p)
+        return false;
+    if (n)
+        memcpy(p, data, n);
+    return true;
+}
+
+void bytes_free(bytebuf *b)
+{
+    free(b->data);
+    *b = (bytebuf){0};
+}
+
+glint_rc codec_check_size(uint64_t width, uint64_t height, const char *name, glint_error *err)
+{
+    if (width == 0 || height == 0)
+        return err_set(err, GLINT_ERR_INPUT, "%s: image has no pixels (%llux%llu)", name,
+                       (unsigned long long)width, (unsigned long long)height);
+    if (width > IMAGE_MAX_PIXELS || height > IMAGE_MAX_PIXELS ||
+        width * height > IMAGE_MAX_PIXELS)
+        return err_set(err, GLINT_ERR_INPUT, "%s: image %llux%llu is too large (limit %u pixels)",
+                       name, (unsigned long long)width, (unsigned long long)height,
+                       IMAGE_MAX_PIXELS);
+    return GLINT_OK;
+}
+
+glint_rc codec_check_data(uint64_t width, uint64_t height, size_t size, uint64_t per_byte,
+                          const char *name, glint_error *err)
+{
+    if (width * height / per_byte > (uint64_t)size)
+        return codec_truncated(name, err);
+    return GLINT_OK;
+}
+
+glint_rc codec_truncated(const char *name, glint_error *err)
+{
+    return err_set(err, GLINT_ERR_INPUT, "%s: file is truncated", name);
+}
+
+/* ---- reading ------------------------------------------------------------ */
+
+static bool starts(const uint8_t *d, size_t n, const char *magic, size_t m)
+{
+    return n >= m && memcmp(d, magic, m) == 0;
+}
+
+static bool is_space(uint8_t c)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+/* TGA has no signature: a plausible header (no or a valid colour map, a
+ * known image type, 8 to 32 bits per pixel) is as close as one gets. */
+static bool looks_like_tga(const uint8_t *d, size_t n)
+{
+    if (n < 18 || d[1] > 1)
+        return false;
+    int type = d[2];
+    bool known = type == 1 || type == 2 || type == 3 || type == 9 || type == 10 || type == 11;
+    int bpp = d[16];
+    return known && (bpp == 8 || bpp == 15 || bpp == 16 || bpp == 24 || bpp == 32);
+}
 
 glint_rc image_load_memory(const void *data, size_t size, const char *name, image *out,
                            glint_error *err)
 {
-    int w, h, comp;
-    if (size > (size_t)INT32_MAX)
-        return err_set(err, GLINT_ERR_INPUT, "%s: image file too large", name);
-    if (!stbi_info_from_memory(data, (int)size, &w, &h, &comp))
-        return err_set(err, GLINT_ERR_INPUT, "%s: not a readable image (%s)", name,
-                       stbi_failure_reason());
-    if (w <= 0 || h <= 0 || (uint64_t)w * (uint64_t)h > IMAGE_MAX_PIXELS)
-        return err_set(err, GLINT_ERR_INPUT, "%s: image size %dx%d is out of range", name, w, h);
-    unsigned char *px = stbi_load_from_memory(data, (int)size, &w, &h, &comp, 3);
-    if (!px)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot decode image (%s)", name,
-                       stbi_failure_reason());
-    out->width = w;
-    out->height = h;
-    out->rgb = px;
-    return GLINT_OK;
+    const uint8_t *d = data;
+    if (size == 0)
+        return err_set(err, GLINT_ERR_INPUT, "%s: image file is empty", name);
+    if (starts(d, size, "\x89PNG\r\n\x1a\n", 8))
+        return png_decode(d, size, name, out, err);
+    if (starts(d, size, "\xff\xd8\xff", 3))
+        return jpeg_decode(d, size, name, out, err);
+    if (starts(d, size, "#?", 2))
+        return rgbe_decode(d, size, name, out, err);
+    if (starts(d, size, "v/1\x01", 4))
+        return exr_decode(d, size, name, out, err);
+    if (size > 2 && d[0] == 'P' && (d[1] == 'F' || d[1] == 'f') && is_space(d[2]))
+        return pfm_decode(d, size, name, out, err);
+    if (size > 2 && d[0] == 'P' && (d[1] == '5' || d[1] == '6') && is_space(d[2]))
+        return pnm_decode(d, size, name, out, err);
+    if (starts(d, size, "BM", 2) || starts(d, size, "GIF8", 4) || looks_like_tga(d, size))
+        return legacy_decode(d, size, name, out, err);
+    return err_set(err, GLINT_ERR_INPUT,
+                   "%s: not an image glint reads (PNG, JPEG, HDR, EXR, PFM, PPM, BMP, TGA, GIF)",
+                   name);
 }
 
+/* Opens without blocking (a FIFO would wait for a writer for ever) and
+ * refuses anything but a regular file before reading a byte. */
 glint_rc image_load(const char *path, image *out, glint_error *err)
 {
-    glint_rc rc = GLINT_OK;
-    unsigned char *buf = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+    if (fd < 0)
         return err_set(err, GLINT_ERR_INPUT, "%s: cannot open image: %s", path, strerror(errno));
+    glint_rc rc = GLINT_OK;
+    uint8_t *buf = NULL;
     struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+    if (fstat(fd, &st) != 0) {
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read image: %s", path, strerror(errno));
+        goto out;
+    }
+    if (S_ISDIR(st.st_mode)) {
         rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot open image: %s", path, strerror(EISDIR));
         goto out;
     }
-    if (fseek(f, 0, SEEK_END) != 0) {
-        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read image: %s", path, strerror(errno));
+    if (!S_ISREG(st.st_mode)) {
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: not a regular file", path);
         goto out;
     }
-    long size = ftell(f);
-    if (size < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read image: %s", path, strerror(errno));
-        goto out;
-    }
-    if (size == 0 || size > IMAGE_MAX_FILE_BYTES) {
+    if (st.st_size == 0 || st.st_size > IMAGE_MAX_FILE_BYTES) {
         rc = err_set(err, GLINT_ERR_INPUT, "%s: image file is %s", path,
-                     size == 0 ? "empty" : "too large");
+                     st.st_size == 0 ? "empty" : "too large (over 1 GiB)");
         goto out;
     }
-    buf = malloc((size_t)size);
+    size_t size = (size_t)st.st_size, got = 0;
+    buf = malloc(size);
     if (!buf) {
         rc = err_nomem(err);
         goto out;
     }
-    if (fread(buf, 1, (size_t)size, f) != (size_t)size) {
-        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read image: %s", path,
-                     ferror(f) ? strerror(errno) : "unexpected end of file");
-        goto out;
+    while (got < size) {
+        ssize_t n = read(fd, buf + got, size - got);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0) {
+            rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read image: %s", path, strerror(errno));
+            goto out;
+        }
+        if (n == 0)
+            break; /* the file shrank while we read: decode what is there */
+        got += (size_t)n;
     }
-    rc = image_load_memory(buf, (size_t)size, path, out, err);
+    rc = image_load_memory(buf, got, path, out, err);
 out:
     free(buf);
-    fclose(f);
+    close(fd);
     return rc;
 }
 
@@ -88,92 +190,12 @@ void image_free(image *img)
 {
     if (!img)
         return;
-    stbi_image_free(img->rgb);
-    img->rgb = NULL;
-    img->width = img->height = 0;
+    free(img->rgb);
+    free(img->linear);
+    *img = (image){0};
 }
 
-static void write_cb(void *ctx, void *data, int size)
-{
-    FILE *f = ctx;
-    fwrite(data, 1, (size_t)size, f);
-}
-
-static const char *extension(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    const char *dot = strrchr(path, '.');
-    if (!dot || (slash && dot < slash))
-        return "";
-    return dot;
-}
-
-/* Creates a new file beside path, named path.tmp.PID.N, with the mode a
- * plain creat() would give (mkstemp's 0600 would stay on the final file). */
-static int open_temp(const char *path, char *tmp, size_t len)
-{
-    static atomic_uint counter;
-    for (int tries = 0; tries < 100; tries++) {
-        snprintf(tmp, len, "%s.tmp.%ld.%u", path, (long)getpid(), atomic_fetch_add(&counter, 1));
-        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd >= 0 || errno != EEXIST)
-            return fd;
-    }
-    return -1;
-}
-
-glint_rc image_write(const char *path, int width, int height, const uint8_t *rgb,
-                     glint_error *err)
-{
-    const char *ext = extension(path);
-    bool png = strcasecmp(ext, ".png") == 0, ppm = strcasecmp(ext, ".ppm") == 0;
-    if (!png && !ppm)
-        return err_set(err, GLINT_ERR_INPUT,
-                       "%s: unknown output format '%s' (use .png or .ppm)", path, ext);
-
-    size_t len = strlen(path) + 48;
-    char *tmp = malloc(len);
-    if (!tmp)
-        return err_nomem(err);
-    int fd = open_temp(path, tmp, len);
-    if (fd < 0) {
-        glint_rc rc = err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-        free(tmp);
-        return rc;
-    }
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        close(fd);
-        goto fail;
-    }
-    if (png) {
-        if (!stbi_write_png_to_func(write_cb, f, width, height, 3, rgb, width * 3))
-            goto fail;
-    } else {
-        fprintf(f, "P6\n%d %d\n255\n", width, height);
-        fwrite(rgb, 3, (size_t)width * (size_t)height, f);
-    }
-    if (fflush(f) != 0 || ferror(f) || fsync(fileno(f)) != 0)
-        goto fail;
-    if (fclose(f) != 0) {
-        f = NULL;
-        goto fail;
-    }
-    f = NULL;
-    if (rename(tmp, path) != 0)
-        goto fail;
-    free(tmp);
-    return GLINT_OK;
-fail: {
-    glint_rc rc = err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path,
-                          errno ? strerror(errno) : "write failed");
-    if (f)
-        fclose(f);
-    unlink(tmp);
-    free(tmp);
-    return rc;
-}
-}
+/* ---- 8- and 16-bit conversions ------------------------------------------ */
 
 static float srgb_encode(float x)
 {
@@ -185,23 +207,46 @@ static float srgb_decode(float x)
     return x <= 0.04045f ? x / 12.92f : powf((x + 0.055f) / 1.055f, 2.4f);
 }
 
+/* x clamped to [0, 1] (NaN to 0), then through the transfer function. */
+static float display_value(float x, glint_transfer transfer)
+{
+    if (!(x > 0.0f))
+        x = 0.0f;
+    if (x > 1.0f)
+        x = 1.0f;
+    switch (transfer) {
+    case GLINT_TRANSFER_NONE:
+        break;
+    case GLINT_TRANSFER_SRGB:
+        x = srgb_encode(x);
+        break;
+    }
+    return x;
+}
+
 void image_quantize(const float *src, size_t count, glint_transfer transfer, uint8_t *dst)
 {
-    for (size_t i = 0; i < count; i++) {
-        float x = src[i];
-        if (!(x > 0.0f))
-            x = 0.0f; /* also maps NaN to black */
-        if (x > 1.0f)
-            x = 1.0f;
-        switch (transfer) {
-        case GLINT_TRANSFER_NONE:
-            break;
-        case GLINT_TRANSFER_SRGB:
-            x = srgb_encode(x);
-            break;
+    switch (transfer) {
+    case GLINT_TRANSFER_NONE:
+        /* the common case, kept free of calls so the compiler can vectorise */
+        for (size_t i = 0; i < count; i++) {
+            float x = src[i];
+            x = x > 0.0f ? x : 0.0f;
+            x = x < 1.0f ? x : 1.0f;
+            dst[i] = (uint8_t)lrintf(x * 255.0f);
         }
-        dst[i] = (uint8_t)lrintf(x * 255.0f);
+        return;
+    case GLINT_TRANSFER_SRGB:
+        break;
     }
+    for (size_t i = 0; i < count; i++)
+        dst[i] = (uint8_t)lrintf(display_value(src[i], transfer) * 255.0f);
+}
+
+void image_quantize16(const float *src, size_t count, glint_transfer transfer, uint16_t *dst)
+{
+    for (size_t i = 0; i < count; i++)
+        dst[i] = (uint16_t)lrintf(display_value(src[i], transfer) * 65535.0f);
 }
 
 void image_decode_table(glint_transfer transfer, float table[256])

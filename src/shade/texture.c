@@ -28,6 +28,10 @@ static int wrap_index(int i, int n, texture_wrap w)
 
 static vec3 texel(const image *img, const float decode[256], int x, int y)
 {
+    if (img->linear) { /* HDR texels are linear already */
+        const float *f = img->linear + ((size_t)y * (size_t)img->width + (size_t)x) * 3;
+        return v3(f[0], f[1], f[2]);
+    }
     const uint8_t *p = img->rgb + ((size_t)y * (size_t)img->width + (size_t)x) * 3;
     return v3(decode[p[0]], decode[p[1]], decode[p[2]]);
 }
