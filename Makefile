@@ -74,7 +74,9 @@ check-lib: $(BUILD)/libglint.so
 	BUILD=$(BUILD) CC=$(CC) scripts/check-install $(CURDIR)/$(BUILD)/stage
 
 # `make install PREFIX=/usr/local DESTDIR=`: the command, both libraries,
-# the header, glint.pc, the example scenes and the documentation.
+# the header, glint.pc, the example scenes and the documentation. glint.pc
+# names the static library's dependencies: the pkg-config packages, and
+# OpenEXR's C library directly (its package would add the C++ ones).
 PREFIX  ?= /usr/local
 DESTDIR ?=
 INSTALL_LIB := $(DESTDIR)$(PREFIX)/lib
@@ -83,7 +85,7 @@ INSTALL_DOC := $(DESTDIR)$(PREFIX)/share/doc/glint
 install: all
 	@mkdir -p $(BUILD)
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES@|$(PKGS)|' \
-		src/api/glint.pc.in > $(BUILD)/glint.pc
+		-e 's|@LIBS_PRIVATE@|$(EXR_LIBS) -lm -pthread|' src/api/glint.pc.in > $(BUILD)/glint.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include \
 		$(DESTDIR)$(PREFIX)/share/glint $(INSTALL_DOC)
 	install -m 755 $(BUILD)/glint $(DESTDIR)$(PREFIX)/bin/glint
