@@ -16,7 +16,8 @@
  * glint_scene_free. A film's pixels belong to the caller after glint_render
  * or glint_film_alloc, until glint_film_free. Everything passed in by
  * pointer (settings, camera, materials, shapes, transform steps, paths) is
- * copied before the call returns; the library keeps no pointer to it.
+ * copied before the call returns; the library keeps no pointer to it. Files
+ * a call names (a scene, a texture image, a mesh) are read during the call.
  *
  * Threads. Functions may be called from any thread. Calls on distinct
  * scenes and films never interfere. Several renders of one scene may run at
@@ -26,8 +27,8 @@
  *
  * Compatibility. Structures may gain fields in later versions: start from
  * what the library fills in (glint_scene_settings, glint_scene_camera,
- * glint_material_default) rather than from a structure written out by hand,
- * and zero-initialise the rest. */
+ * glint_material_default, glint_texture_default) rather than from a
+ * structure written out by hand, and zero-initialise the rest. */
 #ifndef GLINT_GLINT_H
 #define GLINT_GLINT_H
 
