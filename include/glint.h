@@ -368,8 +368,11 @@ GLINT_API glint_rc glint_tile_count(const glint_settings *settings, int *count,
 GLINT_API glint_rc glint_tile_rect(const glint_settings *settings, int tile, glint_rect *out,
                                    glint_error *err);
 
-/* Renders the listed tiles (each index once, any order) into an image-sized
- * film, as glint_render_region does for a region. */
+/* Renders the listed tiles (each index once, any order) into a film the
+ * caller allocated either at the image's size or at the size of the
+ * smallest rectangle holding every listed tile (its top-left pixel at the
+ * film's top left: a batch of neighbouring tiles needs no image-sized film),
+ * as glint_render_region does for a region. */
 GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_settings *settings,
                                       const int *tiles, int ntiles,
                                       const glint_callbacks *callbacks, glint_film *film,

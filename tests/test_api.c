@@ -244,6 +244,23 @@ Test(api, regions_and_tile_lists_assemble_into_the_whole_image)
     glint_rect r;
     OK(glint_tile_rect(&st, n - 1, &r, &err));
     cr_expect(r.x0 == 80 && r.y0 == 48 && r.x1 == 83 && r.y1 == 61, "last tile cut to the image");
+    /* Tiles 10, 11 (row 1) and 16 (row 2) into a film of their bounds:
+     * x [64, 83), y [16, 48), pixel (64, 16) at its top left. */
+    glint_film box = {0};
+    OK(glint_film_alloc(&box, 19, 32, &err));
+    int some[3] = {16, 10, 11};
+    OK(glint_render_tiles(s, &st, some, 3, NULL, &box, NULL, &err));
+    for (int y = 0; y < 32; y++)
+        for (int x = 0; x < 19; x++) {
+            const float *got = box.rgb + ((size_t)y * 19 + (size_t)x) * 3;
+            const float *want = whole.rgb + ((size_t)(16 + y) * 83 + (size_t)(64 + x)) * 3;
+            bool listed = y < 16 || x < 16; /* tile 17 (x >= 80, y >= 32) is not listed */
+            if (listed)
+                cr_assert_eq(memcmp(got, want, 3 * sizeof(float)), 0, "pixel (%d, %d)", 64 + x, 16 + y);
+            else
+                cr_assert(got[0] == 0 && got[1] == 0 && got[2] == 0, "unlisted pixel touched");
+        }
+    glint_film_free(&box);
     glint_film_free(&whole);
     glint_film_free(&parts);
     glint_film_free(&small);
@@ -497,6 +514,8 @@ Test(api, values_out_of_range_are_refused)
     REFUSED(glint_render_tiles(s, &st, twice, 2, NULL, &film, NULL, &err), "twice");
     REFUSED(glint_render_tiles(s, &st, far, 1, NULL, &film, NULL, &err), "out of range");
     REFUSED(glint_render_tiles(s, &st, far, -1, NULL, &film, NULL, &err), "ntiles");
+    int two[2] = {0, 5};
+    REFUSED(glint_render_tiles(s, &st, two, 2, NULL, &odd, NULL, &err), "tiles' bounds (40x30)");
     REFUSED(glint_tile_rect(&st, 6, &r, &err), "out of range");
     glint_film_free(&odd);
     glint_film_free(&film);

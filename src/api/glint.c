@@ -247,6 +247,24 @@ static glint_rc check_tiles(const int *tiles, int ntiles, int count, glint_error
     return rc;
 }
 
+/* The smallest rectangle holding every listed tile (empty for none). */
+static glint_rect tiles_bounds(int w, int h, const int *tiles, int ntiles)
+{
+    glint_rect box = {0, 0, 0, 0};
+    for (int i = 0; i < ntiles; i++) {
+        glint_rect r = render_tile_rect(w, h, tiles[i]);
+        if (i == 0 || r.x0 < box.x0)
+            box.x0 = r.x0;
+        if (i == 0 || r.y0 < box.y0)
+            box.y0 = r.y0;
+        if (i == 0 || r.x1 > box.x1)
+            box.x1 = r.x1;
+        if (i == 0 || r.y1 > box.y1)
+            box.y1 = r.y1;
+    }
+    return box;
+}
+
 glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *settings,
                             const int *tiles, int ntiles, const glint_callbacks *callbacks,
                             glint_film *film, glint_stats *stats, glint_error *err)
@@ -260,13 +278,19 @@ glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *setting
     glint_rc rc = render_settings(sc, &settings, &own, err);
     if (rc != GLINT_OK)
         return rc;
-    if (film->width != settings->width || film->height != settings->height)
-        return api_bad(err, fn, "film is %dx%d; it must be the image's size (%dx%d)", film->width,
-                       film->height, settings->width, settings->height);
-    rc = check_tiles(tiles, ntiles, render_tile_count(settings->width, settings->height), err);
+    int w = settings->width, h = settings->height;
+    rc = check_tiles(tiles, ntiles, render_tile_count(w, h), err);
     if (rc != GLINT_OK)
         return rc;
     render_work work = {{0, 0, 0, 0}, tiles, ntiles, 0, 0};
+    glint_rect box = tiles_bounds(w, h, tiles, ntiles);
+    if (ntiles > 0 && film->width == box.x1 - box.x0 && film->height == box.y1 - box.y0) {
+        work.film_x0 = box.x0;
+        work.film_y0 = box.y0;
+    } else if (film->width != w || film->height != h) {
+        return api_bad(err, fn, "film is %dx%d; it must be the image's size (%dx%d) or the tiles' bounds (%dx%d)",
+                       film->width, film->height, w, h, box.x1 - box.x0, box.y1 - box.y0);
+    }
     if (ntiles == 0) {
         if (stats)
             *stats = (glint_stats){0};
