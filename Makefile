@@ -35,14 +35,24 @@ GEN_SRC  := $(BUILD)/gen/assets.c
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/assets.o
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/obj/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/obj/%.o)
-DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
+DIST_SRC := $(wildcard src/dist/*.c)
+DIST_OBJ := $(DIST_SRC:%.c=$(BUILD)/obj/%.o)
+DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(DIST_OBJ:.o=.d)
+
+# glint-mpi (src/dist, the only code that includes mpi.h) is built whenever
+# Open MPI's compiler wrapper is there; its flags, with the compiler above.
+MPICC      ?= mpicc
+HAVE_MPI   := $(shell command -v $(MPICC) >/dev/null 2>&1 && echo yes)
+MPI_CFLAGS := $(if $(HAVE_MPI),$(shell $(MPICC) --showme:compile 2>/dev/null))
+MPI_LIBS   := $(if $(HAVE_MPI),$(shell $(MPICC) --showme:link 2>/dev/null))
+MPI_BIN    := $(if $(HAVE_MPI),$(BUILD)/glint-mpi)
 
 .PHONY: all deps run test check clean fuzz
 .DEFAULT_GOAL := all
 
 all: deps
 	@$(MAKE) --no-print-directory $(BUILD)/glint $(BUILD)/libglint.a $(BUILD)/libglint.so \
-		scenes/textures/flag.png scenes/textures/globe.png
+		$(MPI_BIN) scenes/textures/flag.png scenes/textures/globe.png
 
 deps:
 	@scripts/install-deps build
@@ -56,10 +66,10 @@ test:
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 check
 
-check: $(BUILD)/glint $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
+check: $(BUILD)/glint $(MPI_BIN) $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
 	scripts/check-layers
-	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-		$(BUILD)/tests --jobs 2
+	GLINT_BIN=$(BUILD)/glint GLINT_MPI_BIN=$(MPI_BIN) ASAN_OPTIONS=detect_leaks=1 \
+		UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/tests --jobs 2
 ifeq ($(SAN),0)
 	@$(MAKE) --no-print-directory check-lib
 endif
@@ -117,7 +127,13 @@ $(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
 $(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/libglint.a
+$(BUILD)/glint-mpi: $(DIST_OBJ) $(BUILD)/libglint.a
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)
+
+$(DIST_OBJ): CPPFLAGS += $(MPI_CFLAGS)
+
+# The tests take the scheduler of glint-mpi too (it has no MPI in it).
+$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
