@@ -1,0 +1,183 @@
+/* glint-mpi as a user meets it under mpirun: the same bytes as glint for
+ * any number of processes, one message for bad input however many processes
+ * met it, statistics and tile costs for each process. Runs the binaries
+ * named by GLINT_BIN and GLINT_MPI_BIN (set by `make check`); each test
+ * skips, saying why, where Open MPI or glint-mpi is missing. */
+#include <criterion/criterion.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "glint.h"
+#include "tmpdir.h"
+
+TestSuite(mpi, .fini = tmpdir_remove);
+
+/* An absolute path for a binary named relative to the source folder. */
+static void absolute(const char *bin, char *out, size_t n)
+{
+    snprintf(out, n, "%s%s%s", bin[0] == '/' ? "" : GLINT_SOURCE_DIR, bin[0] == '/' ? "" : "/",
+             bin);
+}
+
+/* Skips the test unless glint-mpi was built and mpirun is there; then makes
+ * the test's folder. */
+static void need_mpi(void)
+{
+    const char *bin = getenv("GLINT_MPI_BIN");
+    if (!bin || !*bin)
+        cr_skip_test("glint-mpi was not built (Open MPI's mpicc is missing): MPI tests skipped");
+    if (system("command -v mpirun >/dev/null 2>&1") != 0)
+        cr_skip_test("mpirun is missing (scripts/install-deps installs openmpi-bin): MPI tests skipped");
+    tmpdir_make("mpi");
+}
+
+/* Runs a shell script in the test's folder with $GLINT and $MPI (mpirun
+ * with its options, as root too, then glint-mpi after "$MPI -n K"), and
+ * $NP, the options for K processes on this machine whatever its cores.
+ * Returns the exit code; out gets standard output and error. */
+static int sh(const char *script, char *out, size_t outlen)
+{
+    char glint[512], mpi[512], cmd[4096];
+    absolute(getenv("GLINT_BIN") ? getenv("GLINT_BIN") : "build/glint", glint, sizeof glint);
+    absolute(getenv("GLINT_MPI_BIN"), mpi, sizeof mpi);
+    const char *root = geteuid() == 0 ? "--allow-run-as-root" : "";
+    /* Open MPI's own leaks are not glint's: the sanitised build ignores them. */
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && export LSAN_OPTIONS=suppressions='%s/tests/lsan-mpi.supp':print_suppressions=0 "
+             "&& GLINT='%s' && run() { mpirun %s --oversubscribe -n \"$@\"; } && MPI='%s' && { %s; } 2>&1",
+             dir, GLINT_SOURCE_DIR, glint, root, mpi, script);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    size_t n = fread(out, 1, outlen - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    cr_assert(WIFEXITED(status), "the script did not exit normally: %s", out);
+    return WEXITSTATUS(status);
+}
+
+/* Occurrences of what in text. */
+static int count(const char *text, const char *what)
+{
+    int n = 0;
+    for (const char *p = strstr(text, what); p; p = strstr(p + 1, what))
+        n++;
+    return n;
+}
+
+Test(mpi, one_to_four_processes_write_glints_bytes)
+{
+    need_mpi();
+    char out[8192];
+    /* 97x61: tiles cut at both edges; -t 2 keeps several threads per process */
+    const char *opts = "-q -r 97x61 -s 4 -t 2";
+    char script[2048];
+    snprintf(script, sizeof script,
+             "$GLINT %s -o g.png && $GLINT %s -o g.pfm && "
+             "for k in 1 2 3 4; do run $k $MPI %s -o m$k.png && run $k $MPI %s -o m$k.pfm && "
+             "cmp g.png m$k.png && cmp g.pfm m$k.pfm && echo same $k; done",
+             opts, opts, opts, opts);
+    cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "same 1\nsame 2\nsame 3\nsame 4\n");
+}
+
+Test(mpi, a_scene_file_with_its_textures_and_srgb)
+{
+    need_mpi();
+    char out[8192];
+    char script[2048];
+    snprintf(script, sizeof script,
+             "S='%s/scenes/textures.yaml' && $GLINT -q -r 120x90 -s 1 \"$S\" -o g.png && "
+             "run 3 $MPI -q -r 120x90 -s 1 -t 1 \"$S\" -o m.png && cmp g.png m.png && echo same",
+             GLINT_SOURCE_DIR);
+    cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "same\n");
+}
+
+/* Every process loads the scene and meets the error; rank 0 alone says it. */
+Test(mpi, bad_input_is_reported_once)
+{
+    need_mpi();
+    char out[8192];
+    cr_expect_eq(sh("printf 'objects:\\n  - {type: sphere, center: [0, 0, -5], radius: -3}\\n' > bad.yaml"
+                    " && run 3 $MPI -q bad.yaml 2>err.txt; echo $?; cat err.txt | grep glint",
+                    out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "2\nglint-mpi: bad.yaml:2:48: radius must be > 0 (got -3)\n");
+    cr_expect_eq(sh("run 2 $MPI -q nope.yaml 2>err.txt; echo $?; grep glint err.txt", out, sizeof out), 0);
+    cr_expect_str_eq(out, "2\nglint-mpi: nope.yaml: cannot read scene: No such file or directory\n");
+    cr_expect_eq(sh("run 3 $MPI --bogus 2>err.txt; echo $?; grep glint err.txt", out, sizeof out), 0);
+    cr_expect_str_eq(out, "2\nglint-mpi: unknown option --bogus (try 'glint-mpi --help')\n");
+    cr_expect_eq(sh("run 2 $MPI -q -r 8x8 -o nowhere/x.png 2>err.txt; echo $?; grep glint err.txt",
+                    out, sizeof out), 0);
+    cr_expect_str_eq(out, "2\nglint-mpi: nowhere/x.png: folder 'nowhere' does not exist\n");
+    cr_expect_eq(sh("run 3 $MPI -V", out, sizeof out), 0);
+    cr_expect_str_eq(out, "glint-mpi " GLINT_VERSION "\n");
+    cr_expect_eq(sh("ls", out, sizeof out), 0);
+    cr_expect_str_eq(out, "bad.yaml\nerr.txt\n", "no image written");
+}
+
+/* glint-mpi takes every option glint has (and documents it the same way). */
+Test(mpi, every_glint_option_is_a_glint_mpi_option)
+{
+    need_mpi();
+    char out[8192];
+    cr_expect_eq(sh("$GLINT --help | grep -o -- '--[a-z-]*' | sort -u > a && "
+                    "$MPI --help | grep -o -- '--[a-z-]*' | sort -u > b && comm -23 a b",
+                    out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "", "options of glint missing from glint-mpi");
+}
+
+Test(mpi, stats_give_each_process_its_tiles)
+{
+    need_mpi();
+    char out[8192];
+    cr_assert_eq(sh("run 3 $MPI -q -r 64x48 -s 1 -t 1 --stats -o a.png", out, sizeof out), 0, "%s", out);
+    cr_expect(strstr(out, "image:   64x48, 1 samples/pixel, depth 5, 3 processes x 1 thread\n"), "%s", out);
+    cr_expect(strstr(out, "(3072 primary"), "every pixel's ray counted once: %s", out);
+    int tiles = 0, batches = 0;
+    for (int r = 0; r < 3; r++) {
+        char key[32];
+        snprintf(key, sizeof key, "rank %d:  ", r);
+        const char *line = strstr(out, key);
+        cr_assert_not_null(line, "%s", out);
+        int t, b;
+        cr_assert_eq(sscanf(line + strlen(key), "%d tiles in %d batches", &t, &b), 2, "%s", line);
+        tiles += t;
+        batches += b;
+    }
+    cr_expect_eq(tiles, 4 * 3, "the 12 tiles, each rendered once");
+    cr_expect_geq(batches, 3);
+    cr_expect(strstr(out, "all:     efficiency "), "%s", out);
+}
+
+Test(mpi, tile_costs_list_every_tile_once)
+{
+    need_mpi();
+    char out[65536];
+    cr_assert_eq(sh("run 2 $MPI -q -r 100x40 -s 1 -t 2 --tile-costs costs.txt -o a.png && cat costs.txt",
+                    out, sizeof out), 0, "%s", out);
+    cr_expect_eq(strncmp(out, "# glint tile costs: 100x40, 16-pixel tiles, 21 tiles, 1 samples/pixel", 68), 0,
+                 "%s", out);
+    int seen[21] = {0}, lines = 0;
+    for (const char *p = strchr(out, '\n'); p && p[1]; p = strchr(p + 1, '\n')) {
+        if (p[1] == '#')
+            continue;
+        int t, x0, y0, x1, y1, rank;
+        double s;
+        cr_assert_eq(sscanf(p + 1, "%d %d %d %d %d %lf %d", &t, &x0, &y0, &x1, &y1, &s, &rank), 7, "%s", p + 1);
+        cr_assert(t >= 0 && t < 21, "tile %d", t);
+        seen[t]++;
+        lines++;
+        cr_expect(x0 == (t % 7) * 16 && y0 == (t / 7) * 16, "tile %d at (%d, %d)", t, x0, y0);
+        cr_expect(x1 == (x0 + 16 < 100 ? x0 + 16 : 100) && y1 == (y0 + 16 < 40 ? y0 + 16 : 40));
+        cr_expect(s > 0 && s < 60, "tile %d took %g s", t, s);
+        cr_expect(rank == 0 || rank == 1, "tile %d by rank %d", t, rank);
+    }
+    cr_expect_eq(lines, 21);
+    for (int t = 0; t < 21; t++)
+        cr_expect_eq(seen[t], 1, "tile %d listed %d times", t, seen[t]);
+    cr_expect_eq(count(out, "\n"), 21 + 3);
+}
