@@ -224,3 +224,16 @@ clean:
 	rm -rf build glint.png
 
 -include $(DEPS)
+
+# Scaling across processes (bench/README.md, "Across processes"): the
+# scheduler simulator, then bench/mpi measures and simulates.
+$(BUILD)/bench/mpisim: bench/mpisim.c src/dist/sched.c src/dist/sched.h src/dist/job.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ bench/mpisim.c src/dist/sched.c
+
+.PHONY: bench-mpi
+bench-mpi:
+	@scripts/install-deps bench
+	@$(MAKE) --no-print-directory SAN=0 $(BUILD)/glint $(BUILD)/glint-mpi $(BUILD)/bench/mpisim \
+		scenes/textures/flag.png scenes/textures/globe.png
+	BUILD=$(BUILD) bench/mpi

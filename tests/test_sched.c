@@ -16,7 +16,7 @@ static void check_run(int ntiles, int ranks, int lo, int hi)
         cr_assert(n >= lo || first + n == ntiles, "a batch of %d below the smallest (%d) before the end", n, lo);
         cr_assert_leq(n, last, "batches never grow (%d after %d)", n, last);
         int left = ntiles - first;
-        cr_assert(n <= lo || n <= (left + 2 * ranks - 1) / (2 * ranks),
+        cr_assert(n <= lo || n <= (left + SCHED_FACTOR * ranks - 1) / (SCHED_FACTOR * ranks),
                   "a batch of %d takes more than its share of %d tiles left among %d ranks", n, left, ranks);
         next += n;
         last = n;
@@ -41,12 +41,15 @@ Test(sched, every_tile_once_in_shrinking_batches)
 Test(sched, first_batches_are_a_share_of_the_image)
 {
     sched s;
-    sched_init(&s, 8160, 2, 8, 1024);
+    cr_assert_eq(SCHED_FACTOR, 16);
+    sched_init(&s, 100000, 2, 8, 1024);
     int first, n = sched_take(&s, &first);
-    cr_expect_eq(n, 1024, "a quarter of 8160 tiles is held to the largest batch");
-    sched_init(&s, 1000, 4, 8, 1024);
-    cr_expect_eq(sched_take(&s, &first), 125, "1000 / (2 x 4)");
-    cr_expect_eq(sched_take(&s, &first), 110, "875 / 8, rounded up");
+    cr_expect_eq(n, 1024, "100000 / 32 tiles is held to the largest batch");
+    sched_init(&s, 8160, 4, 8, 1024);
+    cr_expect_eq(sched_take(&s, &first), 128, "8160 / (16 x 4)");
+    cr_expect_eq(sched_take(&s, &first), 126, "8032 / 64, rounded up");
+    sched_init(&s, 100, 4, 8, 1024);
+    cr_expect_eq(sched_take(&s, &first), 8, "100 / 64 is below the smallest batch");
     cr_expect_eq(sched_min_batch(1), 4);
     cr_expect_eq(sched_min_batch(8), 32);
 }
