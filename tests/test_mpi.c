@@ -113,10 +113,11 @@ Test(mpi, a_scene_file_with_its_textures_and_srgb)
     char script[2048];
     snprintf(script, sizeof script,
              "S='%s/scenes/textures.yaml' && $GLINT -q -r 120x90 -s 1 \"$S\" -o g.png && "
-             "run 3 $MPI -q -r 120x90 -s 1 -t 1 \"$S\" -o m.png && cmp g.png m.png && echo same",
+             "run 3 $MPI -q -r 120x90 -s 1 -t 1 \"$S\" -o m.png && cmp g.png m.png && echo same && "
+             "run 2 $MPI -q -r 120x90 -s 1 \"$S\" -o - > s.png && cmp g.png s.png && echo same on stdout",
              GLINT_SOURCE_DIR);
     cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
-    cr_expect_str_eq(out, "same\n");
+    cr_expect_str_eq(out, "same\nsame on stdout\n");
 }
 
 /* Every process loads the scene and meets the error; rank 0 alone says it. */

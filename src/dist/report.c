@@ -8,7 +8,9 @@
 
 void dist_bar_begin(dist_bar *b, bool wanted)
 {
-    b->on = wanted && isatty(STDERR_FILENO);
+    /* Under mpirun, rank 0's standard output is a terminal when mpirun's is
+     * but its standard error is a pipe to mpirun, which passes it on. */
+    b->on = wanted && (isatty(STDERR_FILENO) || isatty(STDOUT_FILENO));
     b->last_percent = -1;
     b->start = dist_now();
 }

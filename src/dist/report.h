@@ -8,7 +8,8 @@
 
 #include "job.h"
 
-/* A one-line bar on standard error when it is a terminal, as glint's. */
+/* A one-line bar on standard error when the job runs at a terminal, as
+ * glint's. */
 typedef struct dist_bar {
     bool on;
     int last_percent;
