@@ -413,6 +413,32 @@ GLINT_API glint_rc glint_output_check(const char *path, const glint_write_option
 /* A format from its name or extension ("png", "jpg", "exr"...). */
 GLINT_API glint_rc glint_format_parse(const char *name, glint_format *out, glint_error *err);
 
+/* ---- frame sequences -----------------------------------------------------
+ * The pieces every front end that renders an animation shares (the command
+ * line, the MPI driver): which frames to render, what each is called, and
+ * whether a frame is already done. Frames are numbered from 1. */
+
+/* Parses a frame list against an animation of frames frames: "A:B" (A to B,
+ * both included) or "N" (one frame), with 1 <= A <= B <= frames. */
+GLINT_API glint_rc glint_frames_parse(const char *spec, int frames, int *first, int *last,
+                                      glint_error *err);
+
+/* The output name of frame number frame (>= 0) for pattern. A printf-style
+ * field in the pattern takes the number: %d, %Nd or %0Nd (N from 1 to 9);
+ * "%%" is a literal %. Without a field, "-%04d" goes before the extension
+ * (out.png: out-0001.png; out: out-0001). Refuses (GLINT_ERR_INPUT) a
+ * pattern with two fields or another % conversion, "-" (standard output),
+ * and a result that does not fit in size bytes. */
+GLINT_API glint_rc glint_frame_path(const char *pattern, int frame, char *out, size_t size,
+                                    glint_error *err);
+
+/* Whether path is a complete image: a regular file that decodes whole in
+ * its format (any format glint writes), of width x height pixels (0 for
+ * either: any). Files are written to a temporary name and renamed into
+ * place, so a frame interrupted mid-write is absent, not half there; this
+ * also catches a file cut short by other means. 1 yes, 0 no. */
+GLINT_API int glint_output_complete(const char *path, int width, int height);
+
 #ifdef __cplusplus
 }
 #endif
