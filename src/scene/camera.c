@@ -18,7 +18,8 @@ camera_frame camera_frame_make(const camera *cam, int width, int height)
     switch (cam->projection) {
     case CAMERA_PERSPECTIVE: {
         /* the image window at distance 1: 2 tan(hfov / 2) wide */
-        float half_w = tanf(cam->hfov * (float)(M_PI / 360.0));
+        float fov = cam->hfov < 179.9f ? cam->hfov : 179.9f; /* keyed values may stray */
+        float half_w = tanf(fov * (float)(M_PI / 360.0));
         float half_h = half_w * (float)height / (float)width;
         f.dx = v3_scale(f.u, 2.0f * half_w / (float)width);
         f.dy = v3_scale(f.v, -2.0f * half_h / (float)height);
