@@ -44,8 +44,10 @@ static glint_rc read_track(loader *L, uint32_t map, const char *key, int dim,
     if (rc != GLINT_OK)
         return rc;
     const ynode *s = load_node(L, keys);
-    if (s->kind != YNODE_SEQ || s->count == 0)
+    if (s->kind != YNODE_SEQ)
         return load_expected(L, keys, "a list of keys [[time, value], ...]", "keys");
+    if (s->count == 0)
+        return load_fail(L, keys, "keys needs at least one key [time, value]");
     float *times = malloc(sizeof *times * s->count);
     float *values = malloc(sizeof *values * s->count * (size_t)dim);
     if (!times || !values)
