@@ -8,8 +8,9 @@
  * at the node they are about.
  *
  * One file per part of the format: keys.c (reading keys and values, with
- * the messages), paths.c (paths and files named in a scene), settings.c
- * (image and camera), lights.c, materials.c (textures and materials),
+ * the messages), keyed.c (keyed values, which animate what they are read
+ * into), paths.c (paths and files named in a scene), settings.c (image,
+ * camera and animation), lights.c, materials.c (textures and materials),
  * transform.c, objects.c (shapes, meshes, objects), load.c (files,
  * includes, the second pass). Each section builds the scene only through
  * scene_add_* and the scene's setters.
