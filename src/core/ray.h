@@ -6,7 +6,9 @@
  * starts at the hit point pushed along the geometric normal, to the side the
  * ray departs into, by ray_epsilon(p) — a distance relative to the point's
  * magnitude so that float rounding in the hit point cannot put the origin
- * back behind the surface. tmin is then 0. */
+ * back behind the surface. tmin is then 0. A shadow ray that walks on
+ * through a transmitting surface it crossed keeps its origin and moves tmin
+ * past the crossing by the same ray_epsilon distance along the ray. */
 #ifndef GLINT_CORE_RAY_H
 #define GLINT_CORE_RAY_H
 
