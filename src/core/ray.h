@@ -12,6 +12,7 @@
 #ifndef GLINT_CORE_RAY_H
 #define GLINT_CORE_RAY_H
 
+#include <stdbool.h>
 #include "vec3.h"
 
 typedef struct ray {
@@ -22,6 +23,9 @@ typedef struct ray {
 #define RAY_EPS_REL 1e-4f
 
 static inline vec3 ray_at(const ray *r, float t) { return v3_madd(r->o, r->d, t); }
+
+/* Whether t lies in the ray's open interval (tmin, tmax); false for NaN. */
+static inline bool ray_in_range(const ray *r, float t) { return t > r->tmin && t < r->tmax; }
 
 static inline float ray_epsilon(vec3 p) { return RAY_EPS_REL * (1.0f + v3_max_abs(p)); }
 
