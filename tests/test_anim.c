@@ -201,3 +201,23 @@ Test(anim, animation_block_and_keyed_value_errors)
                  "[{scale: {keys: [[0, 1], [1, 0]]}}]}]\n",
                  "scene.yaml:1:96: scale must not be 0 (got 0)");
 }
+
+/* Opening the shutter through the API makes the keyed object move during
+ * the frame, and closing it stops it. */
+Test(anim, shutter_set_through_the_api)
+{
+    glint_scene *s = load_text(animated);
+    glint_error err = {0};
+    glint_camera cam;
+    cr_assert_eq(glint_scene_camera(s, &cam, &err), GLINT_OK);
+    cr_expect(!s->objects[0].moving);
+    cam.shutter = 0.5;
+    cr_assert_eq(glint_scene_set_camera(s, &cam, &err), GLINT_OK, "%s", err.msg);
+    cr_expect(s->objects[0].moving, "the shutter is open");
+    ASSERT_NEAR(s->shutter_seconds, 0.5 / 24, 1e-7);
+    cr_expect(s->built, "the scene is built again");
+    cam.shutter = 0;
+    cr_assert_eq(glint_scene_set_camera(s, &cam, &err), GLINT_OK, "%s", err.msg);
+    cr_expect(!s->objects[0].moving, "the shutter is closed");
+    glint_scene_free(s);
+}

@@ -161,7 +161,7 @@ glint_rc glint_scene_set_camera(glint_scene *s, const glint_camera *in, glint_er
     if (v3_is_zero(v3_cross(view, c.up)))
         return api_bad(err, fn, "camera up must not be zero nor parallel to the view direction");
     scene_set_camera(s, &c);
-    return GLINT_OK;
+    return scene_camera_changed(s, err);
 }
 
 /* ---- animation -------------------------------------------------------------- */

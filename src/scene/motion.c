@@ -99,13 +99,28 @@ camera scene_camera_at(const scene *s, float t)
     return c;
 }
 
+/* The shutter interval from the camera's shutter and the frame rate. */
+static void shutter_interval(scene *s)
+{
+    s->shutter_seconds = s->camera.shutter > 0.0f ? s->camera.shutter / s->anim.fps : 0.0f;
+    s->camera_moves = s->shutter_seconds > 0.0f && anim_drives(&s->anim, ANIM_CAMERA);
+}
+
+glint_rc scene_camera_changed(scene *s, glint_error *err)
+{
+    float before = s->shutter_seconds;
+    shutter_interval(s);
+    if (s->shutter_seconds == before || s->anim.nmotions == 0 || !s->built)
+        return GLINT_OK;
+    return scene_build(s, err); /* objects start or stop moving */
+}
+
 glint_rc scene_set_time(scene *s, float t, glint_error *err)
 {
     const anim *a = &s->anim;
     s->time = t;
     s->camera = scene_camera_at(s, t);
-    s->shutter_seconds = s->camera.shutter > 0.0f ? s->camera.shutter / a->fps : 0.0f;
-    s->camera_moves = s->shutter_seconds > 0.0f && anim_drives(a, ANIM_CAMERA);
+    shutter_interval(s);
     for (int i = 0; i < a->nchannels; i++) {
         const anim_channel *c = &a->channels[i];
         if (c->target == ANIM_LIGHT && c->index < s->nlights)

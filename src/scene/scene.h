@@ -108,6 +108,10 @@ glint_rc scene_build(scene *s, glint_error *err);
  * [t, t + camera.shutter / fps], and the scene is built again. Errors: a
  * transform that is not invertible at t. */
 glint_rc scene_set_time(scene *s, float t, glint_error *err);
+/* After scene_set_camera: the shutter interval follows the camera's
+ * shutter, and a built scene whose objects start or stop moving is built
+ * again. */
+glint_rc scene_camera_changed(scene *s, glint_error *err);
 /* The camera at time t (its animated values evaluated at t). */
 camera scene_camera_at(const scene *s, float t);
 /* Bounds of object i over the shutter interval (scene_build's rule). */
