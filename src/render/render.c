@@ -377,7 +377,8 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     j->film = film;
     j->frame = camera_frame_make(&sc->camera, settings->width, settings->height);
     image_decode_table(settings->transfer, j->decode);
-    j->smp = sampler_make(settings);
+    j->smp = sampler_make(settings, sc->camera.aperture > 0.0f || sc->camera_moves,
+                          sc->shutter_seconds > 0.0f);
     j->lattice = 2 << settings->adaptive_depth;
     job_plan(j);
     atomic_init(&j->next_item, 0);

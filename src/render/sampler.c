@@ -51,10 +51,10 @@ static uint32_t permute(uint32_t i, uint32_t l, uint32_t seed)
     return i;
 }
 
-sampler sampler_make(const glint_settings *s)
+sampler sampler_make(const glint_settings *s, bool lens, bool motion)
 {
     int n = settings_grid_side(s->samples);
-    return (sampler){s->sampler, n > 0 ? n : 1};
+    return (sampler){s->sampler, n > 0 ? n : 1, lens, motion};
 }
 
 int sampler_count(const sampler *s) { return s->n * s->n; }
@@ -79,11 +79,17 @@ pixel_sample sampler_get(const sampler *s, int x, int y, int k)
     p.fx = ((float)a + jx) * inv_n;
     p.fy = ((float)b + jy) * inv_n;
     uint32_t count = (uint32_t)(n * n);
-    uint32_t lens = permute(uk, count, hash4(ux, uy, 0, DIM_LENS_PERM));
-    uint32_t slot = permute(uk, count, hash4(ux, uy, 0, DIM_TIME_PERM));
-    p.lu = ((float)(lens % (uint32_t)n) + unit(hash4(ux, uy, uk, DIM_LENS_U))) * inv_n;
-    p.lv = ((float)(lens / (uint32_t)n) + unit(hash4(ux, uy, uk, DIM_LENS_V))) * inv_n;
-    p.time = ((float)slot + unit(hash4(ux, uy, uk, DIM_TIME))) / (float)count;
+    p.lu = p.lv = 0.5f;
+    p.time = 0.0f;
+    if (s->lens) {
+        uint32_t lens = permute(uk, count, hash4(ux, uy, 0, DIM_LENS_PERM));
+        p.lu = ((float)(lens % (uint32_t)n) + unit(hash4(ux, uy, uk, DIM_LENS_U))) * inv_n;
+        p.lv = ((float)(lens / (uint32_t)n) + unit(hash4(ux, uy, uk, DIM_LENS_V))) * inv_n;
+    }
+    if (s->motion) {
+        uint32_t slot = permute(uk, count, hash4(ux, uy, 0, DIM_TIME_PERM));
+        p.time = ((float)slot + unit(hash4(ux, uy, uk, DIM_TIME))) / (float)count;
+    }
     /* float rounding must not reach 1 */
     p.fx = p.fx < 1.0f ? p.fx : 0x1.fffffep-1f;
     p.fy = p.fy < 1.0f ? p.fy : 0x1.fffffep-1f;

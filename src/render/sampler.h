@@ -19,6 +19,7 @@
 #ifndef GLINT_RENDER_SAMPLER_H
 #define GLINT_RENDER_SAMPLER_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include "glint.h"
 
@@ -30,11 +31,14 @@ typedef struct pixel_sample {
 
 typedef struct sampler {
     glint_sampler kind;
-    int n; /* grid and jitter: N, the side of the N x N grid */
+    int n;       /* grid and jitter: N, the side of the N x N grid */
+    bool lens;   /* lens positions are used (a thin lens); else they are 0.5 */
+    bool motion; /* times are used (the shutter is open); else they are 0 */
 } sampler;
 
-/* For settings already checked. */
-sampler sampler_make(const glint_settings *s);
+/* For settings already checked; lens and motion say which of the lens
+ * position and the time the camera uses (the others are skipped). */
+sampler sampler_make(const glint_settings *s, bool lens, bool motion);
 /* Samples per pixel of grid and jitter: N * N. */
 int sampler_count(const sampler *s);
 /* Sample k (0 <= k < sampler_count) of pixel (x, y), for grid and jitter. */
