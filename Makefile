@@ -132,9 +132,12 @@ $(BUILD)/glint-mpi: $(DIST_OBJ) $(BUILD)/libglint.a
 
 $(DIST_OBJ): CPPFLAGS += $(MPI_CFLAGS)
 
-# The tests take the scheduler of glint-mpi too (it has no MPI in it).
+# The library's allocations pass through tests/test_alloc.c, which makes
+# each fail in turn. The tests take the scheduler of glint-mpi too (it has
+# no MPI in it).
+TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
 $(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
 

@@ -74,9 +74,9 @@ static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, GLINT_SAMPLER_GRID, 0.05, 3, 0};
     OK(glint_scene_set_settings(s, &st, &err));
-    glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
     OK(glint_scene_set_camera(s, &cam, &err));
     OK(glint_scene_set_background(s, (double[3]){0.1, 0.2, 0.3}, &err));
     OK(glint_scene_set_ambient(s, (double[3]){0.25, 0.2, 0.2}, &err));
@@ -373,7 +373,7 @@ Test(api, camera_round_trip_and_refusals)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_camera c = {{1, 2, 3}, {0, 0.5, -4}, {0, 1, 0}, 35.5, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    glint_camera c = {{1, 2, 3}, {0, 0.5, -4}, {0, 1, 0}, 35.5, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
     OK(glint_scene_set_camera(s, &c, &err));
     glint_camera got;
     OK(glint_scene_camera(s, &got, &err));
@@ -386,15 +386,18 @@ Test(api, camera_round_trip_and_refusals)
     cr_expect_float_eq(got.focus_distance, sqrt(1 + 2.25 + 49), 1e-5);
 
     struct { const char *what, *words; glint_camera cam; } bad[] = {
-        {"eye == look_at", "differ", {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 40, 0, 0, 0}},
-        {"fov 0", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 0, 0, 0, 0}},
-        {"fov 180", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180, 0, 0, 0}},
-        {"fov NaN", "finite", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, NAN, 0, 0, 0}},
-        {"up parallel", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 2}, 40, 0, 0, 0}},
-        {"up zero", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 0}, 40, 0, 0, 0}},
-        {"aperture", "aperture", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 1, 0, 0}},
-        {"focus", "focus", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, -1, 0}},
-        {"projection", "projection", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 7}},
+        {"eye == look_at", "differ", {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 40, 0, 0, 0, 0, 0}},
+        {"fov 0", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 0, 0, 0, 0, 0, 0}},
+        {"fov 180", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180, 0, 0, 0, 0, 0}},
+        {"fov NaN", "finite", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, NAN, 0, 0, 0, 0, 0}},
+        {"up parallel", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 2}, 40, 0, 0, 0, 0, 0}},
+        {"up zero", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 0}, 40, 0, 0, 0, 0, 0}},
+        {"aperture", "aperture", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, -1, 0, 0, 0, 0}},
+        {"shutter", "shutter", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 0, 0, 1.5}},
+        {"width", "width", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 1, 0, 0}},
+        {"fisheye fov", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 361, 0, 0, 3, 0, 0}},
+        {"focus", "focus", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, -1, 0, 0, 0}},
+        {"projection", "projection", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 7, 0, 0}},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err = (glint_error){0};

@@ -147,7 +147,7 @@ static void expect_bad(glint_settings st, const char *needle)
 
 Test(render, settings_are_checked)
 {
-    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE, GLINT_SAMPLER_GRID, 0.05, 3, 0};
     glint_error err = {0};
     cr_expect_eq(glint_settings_check(&ok, &err), GLINT_OK);
     glint_settings s = ok;

@@ -28,14 +28,21 @@ static const char usage[] =
     "  -d, --depth N          reflection/refraction recursion limit\n"
     "  -t, --threads N        render threads (default: all cores)\n"
     "      --transfer T       none (default) or srgb: how film values become pixels\n"
-    "      --stats            print rays, time and Mrays/s to stderr\n"
+    "      --frames A:B       render frames A to B of an animated scene; the output\n"
+    "                         name takes the number in a %d field (out-%04d.png),\n"
+    "                         or gets -%04d before its extension\n"
+    "      --frame N          render frame N only (named as with --frames)\n"
+    "      --resume           skip frames (or an image) whose output file is already\n"
+    "                         a complete image of the right size\n"
+    "      --stats            print rays, samples per pixel, time and Mrays/s to stderr\n"
     "  -q, --quiet            no progress bar\n"
     "  -h, --help             show this help\n"
     "  -V, --version          show the version\n"
     "\n"
     "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input.\n";
 
-enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS };
+enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS, OPT_FRAMES, OPT_FRAME,
+       OPT_RESUME };
 
 static const struct option long_options[] = {
     {"output", required_argument, NULL, 'o'},
@@ -47,6 +54,9 @@ static const struct option long_options[] = {
     {"format", required_argument, NULL, OPT_FORMAT},
     {"quality", required_argument, NULL, OPT_QUALITY},
     {"bits", required_argument, NULL, OPT_BITS},
+    {"frames", required_argument, NULL, OPT_FRAMES},
+    {"frame", required_argument, NULL, OPT_FRAME},
+    {"resume", no_argument, NULL, OPT_RESUME},
     {"stats", no_argument, NULL, OPT_STATS},
     {"quiet", no_argument, NULL, 'q'},
     {"help", no_argument, NULL, 'h'},
@@ -59,7 +69,8 @@ struct cli {
     const char *scene_path;
     int width, height, samples, depth, threads; /* -1: not given */
     int transfer;
-    bool stats, quiet;
+    bool stats, quiet, resume;
+    const char *frames; /* --frames or --frame as given, or NULL: a single image */
     glint_write_options write; /* format, quality, bits from the command line */
 };
 
@@ -111,10 +122,38 @@ static int flush_stdout(void)
     return 0;
 }
 
+/* --format, --quality, --bits; false after printing why not. */
+static bool output_option(struct cli *c, int opt, const char *arg)
+{
+    glint_error err;
+    if (opt == OPT_FORMAT && glint_format_parse(arg, &c->write.format, &err) != GLINT_OK)
+        return usage_error("--format: %s", err.msg) == 0;
+    if (opt == OPT_QUALITY && !parse_int(arg, 1, 100, &c->write.quality))
+        return usage_error("--quality: expected a whole number from 1 to 100, got '%s'", arg) == 0;
+    if (opt == OPT_BITS && !parse_int(arg, 8, 32, &c->write.bits))
+        return usage_error("--bits: expected 8, 16 or 32, got '%s'", arg) == 0;
+    return true;
+}
+
+/* --frames A:B or --frame N; false after printing why not. */
+static bool set_frames(struct cli *c, bool one, const char *arg)
+{
+    if (c->frames) {
+        usage_error("--frames and --frame given more than once");
+        return false;
+    }
+    if (one && strchr(arg, ':')) {
+        usage_error("--frame: expected one frame number, got '%s'", arg);
+        return false;
+    }
+    c->frames = arg;
+    return true;
+}
+
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
-    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, {0}};
+    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, false, NULL, {0}};
     opterr = 0;
     int opt;
     while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:qhV", long_options, NULL)) != -1) {
@@ -146,20 +185,19 @@ static int parse_args(int argc, char **argv, struct cli *c)
             else
                 return usage_error("--transfer: expected none or srgb, got '%s'", optarg);
             break;
-        case OPT_FORMAT: {
-            glint_error err;
-            if (glint_format_parse(optarg, &c->write.format, &err) != GLINT_OK)
-                return usage_error("--format: %s", err.msg);
-            break;
-        }
+        case OPT_FORMAT:
         case OPT_QUALITY:
-            if (!parse_int(optarg, 1, 100, &c->write.quality))
-                return usage_error("--quality: expected a whole number from 1 to 100, got '%s'",
-                                   optarg);
-            break;
         case OPT_BITS:
-            if (!parse_int(optarg, 8, 32, &c->write.bits))
-                return usage_error("--bits: expected 8, 16 or 32, got '%s'", optarg);
+            if (!output_option(c, opt, optarg))
+                return 2;
+            break;
+        case OPT_FRAMES:
+        case OPT_FRAME:
+            if (!set_frames(c, opt == OPT_FRAME, optarg))
+                return 2;
+            break;
+        case OPT_RESUME:
+            c->resume = true;
             break;
         case OPT_STATS:
             c->stats = true;
@@ -196,6 +234,154 @@ static void on_progress(void *user, const glint_progress *p)
     progress_update(user, p->percent);
 }
 
+/* The scene's settings with the command line's overrides, checked. */
+static glint_rc cli_settings(const struct cli *c, const glint_scene *scene, glint_settings *s,
+                             glint_error *err)
+{
+    glint_rc rc = glint_scene_settings(scene, s, err);
+    if (rc != GLINT_OK)
+        return rc;
+    if (c->width > 0) {
+        s->width = c->width;
+        s->height = c->height;
+    }
+    if (c->samples > 0)
+        s->samples = c->samples;
+    if (c->depth >= 0)
+        s->max_depth = c->depth;
+    if (c->threads > 0)
+        s->threads = c->threads;
+    if (c->transfer >= 0)
+        s->transfer = (glint_transfer)c->transfer;
+    return glint_settings_check(s, err);
+}
+
+/* What a run adds up, for --stats. */
+typedef struct totals {
+    glint_stats stats;
+    int images;
+} totals;
+
+/* Renders the scene as it stands into path (unless --resume finds it
+ * complete) and adds to the totals. */
+static glint_rc render_to(const struct cli *c, glint_scene *scene, const glint_settings *s,
+                          const char *path, progress *bar, totals *t, glint_error *err)
+{
+    if (c->resume && glint_output_complete(path, s->width, s->height))
+        return GLINT_OK;
+    glint_callbacks cb = {0};
+    if (bar) {
+        cb.progress = on_progress;
+        cb.user = bar;
+    }
+    glint_film film = {0};
+    glint_stats st = {0};
+    glint_rc rc = glint_render(scene, s, &cb, &film, &st, err);
+    glint_write_options w = c->write;
+    w.transfer = s->transfer;
+    if (rc == GLINT_OK)
+        rc = glint_film_write(&film, path, &w, err);
+    glint_film_free(&film);
+    t->stats.primary_rays += st.primary_rays;
+    t->stats.secondary_rays += st.secondary_rays;
+    t->stats.shadow_rays += st.shadow_rays;
+    t->stats.seconds += st.seconds;
+    t->images += rc == GLINT_OK;
+    return rc;
+}
+
+/* Frames first..last, each at its time, to its own file. Frames --resume
+ * will skip are left out of the progress bar's count. */
+static glint_rc render_frames(const struct cli *c, glint_scene *scene, const glint_settings *s,
+                              int first, int last, progress *bar, totals *t, glint_error *err)
+{
+    char path[4096];
+    int todo = 0, k = 0;
+    for (int f = first; f <= last; f++) {
+        glint_rc rc = glint_frame_path(c->output, f, path, sizeof path, err);
+        if (rc != GLINT_OK)
+            return rc;
+        todo += !(c->resume && glint_output_complete(path, s->width, s->height));
+    }
+    for (int f = first; f <= last; f++) {
+        glint_rc rc = glint_frame_path(c->output, f, path, sizeof path, err);
+        if (rc != GLINT_OK)
+            return rc;
+        if (c->resume && glint_output_complete(path, s->width, s->height))
+            continue;
+        if (bar)
+            progress_frame(bar, ++k, todo);
+        rc = glint_scene_set_frame(scene, f, err);
+        if (rc == GLINT_OK)
+            rc = render_to(c, scene, s, path, bar, t, err);
+        if (rc != GLINT_OK)
+            return rc;
+    }
+    return GLINT_OK;
+}
+
+static void print_stats(const glint_settings *s, const totals *t)
+{
+    const glint_stats *st = &t->stats;
+    uint64_t total = st->primary_rays + st->secondary_rays + st->shadow_rays;
+    int threads = s->threads > 0 ? s->threads : glint_default_threads();
+    double pixels = (double)s->width * (double)s->height * (t->images > 0 ? t->images : 1);
+    char how[96];
+    if (s->sampler == GLINT_SAMPLER_ADAPTIVE)
+        snprintf(how, sizeof how, "adaptive sampling (threshold %g, max_depth %d)", s->threshold,
+                 s->adaptive_depth);
+    else
+        snprintf(how, sizeof how, "%d samples/pixel%s", s->samples,
+                 s->sampler == GLINT_SAMPLER_JITTER ? " (jittered)" : "");
+    fprintf(stderr,
+            "image:   %dx%d, %s, depth %d, %d thread%s%s\n"
+            "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
+            "samples: %.2f per pixel on average\n"
+            "time:    %.3f s\n"
+            "speed:   %.2f Mrays/s\n",
+            s->width, s->height, how, s->max_depth, threads,
+            threads == 1 ? "" : "s", t->images > 1 ? ", per frame" : "",
+            (unsigned long long)total, (unsigned long long)st->primary_rays,
+            (unsigned long long)st->secondary_rays, (unsigned long long)st->shadow_rays,
+            (double)st->primary_rays / pixels, st->seconds,
+            st->seconds > 0 ? (double)total / st->seconds * 1e-6 : 0.0);
+    if (t->images > 1)
+        fprintf(stderr, "frames:  %d rendered\n", t->images);
+}
+
+/* Loads the scene and checks the output name (the first frame's, for a
+ * sequence) before anything is rendered; *first and *last get the frames
+ * (0 and 0: a single image). */
+static glint_rc prepare(const struct cli *c, glint_scene **scene, glint_settings *s,
+                        int *first, int *last, glint_error *err)
+{
+    char path[4096];
+    *first = *last = 0;
+    glint_rc rc = GLINT_OK;
+    if (c->frames)
+        rc = glint_frame_path(c->output, 1, path, sizeof path, err);
+    if (rc == GLINT_OK)
+        rc = glint_output_check(c->frames ? path : c->output, &c->write, err);
+    if (rc == GLINT_OK)
+        rc = c->scene_path ? glint_scene_load(c->scene_path, scene, err)
+                           : glint_scene_builtin(scene, err);
+    if (rc == GLINT_OK)
+        rc = cli_settings(c, *scene, s, err);
+    glint_animation anim;
+    if (rc == GLINT_OK && c->frames)
+        rc = glint_scene_animation(*scene, &anim, err);
+    if (rc == GLINT_OK && c->frames) {
+        rc = glint_frames_parse(c->frames, anim.frames, first, last, err);
+        if (rc != GLINT_OK) {
+            char msg[900];
+            snprintf(msg, sizeof msg, "%.899s", err->msg);
+            snprintf(err->msg, sizeof err->msg, "--frame%s: %.900s",
+                     strchr(c->frames, ':') ? "s" : "", msg);
+        }
+    }
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     struct cli c;
@@ -205,78 +391,32 @@ int main(int argc, char **argv)
 
     glint_error err = {0};
     glint_scene *scene = NULL;
-    glint_film film = {0};
-    glint_stats stats = {0};
-    glint_rc rc;
-
-    /* a bad output name fails now, not after the render */
-    rc = glint_output_check(c.output, &c.write, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    rc = c.scene_path ? glint_scene_load(c.scene_path, &scene, &err)
-                      : glint_scene_builtin(&scene, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
     glint_settings s;
-    rc = glint_scene_settings(scene, &s, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-    if (c.width > 0) {
-        s.width = c.width;
-        s.height = c.height;
-    }
-    if (c.samples > 0)
-        s.samples = c.samples;
-    if (c.depth >= 0)
-        s.max_depth = c.depth;
-    if (c.threads > 0)
-        s.threads = c.threads;
-    if (c.transfer >= 0)
-        s.transfer = (glint_transfer)c.transfer;
-    rc = glint_settings_check(&s, &err);
+    totals t = {{0}, 0};
+    int first, last;
+    glint_rc rc = prepare(&c, &scene, &s, &first, &last, &err);
     if (rc != GLINT_OK)
         goto fail;
 
     progress bar;
-    glint_callbacks cb = {0};
     bool show = !c.quiet && isatty(STDERR_FILENO);
-    if (show) {
+    if (show)
         progress_begin(&bar, stderr);
-        cb.progress = on_progress;
-        cb.user = &bar;
-    }
-    rc = glint_render(scene, &s, &cb, &film, &stats, &err);
+    if (first > 0)
+        rc = render_frames(&c, scene, &s, first, last, show ? &bar : NULL, &t, &err);
+    else
+        rc = render_to(&c, scene, &s, c.output, show ? &bar : NULL, &t, &err);
     if (show)
         progress_end(&bar);
     if (rc != GLINT_OK)
         goto fail;
-    c.write.transfer = s.transfer;
-    rc = glint_film_write(&film, c.output, &c.write, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    if (c.stats) {
-        uint64_t total = stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
-        int threads = s.threads > 0 ? s.threads : glint_default_threads();
-        fprintf(stderr,
-                "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
-                "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
-                "time:    %.3f s\n"
-                "speed:   %.2f Mrays/s\n",
-                s.width, s.height, s.samples, s.max_depth, threads, threads == 1 ? "" : "s",
-                (unsigned long long)total, (unsigned long long)stats.primary_rays,
-                (unsigned long long)stats.secondary_rays, (unsigned long long)stats.shadow_rays,
-                stats.seconds, stats.seconds > 0 ? (double)total / stats.seconds * 1e-6 : 0.0);
-    }
-    glint_film_free(&film);
+    if (c.stats)
+        print_stats(&s, &t);
     glint_scene_free(scene);
     return 0;
 
 fail:
     fprintf(stderr, "glint: %s\n", err.msg);
-    glint_film_free(&film);
     glint_scene_free(scene);
     return glint_exit_code(rc);
 }

@@ -1,5 +1,8 @@
 /* The lights: section. */
 #include "loader.h"
+
+#include <math.h>
+#include <stddef.h>
 /* ---- lights, image, camera -------------------------------------------- */
 
 static const char *const light_types[] = {"point", NULL};
@@ -18,11 +21,17 @@ glint_rc load_light(loader *L, uint32_t map)
         rc = load_check_keys(L, map, point_light_keys, "in point light");
     light l = {LIGHT_POINT, v3s(0.0f), v3s(1.0f)};
     if (rc == GLINT_OK)
-        rc = load_need_vec3(L, map, "position", "point light", &l.position);
+        rc = load_need(L, map, "position", "point light", &v);
+    if (rc == GLINT_OK)
+        rc = load_anim_value(L, v, "position", 3, load_read_vec3, &l.position.x,
+                             (int)(offsetof(light, position) / sizeof(float)), -INFINITY,
+                             INFINITY);
     if (rc == GLINT_OK && (v = load_get(L, map, "color")) != YDOC_NONE)
-        rc = load_color(L, v, "color", &l.color);
+        rc = load_anim_value(L, v, "color", 3, load_read_color, &l.color.x,
+                             (int)(offsetof(light, color) / sizeof(float)), 0.0f, INFINITY);
     if (rc != GLINT_OK)
         return rc;
-    return scene_add_light(L->s, &l) < 0 ? err_nomem(L->err) : GLINT_OK;
+    int index = scene_add_light(L->s, &l);
+    return index < 0 ? err_nomem(L->err) : load_anim_bind(L, ANIM_LIGHT, index);
 }
 

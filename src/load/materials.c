@@ -2,6 +2,8 @@
  * written inline where a name is expected. */
 #include "loader.h"
 
+#include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -169,7 +171,8 @@ glint_rc load_material(loader *L, uint32_t map, int *index)
     uint32_t v, tex = YDOC_NONE;
     glint_rc rc = load_check_keys(L, map, material_keys, "in material");
     if (rc == GLINT_OK && (v = load_get(L, map, "color")) != YDOC_NONE)
-        rc = load_color(L, v, "color", &m.color);
+        rc = load_anim_value(L, v, "color", 3, load_read_color, &m.color.x,
+                             (int)(offsetof(material, color) / sizeof(float)), 0.0f, INFINITY);
     if (rc == GLINT_OK && (v = load_get(L, map, "ambient")) != YDOC_NONE)
         rc = load_nonneg(L, v, "ambient", &m.ambient);
     if (rc == GLINT_OK && (v = load_get(L, map, "diffuse")) != YDOC_NONE)
@@ -185,7 +188,8 @@ glint_rc load_material(loader *L, uint32_t map, int *index)
     if (rc == GLINT_OK && (v = load_get(L, map, "ior")) != YDOC_NONE)
         rc = load_positive(L, v, "ior", &m.ior);
     if (rc == GLINT_OK && (v = load_get(L, map, "tint")) != YDOC_NONE)
-        rc = load_color(L, v, "tint", &m.tint);
+        rc = load_anim_value(L, v, "tint", 3, load_read_color, &m.tint.x,
+                             (int)(offsetof(material, tint) / sizeof(float)), 0.0f, INFINITY);
     if (rc == GLINT_OK && (v = load_get(L, map, "texture")) != YDOC_NONE) {
         ynode_kind k = (ynode_kind)load_node(L, v)->kind;
         if (k == YNODE_MAP)
@@ -200,6 +204,9 @@ glint_rc load_material(loader *L, uint32_t map, int *index)
     *index = scene_add_material(L->s, &m);
     if (*index < 0)
         return err_nomem(L->err);
+    rc = load_anim_bind(L, ANIM_MATERIAL, *index);
+    if (rc != GLINT_OK)
+        return rc;
     if (tex != YDOC_NONE)
         return load_add_ref(L, &L->texture_refs, &L->ntexture_refs, &L->cap_texture_refs, *index, tex);
     return GLINT_OK;

@@ -12,6 +12,7 @@
 #define SETTINGS_MAX_SAMPLES 1024      /* 32 x 32 */
 #define SETTINGS_MAX_DEPTH 64
 #define SETTINGS_MAX_THREADS 1024
+#define SETTINGS_MAX_ADAPTIVE_DEPTH 5 /* 32 x 32 cells, as many as SETTINGS_MAX_SAMPLES */
 
 /* GLINT_OK when every field is in range; otherwise GLINT_ERR_INPUT and a
  * message naming the field, its range and the value given. */

@@ -13,6 +13,7 @@ vec3 whitted_shadow(trace_ctx *ctx, vec3 p, vec3 ng, vec3 to)
     const scene *s = ctx->scene;
     vec3 o = ray_offset(p, ng, v3_sub(to, p));
     ray sr = ray_make(o, v3_sub(to, o), 1.0f);
+    sr.time = ctx->time;
     ctx->shadow_rays++;
     if (scene_occluded_opaque(s, &sr))
         return v3s(0.0f);
@@ -102,14 +103,23 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
         if (kr > 0.0f) {
             vec3 rd = v3_reflect(d, n);
             ray rr = ray_make(ray_offset(sf.p, ng, rd), rd, INFINITY);
+            rr.time = r->time;
             ctx->secondary_rays++;
             c = v3_madd(c, whitted_trace(ctx, &rr, depth + 1), kr);
         }
         if (kt > 0.0f) {
             ray tr = ray_make(ray_offset(sf.p, ng, tdir), tdir, INFINITY);
+            tr.time = r->time;
             ctx->secondary_rays++;
             c = v3_add(c, v3_scale(v3_mul(whitted_trace(ctx, &tr, depth + 1), m->tint), kt));
         }
     }
     return c;
+}
+
+vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage)
+{
+    scene_hit hit;
+    *coverage = scene_intersect(ctx->scene, r, &hit) ? 1.0f : 0.0f;
+    return *coverage > 0.0f ? whitted_trace(ctx, r, 0) : ctx->scene->background;
 }

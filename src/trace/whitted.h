@@ -16,11 +16,16 @@ typedef struct trace_ctx {
     const float *decode; /* 256 entries: texture byte -> shading value */
     int max_depth;
     uint64_t secondary_rays, shadow_rays;
+    float time; /* the camera ray's time, which every ray it leads to shares */
 } trace_ctx;
 
 /* Radiance arriving along r; depth counts the bounces so far (0 for a
  * primary ray). */
 vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth);
+
+/* whitted_trace for a camera ray, also saying whether it hit something:
+ * *coverage 1 when it did, 0 when it saw the background. */
+vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage);
 
 /* Fraction of light that reaches p from the point `to` (a light's
  * position): 0 behind an opaque object, tinted through transmitting ones.
