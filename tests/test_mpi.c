@@ -48,8 +48,8 @@ static void need_mpi(void)
 }
 
 /* Runs a shell script in the test's folder with $GLINT (glint), $MPI
- * (glint-mpi) and run K ARGS... (mpirun with K processes, as root too,
- * more processes than cores allowed). Returns the exit code; out gets
+ * (glint-mpi), $MPIRUN (mpirun with its options: as root too, more
+ * processes than cores allowed) and run K ARGS... ($MPIRUN -n K ARGS...). Returns the exit code; out gets
  * standard output and error. leaks: whether the sanitised build looks for
  * leaks, Open MPI's own set aside (tests/lsan-mpi.supp, which needs full
  * stacks: slower). */
@@ -62,7 +62,8 @@ static int sh_leaks(const char *script, char *out, size_t outlen, bool leaks)
     snprintf(cmd, sizeof cmd,
              "cd '%s' && export LSAN_OPTIONS=suppressions='%s/tests/lsan-mpi.supp':print_suppressions=0 "
              "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}%s\" "
-             "&& GLINT='%s' && run() { mpirun %s --oversubscribe -n \"$@\"; } && MPI='%s' && { %s; } 2>&1",
+             "&& GLINT='%s' && MPIRUN='mpirun %s --oversubscribe' && run() { $MPIRUN -n \"$@\"; } "
+             "&& MPI='%s' && { %s; } 2>&1",
              dir, GLINT_SOURCE_DIR, leaks ? "fast_unwind_on_malloc=0" : "detect_leaks=0", glint, root,
              mpi, script);
     FILE *p = popen(cmd, "r");
@@ -144,12 +145,13 @@ Test(mpi, bad_input_is_reported_once)
     cr_expect_str_eq(out, "bad.yaml\nerr.txt\n", "no image written");
 }
 
-/* glint-mpi takes every option glint has (and documents it the same way). */
+/* glint-mpi takes every option glint has but the preview window's. */
 Test(mpi, every_glint_option_is_a_glint_mpi_option)
 {
     need_mpi();
     char out[8192];
-    cr_expect_eq(sh("$GLINT --help | grep -o -- '--[a-z-]*' | sort -u > a && "
+    /* the preview window is one machine's: glint-mpi has none */
+    cr_expect_eq(sh("$GLINT --help | grep -o -- '--[a-z-]*' | grep -v '^--preview' | sort -u > a && "
                     "$MPI --help | grep -o -- '--[a-z-]*' | sort -u > b && comm -23 a b",
                     out, sizeof out), 0, "%s", out);
     cr_expect_str_eq(out, "", "options of glint missing from glint-mpi");
@@ -217,4 +219,67 @@ Test(mpi, leak_check)
                           "2>err.txt; echo $?; grep -c '^rank' err.txt; grep -c Sanitizer err.txt",
                           out, sizeof out, true), 1, "%s", out);
     cr_expect_str_eq(out, "0\n2\n0\n", "exit 0, two ranks' lines, nothing from the sanitisers");
+}
+
+/* An animation: whole frames to each process when there are as many frames
+ * as processes, tiles of each frame when there are fewer. */
+Test(mpi, frames_are_glints_frames)
+{
+    need_mpi();
+    char out[8192], script[2048];
+    snprintf(script, sizeof script,
+             "S='%s/scenes/orbit.yaml' && O='-q -r 48x36 -s 4' && "
+             "$GLINT $O \"$S\" --frames 1:5 -o g-%%d.png && "
+             "run 3 $MPI $O \"$S\" --frames 1:5 -o w-%%d.png && "
+             "run 3 $MPI $O \"$S\" --frames 2:3 -o t-%%d.png && "
+             "for i in 1 2 3 4 5; do cmp g-$i.png w-$i.png || echo whole $i differs; done && "
+             "for i in 2 3; do cmp g-$i.png t-$i.png || echo tiled $i differs; done && ls t-* && "
+             "run 2 $MPI $O \"$S\" --frames 0:3 2>&1 | grep glint",
+             GLINT_SOURCE_DIR);
+    cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "t-2.png\nt-3.png\n"
+                          "glint-mpi: --frames: expected frames as FIRST:LAST or N, numbered from 1, got '0:3'\n");
+}
+
+/* A job stopped part of the way leaves its finished frames; --resume
+ * renders only the others, and the sequence is glint's. */
+Test(mpi, a_stopped_sequence_resumes)
+{
+    need_mpi();
+    char out[8192], script[4096];
+    snprintf(script, sizeof script,
+             "S='%s/scenes/orbit.yaml'; O='-q -t 1 -r 128x96 -s 16'; "
+             "$GLINT $O \"$S\" --frames 1:16 -o g-%%02d.png || exit 1; "
+             "$MPIRUN -n 2 $MPI $O \"$S\" --frames 1:16 -o f-%%02d.png & job=$!; "
+             "n=0; while [ ! -e f-01.png ] && [ ! -e f-02.png ] && [ $n -lt 600 ]; do sleep 0.05; n=$((n+1)); done; "
+             "kill -TERM $job; wait $job 2>/dev/null; "
+             "ls f-*.png | while read f; do echo \"$f $(stat -c %%i $f)\"; done > before && "
+             "{ run 2 $MPI $O \"$S\" --frames 1:16 --resume --stats -o f-%%02d.png 2> stats || cat stats; } && "
+             "ls f-*.png | while read f; do echo \"$f $(stat -c %%i $f)\"; done > after && "
+             "for i in 01 02 03 04 05 06 07 08 09 10 11 12 13 14 15 16; do cmp g-$i.png f-$i.png || echo frame $i differs; done; "
+             "grep -v -F -x -f after before | sed 's/^/rewritten: /'; "
+             "echo $(wc -l < before) $(awk '/^rank/ { n += $3 } END { print n }' stats)",
+             GLINT_SOURCE_DIR);
+    cr_assert_eq(sh(script, out, sizeof out), 0, "%s", out);
+    int kept = -1, rendered = -1;
+    const char *last = strrchr(out, '\n');
+    while (last && last > out && last[-1] != '\n')
+        last--;
+    cr_assert_not_null(last, "%s", out);
+    cr_assert_eq(sscanf(last, "%d %d", &kept, &rendered), 2, "%s", out);
+    cr_expect_geq(kept, 1, "the first frames were written before the stop");
+    cr_expect_eq(kept + rendered, 16, "--resume rendered only the %d frames missing, not %d", 16 - kept,
+                 rendered);
+}
+
+Test(mpi, resume_leaves_a_complete_image)
+{
+    need_mpi();
+    char out[8192];
+    cr_expect_eq(sh("run 2 $MPI -q -r 32x16 -s 1 -o a.png && i=$(stat -c %i a.png) && "
+                    "run 2 $MPI -q -r 32x16 -s 1 -o a.png --resume --stats 2> s && "
+                    "[ $(stat -c %i a.png) = $i ] && echo kept && cat s && "
+                    "run 2 $MPI -q -r 32x24 -s 1 -o a.png --resume && [ $(stat -c %i a.png) != $i ] && echo redone",
+                    out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "kept\nredone\n", "a complete image is not rendered again; one of another size is");
 }

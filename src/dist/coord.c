@@ -224,7 +224,7 @@ static glint_rc coord_init(coord *c, const dist_job *job, glint_film *film, glin
     }
     glint_rc rc = tile_clock_init(&c->clock, threads, err);
     if (rc == GLINT_OK)
-        rc = glint_film_alloc(film, s->width, s->height, err);
+        rc = dist_film_alloc(film, s, s->width, s->height, err);
     return rc;
 }
 

@@ -48,7 +48,17 @@ typedef struct dist_job {
     glint_scene *scene;
     glint_settings settings;
     int ntiles;
+    int first, last; /* frames of a sequence; 0, 0: a single image */
 } dist_job;
+
+/* The two kinds of job; every rank calls one, and rank 0 reports. */
+glint_rc dist_image(const dist_job *job, glint_error *err);
+glint_rc dist_frames(const dist_job *job, glint_error *err);
+
+/* Rank 0: one image into path, the other ranks working (dist_work); the
+ * counts are added to ranks, and costs and owner are as below. */
+glint_rc dist_image_once(const dist_job *job, const char *path, dist_rank *ranks, double *costs,
+                         int *owner, double *seconds, glint_error *err);
 
 /* Rank 0: hands out the tiles, renders its share, gathers the image into
  * film (allocated here) and fills ranks[size] and, when costs is not NULL,
@@ -63,13 +73,13 @@ glint_rc dist_work(const dist_job *job, glint_error *err);
 double dist_now(void);
 
 /* Times tiles as the render's callbacks report them: each tile's cost is
- * the time since its thread's previous tile (or the batch's start), the
- * callbacks being called on the thread that rendered the tile. */
+ * the CPU time its thread spent since its previous tile (or since the
+ * batch began), the callbacks being called on the thread that rendered the
+ * tile. CPU time, not wall time: other work on the machine does not count. */
 typedef struct tile_clock {
     int n, cap;
     pthread_t *thread;
     double *last;
-    double start;
 } tile_clock;
 
 glint_rc tile_clock_init(tile_clock *c, int threads, glint_error *err);
@@ -79,7 +89,10 @@ void tile_clock_free(tile_clock *c);
 
 /* The smallest rectangle holding tiles first .. first + count - 1. */
 glint_rect dist_batch_bounds(const glint_settings *s, int first, int count);
-/* Pixels of the batch's tiles: floats, each tile's rows in turn. */
+/* A film of w x h pixels, all zero, with coverage when settings.alpha. */
+glint_rc dist_film_alloc(glint_film *f, const glint_settings *s, int w, int h, glint_error *err);
+/* Pixels of the batch's tiles: floats, each tile's rows in turn (each row
+ * RGB, then its coverage with settings.alpha). */
 size_t dist_batch_floats(const glint_settings *s, int first, int count);
 /* Copies the batch's tiles from a film of their bounds (box) into packed
  * floats, or back from packed floats into an image-sized film. */

@@ -8,12 +8,10 @@
  * process fails. */
 #include <mpi.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "job.h"
 #include "options.h"
-#include "report.h"
 
 /* Each process's result before the render becomes the job's: the failure
  * of the lowest rank that failed, its message carried to rank 0. */
@@ -38,13 +36,34 @@ static glint_rc agree(const dist_job *job, glint_rc rc, glint_error *err)
     return (glint_rc)m.rc;
 }
 
-/* The output name (rank 0, which writes it), the scene and the settings. */
+/* The frames of --frames or --frame against the scene's animation; the
+ * message says which option. */
+static glint_rc frames_of(dist_job *job, glint_error *err)
+{
+    glint_animation anim;
+    glint_rc rc = glint_scene_animation(job->scene, &anim, err);
+    if (rc == GLINT_OK)
+        rc = glint_frames_parse(job->opt->frames, anim.frames, &job->first, &job->last, err);
+    if (rc != GLINT_OK) {
+        char msg[900];
+        snprintf(msg, sizeof msg, "%.899s", err->msg);
+        snprintf(err->msg, sizeof err->msg, "--frame%s: %.900s",
+                 strchr(job->opt->frames, ':') ? "s" : "", msg);
+    }
+    return rc;
+}
+
+/* The output name (rank 0, which writes it; the first frame's for a
+ * sequence), the scene, the settings and the frames. */
 static glint_rc prepare(dist_job *job, glint_error *err)
 {
     const dist_options *o = job->opt;
+    char path[4096];
     glint_rc rc = GLINT_OK;
-    if (job->rank == 0)
-        rc = glint_output_check(o->output, &o->write, err);
+    if (o->frames)
+        rc = glint_frame_path(o->output, 1, path, sizeof path, err);
+    if (rc == GLINT_OK && job->rank == 0)
+        rc = glint_output_check(o->frames ? path : o->output, &o->write, err);
     if (rc == GLINT_OK)
         rc = o->scene_path ? glint_scene_load(o->scene_path, &job->scene, err)
                            : glint_scene_builtin(&job->scene, err);
@@ -52,41 +71,8 @@ static glint_rc prepare(dist_job *job, glint_error *err)
         rc = dist_settings(job->scene, o, &job->settings, err);
     if (rc == GLINT_OK)
         rc = glint_tile_count(&job->settings, &job->ntiles, err);
-    return rc;
-}
-
-/* Rank 0's part: the render, then the image, the statistics and costs. */
-static glint_rc lead(const dist_job *job, glint_error *err)
-{
-    const dist_options *o = job->opt;
-    dist_rank *ranks = calloc((size_t)job->size, sizeof *ranks);
-    double *costs = o->tile_costs ? calloc((size_t)job->ntiles, sizeof *costs) : NULL;
-    int *owner = o->tile_costs ? calloc((size_t)job->ntiles, sizeof *owner) : NULL;
-    glint_film film = {0};
-    double seconds = 0;
-    glint_rc rc = GLINT_OK;
-    if (!ranks || (o->tile_costs && (!costs || !owner))) {
-        snprintf(err->msg, sizeof err->msg, "out of memory");
-        rc = GLINT_ERR_NOMEM;
-        int end[2] = {0, 0};
-        for (int r = 1; r < job->size; r++)
-            MPI_Send(end, 2, MPI_INT, r, TAG_WORK, MPI_COMM_WORLD);
-    }
-    if (rc == GLINT_OK)
-        rc = dist_coordinate(job, &film, ranks, costs, owner, &seconds, err);
-    if (rc == GLINT_OK) {
-        glint_write_options w = o->write;
-        w.transfer = job->settings.transfer;
-        rc = glint_film_write(&film, o->output, &w, err);
-    }
-    if (rc == GLINT_OK && o->tile_costs)
-        rc = dist_write_costs(o->tile_costs, job, costs, owner, err);
-    if (rc == GLINT_OK && o->stats)
-        dist_print_stats(stderr, job, ranks, seconds);
-    glint_film_free(&film);
-    free(ranks);
-    free(costs);
-    free(owner);
+    if (rc == GLINT_OK && o->frames)
+        rc = frames_of(job, err);
     return rc;
 }
 
@@ -107,7 +93,7 @@ int main(int argc, char **argv)
     glint_error err = {0};
     glint_rc rc = agree(&job, prepare(&job, &err), &err);
     if (rc == GLINT_OK)
-        rc = job.rank == 0 ? lead(&job, &err) : dist_work(&job, &err);
+        rc = job.first > 0 ? dist_frames(&job, &err) : dist_image(&job, &err);
     /* the job's result is rank 0's: a rank's failure reached it as an answer */
     int final = (int)rc;
     MPI_Bcast(&final, 1, MPI_INT, 0, MPI_COMM_WORLD);

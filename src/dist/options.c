@@ -27,16 +27,26 @@ static const char usage[] =
     "  -t, --threads N        render threads per process (default: the cores the\n"
     "                         process may run on)\n"
     "      --transfer T       none (default) or srgb: how film values become pixels\n"
+    "      --frames A:B       render frames A to B of an animated scene; the output\n"
+    "                         name takes the number in a %d field (out-%04d.png),\n"
+    "                         or gets -%04d before its extension; each process\n"
+    "                         renders whole frames (tiles of each frame when there\n"
+    "                         are fewer frames than processes)\n"
+    "      --frame N          render frame N only (named as with --frames)\n"
+    "      --resume           skip frames (or an image) whose output file is already\n"
+    "                         a complete image of the right size\n"
     "      --stats            print rays, time, Mrays/s and each process's tiles,\n"
     "                         busy time and efficiency to stderr\n"
-    "      --tile-costs FILE  write each tile's render time (thread-seconds) to FILE\n"
+    "      --tile-costs FILE  write each tile's render time (a thread's CPU seconds)\n"
+    "                         to FILE (a single image)\n"
     "  -q, --quiet            no progress bar\n"
     "  -h, --help             show this help\n"
     "  -V, --version          show the version\n"
     "\n"
     "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input.\n";
 
-enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS, OPT_TILE_COSTS };
+enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS, OPT_TILE_COSTS,
+       OPT_FRAMES, OPT_FRAME, OPT_RESUME };
 
 static const struct option long_options[] = {
     {"output", required_argument, NULL, 'o'},
@@ -50,6 +60,9 @@ static const struct option long_options[] = {
     {"bits", required_argument, NULL, OPT_BITS},
     {"stats", no_argument, NULL, OPT_STATS},
     {"tile-costs", required_argument, NULL, OPT_TILE_COSTS},
+    {"frames", required_argument, NULL, OPT_FRAMES},
+    {"frame", required_argument, NULL, OPT_FRAME},
+    {"resume", no_argument, NULL, OPT_RESUME},
     {"quiet", no_argument, NULL, 'q'},
     {"help", no_argument, NULL, 'h'},
     {"version", no_argument, NULL, 'V'},
@@ -115,6 +128,15 @@ static int parse_one(int opt, const char *arg, char **argv, dist_options *o, boo
     case 'o': o->output = arg; return -1;
     case OPT_TILE_COSTS: o->tile_costs = arg; return -1;
     case OPT_STATS: o->stats = true; return -1;
+    case OPT_RESUME: o->resume = true; return -1;
+    case OPT_FRAMES:
+    case OPT_FRAME:
+        if (o->frames)
+            return usage_error(speak, "--frames and --frame given more than once");
+        if (opt == OPT_FRAME && strchr(arg, ':'))
+            return usage_error(speak, "--frame: expected one frame number, got '%s'", arg);
+        o->frames = arg;
+        return -1;
     case 'q': o->quiet = true; return -1;
     case 'h': return say(speak, usage);
     case 'V': return say(speak, "glint-mpi " GLINT_VERSION "\n");
@@ -183,6 +205,8 @@ int dist_parse_options(int argc, char **argv, dist_options *o, bool speak)
     if (optind < argc)
         return usage_error(speak, "more than one scene given ('%s' and '%s')", o->scene_path,
                            argv[optind]);
+    if (o->frames && o->tile_costs)
+        return usage_error(speak, "--tile-costs records a single image, not --frames");
     return -1;
 }
 

@@ -12,9 +12,10 @@ typedef struct dist_options {
     const char *output;
     const char *scene_path;  /* NULL: the built-in scene */
     const char *tile_costs;  /* --tile-costs FILE, or NULL */
+    const char *frames;      /* --frames or --frame as given, or NULL: a single image */
     int width, height, samples, depth, threads; /* -1: not given */
     int transfer;                               /* -1: not given */
-    bool stats, quiet;
+    bool stats, quiet, resume;
     glint_write_options write; /* format, quality, bits */
 } dist_options;
 

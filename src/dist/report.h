@@ -21,8 +21,10 @@ void dist_bar_update(dist_bar *b, int done, int total);
 void dist_bar_end(dist_bar *b);
 
 /* --stats: the image, rays, time and speed as glint prints them, then each
- * rank's tiles, busy time and efficiency (busy time / render time). */
-void dist_print_stats(FILE *out, const dist_job *job, const dist_rank *ranks, double seconds);
+ * rank's share (unit: "tiles" or "frames"), busy time and efficiency (busy
+ * time / time); images: how many the time covers. */
+void dist_print_stats(FILE *out, const dist_job *job, const dist_rank *ranks, double seconds,
+                      const char *unit, int images);
 
 /* --tile-costs FILE: one line per tile, "tile x0 y0 x1 y1 seconds rank",
  * after a header of comments naming the image and the settings. */

@@ -54,7 +54,7 @@ static glint_rc render_batch(worker *w, int first, int count, size_t *bytes, gli
     int *tiles = malloc((size_t)count * sizeof *tiles);
     glint_rect box = dist_batch_bounds(s, first, count);
     glint_film film = {0};
-    rc = tiles ? glint_film_alloc(&film, box.x1 - box.x0, box.y1 - box.y0, err) : GLINT_ERR_NOMEM;
+    rc = tiles ? dist_film_alloc(&film, s, box.x1 - box.x0, box.y1 - box.y0, err) : GLINT_ERR_NOMEM;
     if (rc == GLINT_OK) {
         for (int i = 0; i < count; i++)
             tiles[i] = first + i;
