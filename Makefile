@@ -83,7 +83,7 @@ check-lib: $(BUILD)/libglint.so
 	@$(MAKE) --no-print-directory install PREFIX=$(CURDIR)/$(BUILD)/stage >/dev/null
 	BUILD=$(BUILD) CC=$(CC) scripts/check-install $(CURDIR)/$(BUILD)/stage
 
-# `make install PREFIX=/usr/local DESTDIR=`: the command, both libraries,
+# `make install PREFIX=/usr/local DESTDIR=`: the command (and glint-mpi when built), both libraries,
 # the header, glint.pc, the example scenes and the documentation. glint.pc
 # names the static library's dependencies: the pkg-config packages, and
 # OpenEXR's C library directly (its package would add the C++ ones).
@@ -99,6 +99,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include \
 		$(DESTDIR)$(PREFIX)/share/glint $(INSTALL_DOC)
 	install -m 755 $(BUILD)/glint $(DESTDIR)$(PREFIX)/bin/glint
+	$(if $(MPI_BIN),install -m 755 $(MPI_BIN) $(DESTDIR)$(PREFIX)/bin/glint-mpi)
 	install -m 644 $(BUILD)/libglint.a $(INSTALL_LIB)/libglint.a
 	install -m 755 $(BUILD)/libglint.so $(INSTALL_LIB)/libglint.so.$(VERSION)
 	ln -sf libglint.so.$(VERSION) $(INSTALL_LIB)/libglint.so.$(SOVERSION)
