@@ -283,3 +283,19 @@ Test(mpi, resume_leaves_a_complete_image)
                     out, sizeof out), 0, "%s", out);
     cr_expect_str_eq(out, "kept\nredone\n", "a complete image is not rendered again; one of another size is");
 }
+
+/* A frame that cannot be written (its name is a folder) fails the job once,
+ * whichever process met it; the frames before it are on disk. */
+Test(mpi, a_frame_that_cannot_be_written_fails_the_job_once)
+{
+    need_mpi();
+    char out[8192], script[2048];
+    snprintf(script, sizeof script,
+             "mkdir f-3.png && run 3 $MPI -q -r 16x16 -s 1 '%s/scenes/orbit.yaml' --frames 1:6 "
+             "-o f-%%d.png 2> err; echo $?; grep -c glint-mpi err; grep -o 'f-3.png: is a directory' err",
+             GLINT_SOURCE_DIR);
+    cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect(strncmp(out, "1\n1\nf-3.png: is a directory\n", 40) == 0 ||
+                  strncmp(out, "2\n1\nf-3.png: is a directory\n", 40) == 0,
+              "one message, a failing status: %s", out);
+}
