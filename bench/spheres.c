@@ -24,7 +24,8 @@ static int run(int n, int threads)
     scene *s = scene_new();
     if (!s)
         return 1;
-    s->camera = (camera){v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60.0f};
+    s->camera = (camera){.eye = v3(0, 0, 0), .target = v3(0, 0, -1), .up = v3(0, 1, 0),
+                         .hfov = 60.0f};
     light l = {LIGHT_POINT, v3(30, 60, 20), v3s(1.0f)};
     scene_add_light(s, &l);
     material m = material_default();
