@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "glint.h"
@@ -902,7 +903,8 @@ Test(load, mesh_from_disk_keeps_the_files_materials)
 Test(load_errors, meshes)
 {
     vfile files[] = {
-        {"bad.obj", "this is not a mesh\n"},
+        {"bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n"},
+        {"text.obj", "this is not a mesh\n"},
         {"lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n"},
         {NULL, NULL},
     };
@@ -914,6 +916,9 @@ Test(load_errors, meshes)
                       "scene.yaml:1:30: cannot read mesh 'nope.obj': No such file or directory");
     expect_error_with("objects: [{type: mesh, file: lines.obj}]\n", files,
                       "scene.yaml:1:30: lines.obj: mesh has no triangles");
+    /* assimp's validation spoke of its structures ("Mesh  contains no faces") */
+    expect_error_with("objects: [{type: mesh, file: text.obj}]\n", files,
+                      "scene.yaml:1:30: text.obj: mesh has no triangles");
 
     /* assimp's own reason follows; the start of the message is ours. */
     scene *s = NULL;
@@ -925,4 +930,105 @@ Test(load_errors, meshes)
     const char *want = "scene.yaml:1:30: bad.obj: cannot import mesh: ";
     cr_expect_eq(strncmp(err.msg, want, strlen(want)), 0, "got: %s", err.msg);
     cr_expect_null(s);
+}
+
+/* Writes text to dir/name. */
+static void put_file(const char *dir, const char *name, const char *text)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f, "%s", path);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* A FIFO blocked the loader for ever (nothing writes to it) and devices
+ * were read up to the size limit: every path to a file that is not a
+ * regular one is refused at once, before a byte is read, naming it. The
+ * timeout is the failure on the old code. */
+Test(load_errors, fifos_and_devices_are_refused_at_once, .timeout = 20)
+{
+    char dir[] = "/tmp/glint-fifo-XXXXXX", path[160], want[512];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/fifo", dir);
+    cr_assert_eq(mkfifo(path, 0600), 0);
+    static const struct {
+        const char *scene, *want; /* want: the message after "DIR/scene.yaml:" */
+    } cases[] = {
+        {"include: fifo\n", "1:10: cannot read include 'fifo' (%s/fifo): not a regular file"},
+        {"textures: {t: {type: image, file: fifo}}\n",
+         "1:35: cannot read texture 'fifo' (%s/fifo): not a regular file"},
+        {"objects: [{type: mesh, file: fifo}]\n",
+         "1:30: cannot read mesh 'fifo' (%s/fifo): not a regular file"},
+        {"textures: {t: {type: image, file: /dev/zero}}\n",
+         "1:35: cannot read texture '/dev/zero': not a regular file"},
+        {"objects: [{type: mesh, file: /dev/urandom}]\n",
+         "1:30: cannot read mesh '/dev/urandom': not a regular file"},
+        {"include: /dev/zero\n", "1:10: cannot read include '/dev/zero': not a regular file"},
+    };
+    snprintf(path, sizeof path, "%s/scene.yaml", dir);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        put_file(dir, "scene.yaml", cases[i].scene);
+        scene *s = NULL;
+        glint_error err = {0};
+        cr_expect_eq(scene_load_file(path, &s, &err), GLINT_ERR_INPUT, "%s", cases[i].scene);
+        char tail[256];
+        snprintf(tail, sizeof tail, cases[i].want, dir);
+        snprintf(want, sizeof want, "%s:%s", path, tail);
+        cr_expect_str_eq(err.msg, want);
+        cr_expect_null(s);
+    }
+    /* The scene itself. */
+    const char *scenes[] = {"fifo", "/dev/zero", "/dev/null"};
+    for (int i = 0; i < 3; i++) {
+        char p[160];
+        snprintf(p, sizeof p, i == 0 ? "%s/%s" : "%.0s%s", dir, scenes[i]);
+        scene *s = NULL;
+        glint_error err = {0};
+        cr_expect_eq(scene_load_file(p, &s, &err), GLINT_ERR_INPUT);
+        snprintf(want, sizeof want, "%s: cannot read scene: not a regular file", p);
+        cr_expect_str_eq(err.msg, want);
+    }
+    remove(path);
+    snprintf(path, sizeof path, "%s/fifo", dir);
+    remove(path);
+    rmdir(dir);
+}
+
+/* "-" and /dev/stdin read the scene from standard input: paths in it are
+ * relative to the current folder, and messages call it <stdin>. */
+Test(load, dash_reads_the_scene_from_standard_input)
+{
+    char path[] = "/tmp/glint-stdin-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert_geq(fd, 0);
+    const char *text = "image: {width: 3, height: 2}\ncamera: {fov: [1]}\n";
+    cr_assert_eq(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+    int saved = dup(STDIN_FILENO);
+    const char *names[] = {"-", "/dev/stdin"};
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(lseek(fd, 0, SEEK_SET), 0);
+        cr_assert_eq(dup2(fd, STDIN_FILENO), STDIN_FILENO);
+        scene *s = NULL;
+        glint_error err = {0};
+        cr_expect_eq(scene_load_file(names[i], &s, &err), GLINT_ERR_INPUT);
+        cr_expect_str_eq(err.msg, "<stdin>:2:15: expected a number for 'fov', got a sequence");
+    }
+    /* Through a pipe, which a path on disk may not be. */
+    int p[2];
+    cr_assert_eq(pipe(p), 0);
+    cr_assert_eq(write(p[1], text, 29), 29);
+    close(p[1]);
+    cr_assert_eq(dup2(p[0], STDIN_FILENO), STDIN_FILENO);
+    close(p[0]);
+    scene *s = NULL;
+    glint_error err = {0};
+    cr_expect_eq(scene_load_file("-", &s, &err), GLINT_OK, "%s", err.msg);
+    cr_expect_eq(scene_settings(s).width, 3);
+    scene_free(s);
+    dup2(saved, STDIN_FILENO);
+    close(saved);
+    close(fd);
+    remove(path);
 }

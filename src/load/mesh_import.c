@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -14,6 +15,7 @@
 #include <assimp/scene.h>
 
 #include "core/error.h"
+#include "load/load.h"
 #include "scene/scene.h"
 
 /* Meshes larger than this are refused before allocating. */
@@ -149,6 +151,17 @@ out:
     return GLINT_OK;
 }
 
+/* assimp's validation of a file without faces or meshes speaks of its own
+ * structures ("Mesh  contains no faces", "aiScene::mNumMeshes is 0"); the
+ * user is told what the documentation says. */
+static void import_error(const char *name, const char *why, glint_error *err)
+{
+    if (strstr(why, "contains no faces") || strstr(why, "mNumMeshes is 0"))
+        err_set(err, GLINT_ERR_INPUT, "%s: mesh has no triangles", name);
+    else
+        err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, why);
+}
+
 /* assimp keeps the reason for the last failure in one process-wide string,
  * so imports are serialised: the message read after a failed import is that
  * import's own, whatever other threads load at the same time. This lock is
@@ -165,7 +178,7 @@ static const struct aiScene *import_locked(const char *name, const void *data, s
         data ? aiImportFileFromMemory(data, (unsigned)size, import_flags, hint)
              : aiImportFile(name, import_flags);
     if (!sc)
-        err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, aiGetErrorString());
+        import_error(name, aiGetErrorString(), err);
     pthread_mutex_unlock(&import_lock);
     return sc;
 }
@@ -173,10 +186,11 @@ static const struct aiScene *import_locked(const char *name, const void *data, s
 glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
 {
     memset(out, 0, sizeof *out);
-    FILE *probe = fopen(path, "rb");
-    if (!probe)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
-    fclose(probe);
+    int probe;
+    glint_error perr = {0};
+    if (load_open_regular(path, &probe, &perr) != GLINT_OK)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, perr.msg);
+    close(probe);
     const struct aiScene *sc = import_locked(path, NULL, 0, NULL, err);
     return sc ? convert(sc, path, out, err) : GLINT_ERR_INPUT;
 }

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "load/mesh_import.h"
 
@@ -93,12 +94,13 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
     }
     glint_error merr = {0};
     if (L->reader == scene_read_file) {
-        FILE *probe = fopen(resolved, "rb");
-        if (!probe) {
-            rc = load_cannot_read(L, v, "mesh", written, resolved, strerror(errno));
+        int probe;
+        rc = load_open_regular(resolved, &probe, &merr);
+        if (rc != GLINT_OK) {
+            rc = load_cannot_read(L, v, "mesh", written, resolved, merr.msg);
             goto out;
         }
-        fclose(probe);
+        close(probe);
         rc = mesh_import(resolved, &mf, &merr);
     } else {
         size_t size;
