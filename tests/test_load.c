@@ -452,9 +452,20 @@ Test(load_errors, yaml_syntax)
                  "line 1, column 1)");
     expect_error("ambient: \"0.2\n", "scene.yaml:2:1: found unexpected end of stream (while "
                                      "scanning a quoted scalar at line 1, column 10)");
+    /* libyaml's words for a tab in the indentation did not say what was
+     * wrong ("found character that cannot start any token"). */
     expect_error("ambient: 0.2\n\tlights: []\n",
-                 "scene.yaml:2:1: found a tab character that violates indentation (while "
-                 "scanning a plain scalar at line 1, column 10)");
+                 "scene.yaml:2:1: tabs cannot indent YAML; use spaces");
+    expect_error("camera:\n\teye: [0, 0, 0]\n",
+                 "scene.yaml:2:1: tabs cannot indent YAML; use spaces");
+    expect_error("camera:\n  eye: [0, 0, 0]\n \t fov: 30\n",
+                 "scene.yaml:3:2: tabs cannot indent YAML; use spaces");
+    expect_error("objects:\n\t- {type: sphere}\n",
+                 "scene.yaml:2:1: tabs cannot indent YAML; use spaces");
+    /* A tab between a key and its value is white space, as YAML says. */
+    scene *s = load_ok("image:\t{width: 7, height: 5}\n");
+    cr_expect_eq(scene_settings(s).width, 7);
+    scene_free(s);
     expect_error("ambient: \"\xff\"\n", "scene.yaml:1:11: invalid leading UTF-8 octet (byte 0xFF)");
     expect_error("objects: *nothing\n",
                  "scene.yaml:1:10: alias '*nothing' names no anchor defined before it");
@@ -495,6 +506,15 @@ Test(load_errors, unknown_keys_with_suggestions)
     expect_error("objects: [{type: sphere, center: [0, 0, 0], radius: 1,\n"
                  "            transform: [{rotate_q: 30}]}]\n",
                  "scene.yaml:2:26: unknown transform 'rotate_q' (did you mean 'rotate_x'?)");
+    /* Distant words get the list, not another word: 'type' is two edits
+     * from 'eye', too many for four letters; a swap of two letters is one. */
+    expect_error("camera: {type: thin_lens}\n",
+                 "scene.yaml:1:10: unknown key 'type' in camera (valid: eye, look_at, up, fov)");
+    expect_error("camera: {eey: [0, 0, 0]}\n",
+                 "scene.yaml:1:10: unknown key 'eey' in camera (did you mean 'eye'?)");
+    expect_error("objects: [{type: cyl, base: [0, 0, 0]}]\n",
+                 "scene.yaml:1:18: unknown object type 'cyl' (valid: sphere, plane, quad, box, "
+                 "cylinder, triangle, mesh)");
 }
 
 Test(load_errors, wrong_types_and_lengths)
