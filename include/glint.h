@@ -84,6 +84,11 @@ typedef struct glint_settings {
     int max_depth;         /* reflection/refraction recursion limit, 0 to 64 */
     int threads;           /* 0: one per core; at most 1024 */
     glint_transfer transfer;
+    /* Adaptive depth control (Hall and Greenberg 1983): a reflected or
+     * transmitted ray whose share of the pixel falls below this is not
+     * traced. 0 to 1; 0 never prunes (the tree of rays then grows as
+     * 2^depth through glass). A scene's default is 1/255. */
+    double adc_bailout;
 } glint_settings;
 
 /* Checks settings for a render: sizes, sample counts, memory limits. */

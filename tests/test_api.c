@@ -74,7 +74,7 @@ static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255};
     OK(glint_scene_set_settings(s, &st, &err));
     glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
     OK(glint_scene_set_camera(s, &cam, &err));

@@ -202,7 +202,7 @@ Test(load, include_resolves_against_the_including_file_on_disk)
 Test(load, settings_camera_and_defaults)
 {
     scene *s = load_ok("image: {width: 320, height: 200, samples: 9, depth: 3,\n"
-                       "        background: [0.1, 0.2, 0.3], transfer: srgb}\n"
+                       "        background: [0.1, 0.2, 0.3], transfer: srgb, adc_bailout: 0.01}\n"
                        "camera: {eye: [1, 2, 3], look_at: [0, 0, 0], fov: 45}\n"
                        "ambient: [0.1, 0.2, 0.3]\n"
                        "objects: [{type: sphere, center: [0, 0, 0], radius: 1}]\n");
@@ -211,6 +211,7 @@ Test(load, settings_camera_and_defaults)
     cr_expect_eq(s->settings.samples, 9);
     cr_expect_eq(s->settings.max_depth, 3);
     cr_expect_eq(s->settings.transfer, GLINT_TRANSFER_SRGB);
+    cr_expect_float_eq(s->settings.adc_bailout, 0.01, 1e-9);
     cr_expect_eq(s->background.z, 0.3f);
     cr_expect_eq(s->camera.eye.y, 2.0f);
     cr_expect_eq(s->camera.up.y, 1.0f, "up defaults to +y");
@@ -224,6 +225,7 @@ Test(load, settings_camera_and_defaults)
     s = load_ok("objects: [{type: plane, point: [0, 0, 0], normal: [0, 2, 0]}]\n");
     cr_expect_eq(s->settings.width, 500, "defaults are scene_new's");
     cr_expect_eq(s->settings.samples, 1);
+    cr_expect_float_eq(s->settings.adc_bailout, 1.0 / 255, 1e-12, "POV-Ray's default");
     cr_expect_eq(s->ambient.x, 0.2f);
     cr_expect_eq(s->objects[0].shape.plane.normal.y, 1.0f, "plane normals are normalised");
     scene_free(s);
@@ -605,6 +607,8 @@ Test(load_errors, out_of_range_and_non_finite_numbers)
                  "scene.yaml:1:11: triangle is degenerate: p0, p1 and p2 lie on one line");
     expect_error("materials: {m: {reflect: 1.5}}\n",
                  "scene.yaml:1:26: reflect must be between 0 and 1 (got 1.5)");
+    expect_error("image: {adc_bailout: -0.1}\n",
+                 "scene.yaml:1:22: adc_bailout must be between 0 and 1 (got -0.1)");
     expect_error("materials: {m: {ior: 0}}\n", "scene.yaml:1:22: ior must be > 0 (got 0)");
     expect_error("materials: {m: {color: [1, -0.5, 1]}}\n",
                  "scene.yaml:1:28: color components must be >= 0 (got -0.5)");
