@@ -605,6 +605,11 @@ Test(load_errors, out_of_range_and_non_finite_numbers)
                  "scene.yaml:1:70: edge_v must not be parallel to edge_u (nor either be zero)");
     expect_error("objects: [{type: triangle, p0: [0, 0, 0], p1: [1, 1, 1], p2: [2, 2, 2]}]\n",
                  "scene.yaml:1:11: triangle is degenerate: p0, p1 and p2 lie on one line");
+    /* Corners near 1e38: the float cross product overflowed and the
+     * triangle was kept with no normal (and never seen). */
+    expect_error("objects: [{type: triangle, p0: [0, 0, 0], p1: [1e38, 0, 0], p2: [0, 1e38, 0]}]\n",
+                 "scene.yaml:1:11: triangle is too large for single precision (its normal "
+                 "overflows); scale it down");
     expect_error("materials: {m: {reflect: 1.5}}\n",
                  "scene.yaml:1:26: reflect must be between 0 and 1 (got 1.5)");
     expect_error("image: {adc_bailout: -0.1}\n",
@@ -929,6 +934,7 @@ Test(load_errors, meshes)
     vfile files[] = {
         {"bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n"},
         {"text.obj", "this is not a mesh\n"},
+        {"huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e38 0 0\nv 0 1e38 0\nf 1 2 3\nf 1 4 5\n"},
         {"lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n"},
         {NULL, NULL},
     };
@@ -943,6 +949,10 @@ Test(load_errors, meshes)
     /* assimp's validation spoke of its structures ("Mesh  contains no faces") */
     expect_error_with("objects: [{type: mesh, file: text.obj}]\n", files,
                       "scene.yaml:1:30: text.obj: mesh has no triangles");
+    /* A triangle near 1e38 was dropped without a word. */
+    expect_error_with("objects: [{type: mesh, file: huge.obj}]\n", files,
+                      "scene.yaml:1:30: huge.obj: triangle 2 is too large for single precision "
+                      "(its normal overflows); scale the model down");
 
     /* assimp's own reason follows; the start of the message is ours. */
     scene *s = NULL;

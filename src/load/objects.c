@@ -56,8 +56,15 @@ static glint_rc load_triangle(loader *L, uint32_t map, shape *out)
         rc = load_need_vec3(L, map, pk[i], "triangle", &p[i]);
     if (rc != GLINT_OK)
         return rc;
-    if (v3_is_zero(v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0]))))
+    switch (triangle_check(p[0], p[1], p[2])) {
+    case TRIANGLE_OK:
+        break;
+    case TRIANGLE_DEGENERATE:
         return load_fail(L, map, "triangle is degenerate: p0, p1 and p2 lie on one line");
+    case TRIANGLE_TOO_LARGE:
+        return load_fail(L, map, "triangle is too large for single precision (its normal "
+                                 "overflows); scale it down");
+    }
     *out = shape_triangle(p[0], p[1], p[2]);
     uint32_t v = load_get(L, map, "uv");
     if (v == YDOC_NONE)
