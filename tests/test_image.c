@@ -1033,3 +1033,20 @@ Test(image, fuzz_exr_with_an_unknown_channel_decodes)
     cr_expect_eq(blue, 0.0f, "no B channel");
     image_free(&img);
 }
+
+/* A 29-byte PNG (a header and nothing else) declaring 16x5570572 pixels:
+ * 267 MB were allocated and cleared before the missing data was noticed,
+ * which took the fuzzer past its time limit under AddressSanitizer. The
+ * pixels a PNG of n bytes can hold (deflate at most 1032:1, 8 pixels a
+ * byte) are checked from the header first. */
+Test(image, fuzz_png_header_without_data_is_truncated_before_allocating)
+{
+    static const uint8_t png[29] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+        0x52, 0x00, 0x00, 0x00, 0x10, 0x00, 0x55, 0x00, 0x0c, 0x08, 0x02, 0x00, 0x00, 0x00};
+    image img = {0};
+    glint_error err = {0};
+    cr_assert_eq(image_load_memory(png, sizeof png, "t.png", &img, &err), GLINT_ERR_INPUT);
+    cr_assert_str_eq(err.msg, "t.png: file is truncated");
+    cr_assert_null(img.rgb);
+}
