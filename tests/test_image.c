@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <stb_image_write.h>
@@ -26,6 +27,7 @@
 
 #include "io/codec.h"
 #include "io/image.h"
+#include "io/file.h"
 #include "io/image_write.h"
 #include "tmpdir.h"
 
@@ -1049,4 +1051,51 @@ Test(image, fuzz_png_header_without_data_is_truncated_before_allocating)
     cr_assert_eq(image_load_memory(png, sizeof png, "t.png", &img, &err), GLINT_ERR_INPUT);
     cr_assert_str_eq(err.msg, "t.png: file is truncated");
     cr_assert_null(img.rgb);
+}
+
+/* Ctrl-C or kill while the temporary file existed left a .glint-* file
+ * beside the target. A child writes 4 MB over and over and is killed at
+ * once each time: the signals wait until the temporary file is renamed or
+ * removed, so only the target is ever left. (Before, nearly every kill
+ * landed while the temporary file was being written.) */
+Test(image, a_signal_during_a_write_leaves_no_temporary_file)
+{
+    const size_t n = 4u << 20;
+    uint8_t *data = malloc(n);
+    cr_assert_not_null(data);
+    memset(data, 0x5a, n);
+    const char *target = in_dir("big.bin");
+    const int signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+    for (int round = 0; round < 12; round++) {
+        int ready[2];
+        cr_assert_eq(pipe(ready), 0);
+        pid_t pid = fork();
+        cr_assert_geq(pid, 0);
+        if (pid == 0) {
+            struct rlimit no_core = {0, 0};
+            setrlimit(RLIMIT_CORE, &no_core);
+            glint_error err = {0};
+            for (int i = 0;; i++) {
+                if (file_write(target, data, n, &err) != GLINT_OK)
+                    _exit(3);
+                if (i == 0 && write(ready[1], "x", 1) != 1)
+                    _exit(4);
+            }
+        }
+        close(ready[1]);
+        char c;
+        cr_assert_eq(read(ready[0], &c, 1), 1, "the child wrote once");
+        close(ready[0]);
+        int sig = signals[round % 4];
+        kill(pid, sig);
+        int status;
+        cr_assert_eq(waitpid(pid, &status, 0), pid);
+        cr_assert(WIFSIGNALED(status) && WTERMSIG(status) == sig, "status %d", status);
+        char names[512];
+        int count = list_dir(names, sizeof names);
+        cr_assert_eq(count, 1, "round %d left: %s", round, names);
+        cr_assert_str_eq(names, "big.bin ");
+    }
+    remove(target);
+    free(data);
 }
