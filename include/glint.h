@@ -116,6 +116,15 @@ GLINT_API glint_rc glint_scene_settings(const glint_scene *scene, glint_settings
 GLINT_API glint_rc glint_scene_set_settings(glint_scene *scene, const glint_settings *s,
                                             glint_error *err);
 
+/* What a scene holds, so that a front end can say when something is
+ * missing (no lights: only the ambient term shows; no objects: only the
+ * background). Meshes count the files, objects their instances. */
+typedef struct glint_scene_counts {
+    int objects, lights, materials, textures, meshes;
+} glint_scene_counts;
+GLINT_API glint_rc glint_scene_count(const glint_scene *scene, glint_scene_counts *out,
+                                     glint_error *err);
+
 /* ---- camera -------------------------------------------------------------- */
 
 typedef enum glint_projection {
