@@ -386,3 +386,23 @@ Test(cli, scene_from_standard_input_and_no_fifos, .timeout = 60)
     cr_expect_eq(run("-q /dev/zero", out, sizeof out), 2);
     cr_expect_str_eq(out, "glint: /dev/zero: cannot read scene: not a regular file\n");
 }
+
+/* Memory running out inside the mesh importer said "std::bad_alloc" and
+ * exited 2, as if the file were bad: it is out of memory, exit 1. A
+ * 200-byte PLY declaring two billion vertices, under a 400 MB address
+ * space limit (not with AddressSanitizer, which needs terabytes of it). */
+Test(cli, out_of_memory_in_the_mesh_importer_exits_1)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    cr_skip_test("AddressSanitizer cannot run under an address space limit");
+#else
+    char out[4096];
+    put("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
+                    "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n");
+    put("huge.yaml", "objects: [{type: mesh, file: huge.ply}]\n");
+    cr_expect_eq(run_sh("ulimit -v 400000 && \"$GLINT\" -q -r 8x8 huge.yaml", out, sizeof out),
+                 1);
+    cr_expect_str_eq(out, "glint: out of memory\n");
+#endif
+}

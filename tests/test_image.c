@@ -834,6 +834,28 @@ Test(image, an_existing_file_keeps_its_mode)
     cr_assert_eq(mode_of(in_dir("fresh.png")) & 07777, 0644);
 }
 
+/* A file with a second hard link is replaced under the name written (the
+ * write is atomic: a new file is renamed over it); the other name keeps
+ * the old contents, as README.md says. */
+Test(image, a_hard_linked_file_is_replaced_under_its_name_only)
+{
+    uint8_t rgb[7 * 5 * 3];
+    test_pattern(rgb);
+    const char *path = in_dir("linked.png"), *other = in_dir("other.png");
+    write_bytes(path, "old", 3);
+    cr_assert_eq(link(path, other), 0);
+    glint_error err = {0};
+    cr_assert_eq(write_rgb8(path, 7, 5, rgb, &err), GLINT_OK, "%s", err.msg);
+    size_t n;
+    unsigned char *bytes = read_bytes(other, &n);
+    cr_expect(n == 3 && memcmp(bytes, "old", 3) == 0, "the other name is left alone");
+    image img;
+    cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+    cr_expect_eq(img.width, 7);
+    image_free(&img);
+    unlink(other);
+}
+
 /* Like cp, a file without write permission is not replaced, even by root. */
 Test(image, a_read_only_file_is_refused_and_kept)
 {

@@ -1000,6 +1000,9 @@ Test(load_errors, fifos_and_devices_are_refused_at_once, .timeout = 20)
         {"objects: [{type: mesh, file: /dev/urandom}]\n",
          "1:30: cannot read mesh '/dev/urandom': not a regular file"},
         {"include: /dev/zero\n", "1:10: cannot read include '/dev/zero': not a regular file"},
+        /* a folder given as a mesh reached assimp ("aiScene::mNumMeshes is 0") */
+        {"objects: [{type: mesh, file: .}]\n",
+         "1:30: cannot read mesh '.' (%s): Is a directory"},
     };
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
