@@ -104,7 +104,10 @@ typedef struct glint_scene glint_scene;
 /* The assignment's nine-object scene, built. */
 GLINT_API glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
 /* A scene file (YAML, docs/scene-format.md), built; paths in it are
- * relative to its folder. Errors name the file, line and column. */
+ * relative to its folder. Errors name the file, line and column. The scene
+ * and the files it names must be regular files (a FIFO, a device or a
+ * folder is refused before anything is read); "-" and "/dev/stdin" read
+ * standard input to its end, with paths relative to the current folder. */
 GLINT_API glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 /* Frees the scene and everything in it; NULL is fine. */
 GLINT_API void glint_scene_free(glint_scene *scene);
