@@ -52,7 +52,8 @@ static int run(int n, int threads)
         return 1;
     }
     double t1 = now();
-    glint_settings st = {640, 480, 1, 5, threads, GLINT_TRANSFER_NONE, GLINT_SAMPLER_GRID, 0.05, 3, 0};
+    glint_settings st = {640, 480, 1, 5, threads, GLINT_TRANSFER_NONE, 1.0 / 255,
+                         GLINT_SAMPLER_GRID, 0.05, 3, 0};
     glint_film film;
     glint_stats stats;
     if (glint_render(s, &st, NULL, &film, &stats, &err) != GLINT_OK) {
