@@ -74,7 +74,8 @@ static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, GLINT_SAMPLER_GRID, 0.05, 3, 0};
+    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255,
+                         GLINT_SAMPLER_GRID, 0.05, 3, 0};
     OK(glint_scene_set_settings(s, &st, &err));
     glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
     OK(glint_scene_set_camera(s, &cam, &err));
@@ -454,6 +455,9 @@ Test(api, null_arguments_are_refused)
     REFUSED(glint_scene_new(NULL, &err), "out is NULL");
     REFUSED(glint_scene_settings(NULL, &st, &err), "scene is NULL");
     REFUSED(glint_scene_settings(s, NULL, &err), "out is NULL");
+    glint_scene_counts counts;
+    REFUSED(glint_scene_count(NULL, &counts, &err), "scene is NULL");
+    REFUSED(glint_scene_count(s, NULL, &err), "out is NULL");
     REFUSED(glint_scene_set_settings(NULL, &st, &err), "scene is NULL");
     REFUSED(glint_scene_set_settings(s, NULL, &err), "settings is NULL");
     REFUSED(glint_settings_check(NULL, &err), "settings is NULL");
@@ -485,6 +489,17 @@ Test(api, null_arguments_are_refused)
     REFUSED(glint_film_write(&film, "x.png", NULL, &err), "film->rgb is NULL");
     REFUSED(glint_output_check(NULL, NULL, &err), "path is NULL");
     REFUSED(glint_format_parse(NULL, NULL, &err), "name is NULL");
+    glint_animation an;
+    char name[16];
+    REFUSED(glint_scene_animation(NULL, &an, &err), "scene is NULL");
+    REFUSED(glint_scene_animation(s, NULL, &err), "out is NULL");
+    REFUSED(glint_scene_set_time(NULL, 0, &err), "scene is NULL");
+    REFUSED(glint_scene_set_frame(NULL, 1, &err), "scene is NULL");
+    REFUSED(glint_frames_parse(NULL, 1, &n, &n, &err), "spec is NULL");
+    REFUSED(glint_frames_parse("1", 1, NULL, &n, &err), "first is NULL");
+    REFUSED(glint_frame_path(NULL, 1, name, sizeof name, &err), "pattern is NULL");
+    REFUSED(glint_frame_path("a.png", 1, NULL, 4, &err), "out is NULL");
+    cr_expect_eq(glint_output_complete(NULL, 0, 0), 0);
     cr_expect_eq(glint_scene_load(NULL, &s, NULL), GLINT_ERR_INPUT, "err may be NULL");
     glint_scene_free(NULL);
     glint_film_free(NULL);
@@ -499,6 +514,20 @@ Test(api, values_out_of_range_are_refused)
     glint_settings bad = st;
     bad.transfer = (glint_transfer)7;
     REFUSED(glint_settings_check(&bad, &err), "transfer");
+    bad = st;
+    bad.sampler = (glint_sampler)3;
+    REFUSED(glint_settings_check(&bad, &err), "sampler");
+    bad = st;
+    bad.threshold = 1.5;
+    REFUSED(glint_settings_check(&bad, &err), "threshold");
+    bad = st;
+    bad.adaptive_depth = 6;
+    REFUSED(glint_settings_check(&bad, &err), "max_depth");
+    REFUSED(glint_scene_set_time(s, NAN, &err), "finite");
+    REFUSED(glint_scene_set_frame(s, 2, &err), "frame 2 is out of range (1 to 1)");
+    REFUSED(glint_frame_path("a.png", -1, (char[8]){0}, 8, &err), "frame must be >= 0");
+    bad = st;
+    bad.transfer = (glint_transfer)7;
     glint_film film = {0};
     REFUSED(glint_render(s, &bad, NULL, &film, NULL, &err), "transfer");
     cr_expect_null(film.rgb);
@@ -590,5 +619,29 @@ Test(api, values_out_of_range_are_refused)
     OK(glint_scene_build(s, &err));
     OK(glint_render(s, NULL, NULL, &film, NULL, &err));
     glint_film_free(&film);
+    glint_scene_free(s);
+}
+
+/* What a scene holds, for front ends that warn about a scene without
+ * lights or objects. */
+Test(api, scene_counts)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    glint_scene_counts n;
+    OK(glint_scene_count(s, &n, &err));
+    cr_expect(n.objects == 0 && n.lights == 0 && n.textures == 0 && n.meshes == 0);
+    glint_light l = {GLINT_LIGHT_POINT, {0, 5, 0}, {1, 1, 1}};
+    OK(glint_scene_add_light(s, &l, NULL, &err));
+    glint_material m = glint_material_default();
+    int mat;
+    OK(glint_scene_add_material(s, &m, &mat, &err));
+    glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, -5}, 1}}, mat, NULL, 0};
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_count(s, &n, &err));
+    cr_expect_eq(n.objects, 2);
+    cr_expect_eq(n.lights, 1);
+    cr_expect_geq(n.materials, 1);
     glint_scene_free(s);
 }

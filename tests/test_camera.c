@@ -115,7 +115,8 @@ Test(camera, thin_lens_focuses_one_point_for_any_lens_sample)
 
 static sampler make(glint_sampler kind, int samples)
 {
-    glint_settings st = {16, 16, samples, 5, 1, GLINT_TRANSFER_NONE, kind, 0.05, 3, 0};
+    glint_settings st = {16, 16, samples, 5, 1, GLINT_TRANSFER_NONE, 1.0 / 255,
+                         kind, 0.05, 3, 0};
     return sampler_make(&st, true, true);
 }
 

@@ -67,6 +67,31 @@ Test(sampling, adaptive_splits_only_where_the_image_changes)
     glint_scene_free(s);
 }
 
+/* A chequer texture: inside a square the pixels are flat, along its edges
+ * (half-way through pixels) they split. */
+Test(sampling, adaptive_splits_along_texture_edges)
+{
+    static const char text[] =
+        "image: {width: 64, height: 64, sampler: adaptive, threshold: 0.05, max_depth: 3}\n"
+        "camera: {projection: orthographic, width: 64, eye: [0, 0, 10], look_at: [0, 0, 0]}\n"
+        "ambient: 1\n"
+        "objects:\n"
+        "  - {type: quad, origin: [-40.5, -40.5, 0], edge_u: [80, 0, 0], edge_v: [0, 80, 0],\n"
+        "     material: {diffuse: 0, texture: {type: checker, scale: 5}}}\n";
+    glint_scene *s = load(text);
+    glint_settings st;
+    glint_scene_settings(s, &st, NULL);
+    /* squares 16 pixels wide, edges at x and y = 7.5, 23.5, 39.5, 55.5 */
+    double inside = spp_of(s, &st, (glint_rect){9, 9, 23, 23});
+    double edge = spp_of(s, &st, (glint_rect){23, 9, 24, 23});
+    /* no pixel splits: each of the four 7 x 7 tile pieces traces its 8 x 8
+     * pixel corners and 49 centres */
+    cr_expect(fabs(inside - 4.0 * (64 + 49) / 196.0) < 1e-9,
+              "inside a square: %g samples per pixel", inside);
+    cr_expect(edge > 8.0, "along a square's edge: only %g samples per pixel", edge);
+    glint_scene_free(s);
+}
+
 /* At threshold 0 every cell splits down to max_depth: the pixel is the
  * 2^depth x 2^depth grid's, to float rounding (the means are taken in
  * another order). */

@@ -7,9 +7,9 @@
 
 #include "scene/settings.h"
 
-static const char *const image_keys[] = {"width",    "height",    "samples",   "depth",
-                                         "background", "transfer", "sampler", "threshold",
-                                         "max_depth", "alpha",     NULL};
+static const char *const image_keys[] = {"width",      "height",   "samples",     "depth",
+                                         "background", "transfer", "adc_bailout", "sampler",
+                                         "threshold",  "max_depth", "alpha",      NULL};
 static const char *const transfers[] = {"none", "srgb", NULL};
 static const char *const samplers[] = {"grid", "jitter", "adaptive", NULL}; /* glint_sampler order */
 
@@ -92,6 +92,12 @@ glint_rc load_image_settings(loader *L, uint32_t map)
         rc = load_enum(L, v, "transfer", "transfer", transfers, &x);
         if (rc == GLINT_OK && load_claim(L, SET_TRANSFER))
             st->transfer = x == 0 ? GLINT_TRANSFER_NONE : GLINT_TRANSFER_SRGB;
+    }
+    float f;
+    if (rc == GLINT_OK && (v = load_get(L, map, "adc_bailout")) != YDOC_NONE) {
+        rc = load_unit(L, v, "adc_bailout", &f);
+        if (rc == GLINT_OK && load_claim(L, SET_ADC_BAILOUT))
+            st->adc_bailout = f;
     }
     if (rc == GLINT_OK)
         rc = load_sampling(L, map);

@@ -288,7 +288,9 @@ static void render_tile(job *j, worker_state *w, glint_rect r)
 static void *worker(void *arg)
 {
     job *j = arg;
-    worker_state w = {{j->scene, j->decode, j->settings->max_depth, 0, 0, 0.0f}, 0, NULL, NULL};
+    worker_state w = {{j->scene, j->decode, j->settings->max_depth, 0, 0,
+                       (float)j->settings->adc_bailout, 1.0f, 0.0f},
+                      0, NULL, NULL};
     if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE) {
         size_t side = (size_t)j->lattice + 1;
         w.points = malloc(sizeof *w.points * side * side);

@@ -5,6 +5,7 @@
 
 #include "core/array.h"
 #include "core/error.h"
+#include "scene/settings.h"
 
 scene *scene_new(void)
 {
@@ -17,6 +18,7 @@ scene *scene_new(void)
     s->ambient = v3s(0.2f);
     s->settings = (glint_settings){.width = 500, .height = 500, .samples = 1, .max_depth = 5,
                                    .threads = 0, .transfer = GLINT_TRANSFER_NONE,
+                                   .adc_bailout = SETTINGS_ADC_BAILOUT,
                                    .sampler = GLINT_SAMPLER_GRID, .threshold = 0.05,
                                    .adaptive_depth = 3, .alpha = 0};
     s->anim.frames = 1;

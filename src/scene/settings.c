@@ -58,5 +58,8 @@ glint_rc settings_check(const glint_settings *s, glint_error *err)
     if (s->adaptive_depth < 0 || s->adaptive_depth > SETTINGS_MAX_ADAPTIVE_DEPTH)
         return err_set(err, GLINT_ERR_INPUT, "adaptive max_depth must be 0 to %d (got %d)",
                        SETTINGS_MAX_ADAPTIVE_DEPTH, s->adaptive_depth);
+    if (!(s->adc_bailout >= 0.0 && s->adc_bailout <= 1.0))
+        return err_set(err, GLINT_ERR_INPUT, "adc_bailout must be 0 (never prune) to 1 (got %g)",
+                       s->adc_bailout);
     return GLINT_OK;
 }

@@ -13,6 +13,9 @@
 #define SETTINGS_MAX_DEPTH 64
 #define SETTINGS_MAX_THREADS 1024
 #define SETTINGS_MAX_ADAPTIVE_DEPTH 5 /* 32 x 32 cells, as many as SETTINGS_MAX_SAMPLES */
+/* A scene's adaptive depth control threshold unless it says otherwise:
+ * one step of an 8-bit pixel, POV-Ray's adc_bailout default. */
+#define SETTINGS_ADC_BAILOUT (1.0 / 255.0)
 
 /* GLINT_OK when every field is in range; otherwise GLINT_ERR_INPUT and a
  * message naming the field, its range and the value given. */
