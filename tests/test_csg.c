@@ -237,12 +237,18 @@ static void check_ray(const csg *c, ray r, csg_tally *tl, const char *what)
                      (double)sf.n.x, (double)sf.n.y, (double)sf.n.z, (double)h.t, entering);
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+#define CSG_TREES 30 /* the sanitizers run some ten times slower */
+#else
+#define CSG_TREES 150
+#endif
+
 Test(csg, random_trees_agree_with_the_membership_oracle, .timeout = 300)
 {
     rng g = rng_seed(99, 1);
     csg_tally tl = {0};
     int points = 0, inside = 0;
-    for (int tree = 0; tree < 150; tree++) {
+    for (int tree = 0; tree < CSG_TREES; tree++) {
         csg c = {0};
         owned own = {.n = 0};
         random_tree(&c, &g, &own, 3);
