@@ -88,6 +88,10 @@ int roots_cubic(const double c[4], double lo, double hi, double out[3])
     return between(c, dc, 3, lo, hi, crit, ncrit, out, 3);
 }
 
+/* The quartic's turning points (the cubic's roots) are found one at a
+ * time, in order, and each piece between two of them is searched as soon
+ * as its end is known, so asking for the first root alone skips the
+ * turning points beyond it. */
 int roots_quartic(const double c[5], double lo, double hi, double out[4], int max)
 {
     if (c[4] == 0.0) {
@@ -97,8 +101,30 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
             out[i] = r[i];
         return n < max ? n : max;
     }
-    double dc[4] = {c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4]};
-    double crit[3];
-    int ncrit = roots_cubic(dc, lo, hi, crit);
-    return between(c, dc, 4, lo, hi, crit, ncrit, out, max > 4 ? 4 : max);
+    const double dc[4] = {c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4]};
+    const double ddc[3] = {dc[1], 2.0 * dc[2], 3.0 * dc[3]};
+    double bend[2]; /* the cubic's turning points cut it into monotonic pieces */
+    int nbend = roots_quadratic(ddc, lo, hi, bend), n = 0;
+    double x0 = lo, f0 = roots_eval(c, 4, lo);  /* start of the quartic's piece */
+    double y0 = lo, g0 = roots_eval(dc, 3, lo); /* start of the cubic's */
+    for (int i = 0; i <= nbend; i++) {
+        double y1 = i < nbend ? bend[i] : hi, g1 = roots_eval(dc, 3, y1);
+        if ((g0 < 0.0 && g1 > 0.0) || (g0 > 0.0 && g1 < 0.0)) {
+            double x1 = bracketed(dc, ddc, 3, y0, y1, g0, g1); /* a quartic turning point */
+            double f1 = roots_eval(c, 4, x1);
+            if ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0)) {
+                out[n++] = bracketed(c, dc, 4, x0, x1, f0, f1);
+                if (n >= max)
+                    return n;
+            }
+            x0 = x1;
+            f0 = f1;
+        }
+        y0 = y1;
+        g0 = g1;
+    }
+    double f1 = roots_eval(c, 4, hi);
+    if (n < max && ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0)))
+        out[n++] = bracketed(c, dc, 4, x0, hi, f0, f1);
+    return n;
 }

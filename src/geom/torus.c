@@ -44,10 +44,29 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
         }
         double inv = 1.0 / d[a];
         double ta = (-ext[a] - o[a]) * inv, tb = (ext[a] - o[a]) * inv;
-        t0 = fmax(t0, fmin(ta, tb));
-        t1 = fmin(t1, fmax(ta, tb));
+        if (ta > tb) { /* (fmin and fmax are library calls) */
+            double t = ta;
+            ta = tb, tb = t;
+        }
+        t0 = ta > t0 ? ta : t0;
+        t1 = tb < t1 ? tb : t1;
     }
     if (!(t0 < t1))
+        return false;
+    /* Within the slab |y| <= r the tube lies between the cylinders of radius
+     * R - r and R + r round the axis: a segment wholly inside the inner one
+     * (down the hole) or wholly outside the outer one (past a corner of the
+     * box) misses. The squared distance from the axis is a quadratic in t,
+     * largest at an end of the segment and smallest at its vertex. */
+    double qa = d[0] * d[0] + d[2] * d[2], qb = o[0] * d[0] + o[2] * d[2];
+    double qc = o[0] * o[0] + o[2] * o[2];
+    double e0 = qc + t0 * (2.0 * qb + t0 * qa), e1 = qc + t1 * (2.0 * qb + t1 * qa);
+    double inner = R > rm ? (R - rm) * (R - rm) * 0.999 : 0.0, outer = (R + rm) * (R + rm) * 1.001;
+    if (e0 < inner && e1 < inner)
+        return false;
+    double tv = qa > 0.0 ? -qb / qa : t0;
+    tv = tv < t0 ? t0 : tv > t1 ? t1 : tv;
+    if (qc + tv * (2.0 * qb + tv * qa) > outer)
         return false;
     double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double u[3] = {d[0] / len, d[1] / len, d[2] / len};
