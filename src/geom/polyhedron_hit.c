@@ -62,9 +62,9 @@ bool polyhedron_intersect(const polyhedron *p, const ray *r, shape_hit *hit)
         int fn, ff;
         if (!convex_span(p, r, &tn, &fn, &tf, &ff))
             return false;
-        if (tn > r->tmin && tn < r->tmax)
+        if (ray_in_range(r, tn))
             *hit = (shape_hit){.t = tn, .part = fn};
-        else if (tf > r->tmin && tf < r->tmax)
+        else if (ray_in_range(r, tf))
             *hit = (shape_hit){.t = tf, .part = ff};
         else
             return false;

@@ -95,7 +95,7 @@ bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit)
     for (int pass = 0; pass < 2 && n > 0; pass++) {
         for (int i = 0; i < n; i++) {
             float t = (float)(q.t0 + roots[i] / q.len);
-            if (t > r->tmin && t < r->tmax) {
+            if (ray_in_range(r, t)) {
                 hit->t = t;
                 hit->part = 0;
                 return true;
