@@ -276,3 +276,19 @@ glint_rc load_transform(loader *L, uint32_t list, int *index)
     free(steps.channels);
     return rc;
 }
+
+/* A transform that stays put (a CSG part's): keyed steps are refused. */
+glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
+{
+    *out = xform_identity();
+    *any = false;
+    if (load_node(L, list)->kind != YNODE_SEQ)
+        return load_expected(L, list, "a list of steps", "transform");
+    step_list steps = {0};
+    glint_rc rc = load_steps(L, list, &steps, out, any);
+    if (rc == GLINT_OK && steps.nchannels > 0)
+        rc = load_fail(L, list, "a transform inside csg cannot have keyed values");
+    free(steps.steps);
+    free(steps.channels);
+    return rc;
+}
