@@ -24,8 +24,8 @@ static const char usage[] =
     "  -r, --resolution WxH   image size, overriding the scene's\n"
     "  -s, --spp N            samples per pixel, a perfect square (4 = 2x2 grid)\n"
     "  -d, --depth N          reflection/refraction recursion limit\n"
-    "  -t, --threads N        render threads per process (default: the cores the\n"
-    "                         process may run on)\n"
+    "  -t, --threads N        render threads per process (default 0: one per core\n"
+    "                         the process may run on)\n"
     "      --transfer T       none (default) or srgb: how film values become pixels\n"
     "      --frames A:B       render frames A to B of an animated scene; the output\n"
     "                         name takes the number in a %d field (out-%04d.png),\n"
@@ -121,6 +121,28 @@ static int say(bool speak, const char *text)
     return 0;
 }
 
+/* The message for an option getopt_long refused, as glint words it: a
+ * value missing, a value given to a flag, or no such option, the option
+ * named as written (optopt holds the option's value, or 0). */
+static int option_error(int opt, char **argv, bool speak)
+{
+    const char *written = argv[optind - 1];
+    const struct option *o = NULL;
+    for (const struct option *l = long_options; l->name && optopt; l++)
+        if (l->val == optopt)
+            o = l;
+    bool as_long = strncmp(written, "--", 2) == 0;
+    if (opt == ':' && o && !as_long && o->val < 256)
+        return usage_error(speak, "-%c needs a value", o->val);
+    if (opt == ':')
+        return usage_error(speak, "%s%s needs a value", o ? "--" : "", o ? o->name : written);
+    if (o && o->has_arg == no_argument && as_long && strchr(written, '='))
+        return usage_error(speak, "--%s takes no value (got '%s')", o->name, written);
+    if (optopt > 0 && optopt < 256)
+        return usage_error(speak, "unknown option -%c", optopt);
+    return usage_error(speak, "unknown option %s", written);
+}
+
 /* One option with its value; -1 to go on, else the exit code. */
 static int parse_one(int opt, const char *arg, char **argv, dist_options *o, bool speak)
 {
@@ -153,8 +175,9 @@ static int parse_one(int opt, const char *arg, char **argv, dist_options *o, boo
             return usage_error(speak, "-d: expected a whole number >= 0, got '%s'", arg);
         return -1;
     case 't':
-        if (!parse_int(arg, 1, INT_MAX, &o->threads))
-            return usage_error(speak, "-t: expected a positive whole number, got '%s'", arg);
+        if (!parse_int(arg, 0, INT_MAX, &o->threads))
+            return usage_error(speak, "-t: expected a whole number >= 0 (0: all cores), got '%s'",
+                               arg);
         return -1;
     case OPT_TRANSFER:
         if (strcmp(arg, "none") == 0)
@@ -178,14 +201,8 @@ static int parse_one(int opt, const char *arg, char **argv, dist_options *o, boo
         if (!parse_int(arg, 8, 32, &o->write.bits))
             return usage_error(speak, "--bits: expected 8, 16 or 32, got '%s'", arg);
         return -1;
-    case ':':
-        if (optopt)
-            return usage_error(speak, "-%c needs a value", optopt);
-        return usage_error(speak, "%s needs a value", argv[optind - 1]);
     default:
-        if (optopt)
-            return usage_error(speak, "unknown option -%c", optopt);
-        return usage_error(speak, "unknown option %s", argv[optind - 1]);
+        return option_error(opt, argv, speak);
     }
 }
 
@@ -237,7 +254,7 @@ glint_rc dist_settings(const glint_scene *scene, const dist_options *o, glint_se
         s->max_depth = o->depth;
     if (o->threads > 0)
         s->threads = o->threads;
-    else if (s->threads == 0)
+    else if (o->threads == 0 || s->threads == 0)
         s->threads = cpus_allowed();
     if (o->transfer >= 0)
         s->transfer = (glint_transfer)o->transfer;
