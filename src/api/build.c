@@ -145,8 +145,8 @@ glint_rc glint_scene_add_texture(glint_scene *s, const glint_texture *in, int *i
         if (rc != GLINT_OK)
             return rc;
         t = texture_image(img);
-        t.wrap_u = in->wrap[0] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
-        t.wrap_v = in->wrap[1] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
+        t.image.wrap_u = in->wrap[0] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
+        t.image.wrap_v = in->wrap[1] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
         break;
     }
     case GLINT_TEXTURE_CHECKER:
@@ -155,10 +155,8 @@ glint_rc glint_scene_add_texture(glint_scene *s, const glint_texture *in, int *i
         t = texture_checker(api_vec3(in->even), api_vec3(in->odd), 1.0f, 1.0f);
         break;
     }
-    t.scale_u = (float)in->scale[0];
-    t.scale_v = (float)in->scale[1];
-    t.offset_u = (float)in->offset[0];
-    t.offset_v = (float)in->offset[1];
+    t.scale = v3((float)in->scale[0], (float)in->scale[1], 1.0f);
+    t.offset = v3((float)in->offset[0], (float)in->offset[1], 0.0f);
     return added(scene_add_texture(s, &t), index, err);
 }
 
@@ -174,7 +172,7 @@ glint_rc glint_scene_add_light(glint_scene *s, const glint_light *in, int *index
         return api_bad(err, fn, "position must be finite");
     if (!color_ok(in->color))
         return api_bad(err, fn, "colour components must be finite and >= 0");
-    light l = {LIGHT_POINT, api_vec3(in->position), api_vec3(in->color)};
+    light l = light_point(api_vec3(in->position), api_vec3(in->color), v3(1.0f, 0.0f, 0.0f));
     return added(scene_add_light(s, &l), index, err);
 }
 

@@ -12,8 +12,9 @@
 
 /* ---- files ------------------------------------------------------------ */
 
-static const char *const top_keys[] = {"image",     "camera",  "ambient", "lights",
-                                       "textures",  "materials", "objects", "include", NULL};
+static const char *const top_keys[] = {"image",    "camera",    "ambient", "fog",
+                                       "lights",   "textures",  "materials", "objects",
+                                       "include",  NULL};
 
 
 static glint_rc load_text(loader *L, const char *text, size_t len, char *data, const char *name,
@@ -104,6 +105,8 @@ static glint_rc load_top(loader *L, uint32_t root)
             rc = load_color(L, v, "ambient", &c);
             if (rc == GLINT_OK && load_claim(L, SET_AMBIENT))
                 L->ambient = c;
+        } else if (strcmp(key, "fog") == 0) {
+            rc = load_fog(L, v);
         } else if (strcmp(key, "lights") == 0) {
             rc = load_list(L, v, "lights", load_light);
         } else if (strcmp(key, "textures") == 0) {
@@ -159,20 +162,48 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
 
 /* ---- after every file ------------------------------------------------- */
 
-/* Resolves the names materials give textures, or objects materials. */
-static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what)
+/* What a resolved name is for. */
+typedef enum ref_use {
+    REF_TEXTURE, /* a material's texture */
+    REF_BUMP,    /* a material's bump pattern */
+    REF_MATERIAL /* an object's material */
+} ref_use;
+
+/* Gives the named element to its user. */
+static glint_rc use_ref(loader *L, const ref *r, ref_use use, int index)
 {
+    switch (use) {
+    case REF_TEXTURE:
+        scene_set_material_texture(L->s, r->index, index);
+        return GLINT_OK;
+    case REF_BUMP:
+        if (L->s->textures[index].space == SPACE_UV)
+            return load_fail_in(L, r->file, r->node,
+                                "a bump pattern must be in space object or world (its gradient "
+                                "is taken in space), not on (u, v)");
+        scene_set_material_bump(L->s, r->index, index);
+        return GLINT_OK;
+    case REF_MATERIAL:
+        scene_set_object_material(L->s, r->index, index);
+        return GLINT_OK;
+    }
+    return GLINT_OK;
+}
+
+/* Resolves the names materials give textures, or objects materials. */
+static glint_rc resolve(loader *L, const ref *refs, int n, ref_use use)
+{
+    const names *table = use == REF_MATERIAL ? &L->material_names : &L->texture_names;
+    const char *what = use == REF_MATERIAL ? "material" : "texture";
     for (int i = 0; i < n; i++) {
         const ydoc *d = L->files[refs[i].file].doc;
         const ynode *nn = ydoc_node(d, refs[i].node);
         const char *name = ydoc_text(d, nn);
         int at = names_find(table, name, nn->count);
         if (at >= 0) {
-            int index = L->defs[at].index;
-            if (table == &L->texture_names)
-                scene_set_material_texture(L->s, refs[i].index, index);
-            else
-                scene_set_object_material(L->s, refs[i].index, index);
+            glint_rc rc = use_ref(L, &refs[i], use, L->defs[at].index);
+            if (rc != GLINT_OK)
+                return rc;
             continue;
         }
         char buf[SHOWN], hint[SHOWN + 32] = "";
@@ -192,9 +223,11 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
 
 static glint_rc finish(loader *L)
 {
-    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture");
+    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, REF_TEXTURE);
     if (rc == GLINT_OK)
-        rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material");
+        rc = resolve(L, L->bump_refs, L->nbump_refs, REF_BUMP);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->material_refs, L->nmaterial_refs, REF_MATERIAL);
     if (rc != GLINT_OK)
         return rc;
     glint_error serr = {0};
@@ -214,6 +247,7 @@ static glint_rc finish(loader *L)
     scene_set_camera(L->s, &L->camera);
     scene_set_background(L->s, L->background);
     scene_set_ambient(L->s, L->ambient);
+    scene_set_fog(L->s, &L->fog);
     return scene_build(L->s, L->err);
 }
 
@@ -234,6 +268,7 @@ static void loader_free(loader *L)
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);
+    free(L->bump_refs);
 }
 
 static glint_rc load(const char *text, size_t len, char *data, const char *name, const char *dir,
@@ -257,6 +292,7 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
     L.camera = scene_camera(L.s);
     L.background = scene_background(L.s);
     L.ambient = scene_ambient(L.s);
+    L.fog = scene_fog(L.s);
     rc = load_text(&L, text, len, data, name, key, dir);
     if (rc == GLINT_OK)
         rc = finish(&L);
