@@ -1,5 +1,5 @@
 /* light: the closed set of light sources, an enum + union like the shapes,
- * with one switch per question (light.c):
+ * with one switch per question (here, inline, for the shading loop):
  *
  *   point        a position; intensity = color / (c + l d + q d^2) at
  *                distance d, attenuation (c, l, q) = (1, 0, 0) by default
@@ -22,6 +22,7 @@
 #ifndef GLINT_SHADE_LIGHT_H
 #define GLINT_SHADE_LIGHT_H
 
+#include <math.h>
 #include "core/vec3.h"
 
 typedef enum light_kind {
@@ -89,20 +90,82 @@ typedef struct light_ray {
     vec3 color;
 } light_ray;
 
-/* How many samples the light takes per shaded point: N^2 for an area
- * light, 1 for the others. */
-int light_sample_count(const light *l);
-
-/* Sample k (0 <= k < light_sample_count) of the light as seen from p.
- * (u1, u2) in [0, 1)^2 place an area light's sample within its cell k
- * (row k / N, column k % N); other lights ignore them. */
-light_ray light_sample(const light *l, vec3 p, int k, float u1, float u2);
-
 /* The attenuation factor 1 / (c + l d + q d^2) (1 for the default). */
-float light_attenuation(vec3 att, float d);
+static inline float light_attenuation(vec3 att, float d)
+{
+    float k = att.x + d * (att.y + d * att.z);
+    return k > 0.0f ? 1.0f / k : 0.0f;
+}
 
 /* A spot light's factor in [0, 1] for a direction at cosine cos_a from
  * its axis. */
-float light_spot_factor(const struct spot_light *s, float cos_a);
+static inline float light_spot_factor(const struct spot_light *s, float cos_a)
+{
+    if (cos_a >= s->cos_inner)
+        return 1.0f;
+    if (cos_a <= s->cos_outer)
+        return 0.0f;
+    float t = (cos_a - s->cos_outer) / (s->cos_inner - s->cos_outer);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+/* How many samples the light takes per shaded point: N^2 for an area
+ * light, 1 for the others. */
+static inline int light_sample_count(const light *l)
+{
+    switch (l->kind) {
+    case LIGHT_POINT:
+    case LIGHT_DIRECTIONAL:
+    case LIGHT_SPOT:
+        return 1;
+    case LIGHT_AREA:
+        return l->area.n * l->area.n;
+    case LIGHT_KIND_COUNT:
+        break;
+    }
+    return 0;
+}
+
+/* Towards a point light source at pos, attenuated. */
+static inline light_ray light_toward(vec3 p, vec3 pos, vec3 color, vec3 att)
+{
+    vec3 d = v3_sub(pos, p);
+    float dist = v3_len(d);
+    light_ray r = {v3_scale(d, dist > 0.0f ? 1.0f / dist : 0.0f), dist, pos, color};
+    if (!(att.x == 1.0f && att.y == 0.0f && att.z == 0.0f))
+        r.color = v3_scale(color, light_attenuation(att, dist));
+    return r;
+}
+
+/* Sample k (0 <= k < light_sample_count) of the light as seen from p.
+ * (u1, u2) in [0, 1)^2 place an area light's sample within its cell k
+ * (row k / N, column k % N); other lights ignore them. The one switch over
+ * the kinds that shading uses. */
+static inline light_ray light_sample(const light *l, vec3 p, int k, float u1, float u2)
+{
+    switch (l->kind) {
+    case LIGHT_POINT:
+        return light_toward(p, l->point.position, l->color, l->point.attenuation);
+    case LIGHT_DIRECTIONAL:
+        return (light_ray){v3_neg(l->directional.direction), INFINITY, p, l->color};
+    case LIGHT_SPOT: {
+        const struct spot_light *s = &l->spot;
+        light_ray r = light_toward(p, s->position, l->color, s->attenuation);
+        float f = light_spot_factor(s, -v3_dot(r.dir, s->axis));
+        r.color = v3_scale(r.color, f);
+        return r;
+    }
+    case LIGHT_AREA: {
+        const struct area_light *a = &l->area;
+        float inv = 1.0f / (float)a->n;
+        float su = ((float)(k % a->n) + u1) * inv, sv = ((float)(k / a->n) + u2) * inv;
+        vec3 pos = v3_madd(v3_madd(a->corner, a->edge_u, su), a->edge_v, sv);
+        return light_toward(p, pos, v3_scale(l->color, inv * inv), a->attenuation);
+    }
+    case LIGHT_KIND_COUNT:
+        break;
+    }
+    return (light_ray){v3s(0.0f), 0.0f, p, v3s(0.0f)};
+}
 
 #endif

@@ -54,7 +54,7 @@ vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
 }
 
 /* One light sample's diffuse and specular share, shadowed. */
-static void add_sample(trace_ctx *ctx, const shade_point *sp, const light_ray *lr,
+static inline void add_sample(trace_ctx *ctx, const shade_point *sp, const light_ray *lr,
                        vec3 *diffuse, vec3 *specular)
 {
     const material *m = sp->m;
@@ -76,7 +76,7 @@ static void add_sample(trace_ctx *ctx, const shade_point *sp, const light_ray *l
 }
 
 /* Every sample of light i (lighting.h: the jitter). */
-static void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint32_t event,
+static inline void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint32_t event,
                       vec3 *diffuse, vec3 *specular)
 {
     const light *l = &ctx->scene->lights[i];
