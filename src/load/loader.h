@@ -67,7 +67,8 @@ enum {
     SET_UP = 1 << 8,
     SET_FOV = 1 << 9,
     SET_AMBIENT = 1 << 10,
-    SET_FOG = 1 << 11,
+    SET_ADC_BAILOUT = 1 << 11,
+    SET_FOG = 1 << 12,
 };
 
 typedef struct loader {

@@ -122,7 +122,8 @@ static void render_tile(job *j, trace_ctx *ctx, glint_rect r)
 static void *worker(void *arg)
 {
     job *j = arg;
-    trace_ctx ctx = {.scene = j->scene, .decode = j->decode, .max_depth = j->settings->max_depth};
+    trace_ctx ctx = {.scene = j->scene, .decode = j->decode, .max_depth = j->settings->max_depth,
+                     .bailout = (float)j->settings->adc_bailout, .weight = 1.0f};
     const glint_callbacks *cb = j->cb;
     for (;;) {
         if (atomic_load(&j->cancelled))

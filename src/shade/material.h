@@ -4,19 +4,22 @@
  *             * light * shadow) * base * (1 - transmit)
  *   + sum over lights of specular * max(0, r.v)^shininess * light * shadow
  *   + emission
- *   + reflect * (reflected ray) + transmit * tint * (transmitted ray)
+ *   + kr * (reflected ray) + kt * tint * (transmitted ray)
  *
  * base = color, times the texture when there is one; n is the shading
- * normal, tilted by the bump pattern when there is one. A light with
- * several samples (an area light) adds each sample's share. transmit with
- * ior == 1 is plain transparency: the ray goes on undeviated. With
- * ior != 1 the transmitted ray refracts by Snell's law and, unless fresnel
- * is off, the split between reflection and transmission follows Fresnel
- * (Schlick's approximation); under total internal reflection all of it
- * reflects. Inside a transmitting object light fades by Beer-Lambert's law,
- * exp(-absorption * distance) per channel, along rays and shadow rays.
- * Shadow rays pass through any transmitting surface, filtered by
- * transmit * tint at each crossing. */
+ * normal, tilted by the bump pattern when there is one. Only transmission
+ * takes light from the local colour; reflection adds on top, as in POV-Ray.
+ * The highlight has the light's colour, not the surface's. Surfaces are
+ * two-sided: n faces the incoming ray. A light with several samples (an
+ * area light) adds each sample's share. kr = reflect and kt = transmit,
+ * except that with ior != 1 and fresnel on, Fresnel moves a share of kt to
+ * kr (all of it under total internal reflection, fresnel on or off).
+ * transmit with ior == 1 is plain transparency: the ray goes on undeviated.
+ * With ior != 1 the transmitted ray refracts by Snell's law and the split
+ * follows Fresnel (Schlick's approximation). Inside a transmitting object
+ * light fades by Beer-Lambert's law, exp(-absorption * distance) per
+ * channel, along rays and shadow rays. Shadow rays pass through any
+ * transmitting surface, filtered by transmit * tint at each crossing. */
 #ifndef GLINT_SHADE_MATERIAL_H
 #define GLINT_SHADE_MATERIAL_H
 
