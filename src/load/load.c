@@ -166,46 +166,48 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
 
 /* ---- after every file ------------------------------------------------- */
 
-/* What a resolved name is for. */
-typedef enum ref_use {
-    REF_TEXTURE, /* a material's texture */
-    REF_BUMP,    /* a material's bump pattern */
-    REF_MATERIAL /* an object's material */
-} ref_use;
-
-/* Gives the named element to its user. */
-static glint_rc use_ref(loader *L, const ref *r, ref_use use, int index)
+static glint_rc set_texture(loader *L, const ref *r, int index)
 {
-    switch (use) {
-    case REF_TEXTURE:
-        scene_set_material_texture(L->s, r->index, index);
-        return GLINT_OK;
-    case REF_BUMP:
-        if (L->s->textures[index].space == SPACE_UV)
-            return load_fail_in(L, r->file, r->node,
-                                "a bump pattern must be in space object or world (its gradient "
-                                "is taken in space), not on (u, v)");
-        scene_set_material_bump(L->s, r->index, index);
-        return GLINT_OK;
-    case REF_MATERIAL:
-        scene_set_object_material(L->s, r->index, index);
-        return GLINT_OK;
-    }
+    scene_set_material_texture(L->s, r->index, index);
     return GLINT_OK;
 }
 
-/* Resolves the names materials give textures, or objects materials. */
-static glint_rc resolve(loader *L, const ref *refs, int n, ref_use use)
+/* A bump pattern is a function of a point in space: its gradient is taken
+ * there (texture.h). */
+static glint_rc set_bump(loader *L, const ref *r, int index)
 {
-    const names *table = use == REF_MATERIAL ? &L->material_names : &L->texture_names;
-    const char *what = use == REF_MATERIAL ? "material" : "texture";
+    if (L->s->textures[index].space == SPACE_UV)
+        return load_fail_in(L, r->file, r->node,
+                            "a bump pattern must be in space object or world (its gradient "
+                            "is taken in space), not on (u, v)");
+    scene_set_material_bump(L->s, r->index, index);
+    return GLINT_OK;
+}
+
+static glint_rc set_material(loader *L, const ref *r, int index)
+{
+    scene_set_object_material(L->s, r->index, index);
+    return GLINT_OK;
+}
+
+static glint_rc set_csg_material(loader *L, const ref *r, int index)
+{
+    scene_set_csg_material(L->s, r->index, r->leaf, index);
+    return GLINT_OK;
+}
+
+/* Resolves the names materials give textures (and bump patterns), or
+ * objects (and csg operands) materials, through set. */
+static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what,
+                        glint_rc (*set)(loader *, const ref *, int))
+{
     for (int i = 0; i < n; i++) {
         const ydoc *d = L->files[refs[i].file].doc;
         const ynode *nn = ydoc_node(d, refs[i].node);
         const char *name = ydoc_text(d, nn);
         int at = names_find(table, name, nn->count);
         if (at >= 0) {
-            glint_rc rc = use_ref(L, &refs[i], use, L->defs[at].index);
+            glint_rc rc = set(L, &refs[i], L->defs[at].index);
             if (rc != GLINT_OK)
                 return rc;
             continue;
@@ -227,11 +229,16 @@ static glint_rc resolve(loader *L, const ref *refs, int n, ref_use use)
 
 static glint_rc finish(loader *L)
 {
-    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, REF_TEXTURE);
+    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture",
+                          set_texture);
     if (rc == GLINT_OK)
-        rc = resolve(L, L->bump_refs, L->nbump_refs, REF_BUMP);
+        rc = resolve(L, L->bump_refs, L->nbump_refs, &L->texture_names, "texture", set_bump);
     if (rc == GLINT_OK)
-        rc = resolve(L, L->material_refs, L->nmaterial_refs, REF_MATERIAL);
+        rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material",
+                     set_material);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->csg_refs, L->ncsg_refs, &L->material_names, "material",
+                     set_csg_material);
     if (rc != GLINT_OK)
         return rc;
     glint_error serr = {0};
@@ -273,6 +280,7 @@ static void loader_free(loader *L)
     free(L->texture_refs);
     free(L->material_refs);
     free(L->bump_refs);
+    free(L->csg_refs);
 }
 
 static glint_rc load(const char *text, size_t len, char *data, const char *name, const char *dir,

@@ -215,8 +215,8 @@ static glint_rc load_steps(loader *L, uint32_t list, xform *acc, bool *any)
  * whether there was a step. */
 glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
 {
-    *any = false;
     *out = xform_identity();
+    *any = false;
     if (load_node(L, list)->kind != YNODE_SEQ)
         return load_expected(L, list, "a list of steps", "transform");
     return load_steps(L, list, out, any);
