@@ -168,7 +168,8 @@ static scene *slab_scene(void)
     shape b = shape_box(v3(-1, -5, -5), v3(1, 5, 5));
     scene_add_object(s, &b, 0, -1);
     scene_set_background(s, v3s(1.0f));
-    scene_set_camera(s, &(camera){v3(-10, 0, 0), v3(0, 0, 0), v3(0, 1, 0), 10.0f});
+    scene_set_camera(s, &(camera){.eye = v3(-10, 0, 0), .target = v3(0, 0, 0), .up = v3(0, 1, 0),
+                             .hfov = 10.0f});
     glint_error err = {0};
     cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
     return s;
