@@ -221,3 +221,29 @@ Test(anim, shutter_set_through_the_api)
     cr_expect(!s->objects[0].moving, "the shutter is closed");
     glint_scene_free(s);
 }
+
+/* Every kind of light's colour may be keyed, and a material's emission;
+ * a texture's transform may not. */
+Test(anim, lights_and_materials_of_every_kind)
+{
+    glint_scene *s = load_text(
+        "animation: {frames: 3, fps: 1}\n"
+        "lights:\n"
+        "  - {type: spot, position: [0, 5, 0], look_at: [0, 0, 0],\n"
+        "     color: {keys: [[0, 0], [2, [2, 4, 6]]]}}\n"
+        "  - {type: directional, direction: [0, -1, 0], color: {keys: [[1, 1], [2, 0]]}}\n"
+        "materials:\n"
+        "  m: {emission: {keys: [[0, 0], [2, 1]], interpolation: step}}\n"
+        "objects: [{type: sphere, center: [0, 0, 0], radius: 1, material: m}]\n");
+    glint_error err = {0};
+    cr_assert_eq(glint_scene_set_frame(s, 2, &err), GLINT_OK, "%s", err.msg); /* t = 1 */
+    ASSERT_V3_NEAR(s->lights[0].color, 1, 2, 3, 1e-6);
+    ASSERT_V3_NEAR(s->lights[1].color, 1, 1, 1, 1e-6);
+    ASSERT_V3_NEAR(s->materials[0].emission, 0, 0, 0, 0);
+    cr_assert_eq(glint_scene_set_frame(s, 3, &err), GLINT_OK, "%s", err.msg);
+    ASSERT_V3_NEAR(s->lights[1].color, 0, 0, 0, 1e-6);
+    ASSERT_V3_NEAR(s->materials[0].emission, 1, 1, 1, 0);
+    glint_scene_free(s);
+    expect_error("textures: {t: {type: checker, transform: [{rotate_z: {keys: [[0, 0]]}}]}}\n",
+                 "scene.yaml:1:42: only an object's own transform may be keyed, not this one");
+}

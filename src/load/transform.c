@@ -250,6 +250,30 @@ static glint_rc load_steps(loader *L, uint32_t list, step_list *steps, xform *ac
     return GLINT_OK;
 }
 
+/* The steps of list, composed into *out (*any: whether there was a step),
+ * and read into steps for a motion. */
+static glint_rc read_steps(loader *L, uint32_t list, step_list *steps, xform *out, bool *any)
+{
+    *out = xform_identity();
+    *any = false;
+    if (load_node(L, list)->kind != YNODE_SEQ)
+        return load_expected(L, list, "a list of steps", "transform");
+    return load_steps(L, list, steps, out, any);
+}
+
+/* A list of steps, first applied first, composed into *out; *any says
+ * whether there was a step. Only an object's own transform may be keyed. */
+glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
+{
+    step_list steps = {0};
+    glint_rc rc = read_steps(L, list, &steps, out, any);
+    if (rc == GLINT_OK && steps.nchannels > 0)
+        rc = load_fail(L, list, "only an object's own transform may be keyed, not this one");
+    free(steps.steps);
+    free(steps.channels);
+    return rc;
+}
+
 /* A list of steps, first applied first; *index gets the scene's xform, or
  * -1 when there are no steps. With keyed steps the xform is driven by a
  * motion (scene/anim.h) and holds the transform at the first keys until
@@ -257,12 +281,10 @@ static glint_rc load_steps(loader *L, uint32_t list, step_list *steps, xform *ac
 glint_rc load_transform(loader *L, uint32_t list, int *index)
 {
     *index = -1;
-    if (load_node(L, list)->kind != YNODE_SEQ)
-        return load_expected(L, list, "a list of steps", "transform");
-    xform acc = xform_identity();
-    bool any = false;
+    xform acc;
+    bool any;
     step_list steps = {0};
-    glint_rc rc = load_steps(L, list, &steps, &acc, &any);
+    glint_rc rc = read_steps(L, list, &steps, &acc, &any);
     if (rc == GLINT_OK && any) {
         *index = scene_add_xform(L->s, &acc);
         if (*index < 0)
@@ -272,22 +294,6 @@ glint_rc load_transform(loader *L, uint32_t list, int *index)
         anim_add_motion(&L->s->anim, *index, steps.steps, steps.n, steps.channels,
                         steps.nchannels) < 0)
         rc = err_nomem(L->err);
-    free(steps.steps);
-    free(steps.channels);
-    return rc;
-}
-
-/* A transform that stays put (a CSG part's): keyed steps are refused. */
-glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
-{
-    *out = xform_identity();
-    *any = false;
-    if (load_node(L, list)->kind != YNODE_SEQ)
-        return load_expected(L, list, "a list of steps", "transform");
-    step_list steps = {0};
-    glint_rc rc = load_steps(L, list, &steps, out, any);
-    if (rc == GLINT_OK && steps.nchannels > 0)
-        rc = load_fail(L, list, "a transform inside csg cannot have keyed values");
     free(steps.steps);
     free(steps.channels);
     return rc;

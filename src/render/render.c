@@ -111,8 +111,11 @@ static void tile_finished(job *j, worker_state *w, const worker_state *before, g
 /* Traces one camera sample at image position (x, y): lens and time from s.
  * *cover gets whether it hit something (only when the film keeps alpha). */
 static vec3 trace_sample(const job *j, worker_state *w, float x, float y, pixel_sample s,
-                         float *cover)
+                         const uint32_t id[3], float *cover)
 {
+    /* light samples hash the sample's identity: pixel and index, or for
+     * the adaptive lattice the point's own coordinates */
+    trace_begin_sample(&w->ctx, id[0], id[1], id[2]);
     const scene *sc = j->scene;
     float t = sc->time + s.time * sc->shutter_seconds;
     camera_frame moved;
@@ -157,7 +160,9 @@ static void render_tile_fixed(job *j, worker_state *w, glint_rect r)
             float cover = 0.0f, c;
             for (int k = 0; k < count; k++) {
                 pixel_sample s = sampler_get(&j->smp, x, y, k);
-                sum = v3_add(sum, trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, &c));
+                const uint32_t id[3] = {(uint32_t)x, (uint32_t)y, (uint32_t)k};
+                sum = v3_add(sum,
+                             trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, id, &c));
                 cover += c;
             }
             put_pixel(j, x, y, v3_scale(sum, inv_count), cover * inv_count);
@@ -189,9 +194,10 @@ static void lattice_trace(const job *j, worker_state *w, int x, int y, int i, in
         return;
     int n = j->lattice;
     float fx = (float)i / (float)n, fy = (float)k / (float)n;
-    pixel_sample s = sampler_point((uint32_t)x * (uint32_t)n + (uint32_t)i,
-                                   (uint32_t)y * (uint32_t)n + (uint32_t)k, fx, fy);
-    p->c = trace_sample(j, w, (float)x + fx, (float)y + fy, s, &p->cover);
+    const uint32_t id[3] = {(uint32_t)x * (uint32_t)n + (uint32_t)i,
+                            (uint32_t)y * (uint32_t)n + (uint32_t)k, 0x80000000u};
+    pixel_sample s = sampler_point(id[0], id[1], fx, fy);
+    p->c = trace_sample(j, w, (float)x + fx, (float)y + fy, s, id, &p->cover);
     glint_transfer tf = j->settings->transfer;
     p->shown[0] = image_display_value(p->c.x, tf);
     p->shown[1] = image_display_value(p->c.y, tf);
@@ -288,8 +294,9 @@ static void render_tile(job *j, worker_state *w, glint_rect r)
 static void *worker(void *arg)
 {
     job *j = arg;
-    worker_state w = {{j->scene, j->decode, j->settings->max_depth, 0, 0,
-                       (float)j->settings->adc_bailout, 1.0f, 0.0f},
+    worker_state w = {{.scene = j->scene, .decode = j->decode,
+                       .max_depth = j->settings->max_depth,
+                       .bailout = (float)j->settings->adc_bailout, .weight = 1.0f},
                       0, NULL, NULL};
     if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE) {
         size_t side = (size_t)j->lattice + 1;
