@@ -9,7 +9,7 @@
 
 #include <stdbool.h>
 #include "glint.h"
-#include "accel/bvh4.h"
+#include "accel/wide.h"
 #include "core/mat4.h"
 #include "geom/mesh.h"
 #include "geom/shape.h"
@@ -47,7 +47,7 @@ struct glint_scene {
     vec3 background;
     vec3 ambient; /* ambient light, scaled by each material's ambient */
     glint_settings settings;
-    bvh4 bvh;        /* over the objects with finite bounds, by scene_build */
+    bvhw bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
     int nunbounded;
     bool built;
