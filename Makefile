@@ -202,12 +202,20 @@ EMBREE_LIBS = $(shell pkg-config --libs embree3 2>/dev/null || echo -lembree3)
 bench:
 	@scripts/install-deps bench
 	@$(MAKE) --no-print-directory SAN=0 $(BUILD)/glint $(BUILD)/bench/spheres $(BUILD)/bench/raybench \
-		scenes/textures/flag.png scenes/textures/globe.png
+		$(BUILD)/bench/output $(BUILD)/bench/interactive scenes/textures/flag.png scenes/textures/globe.png
 	BUILD=$(BUILD) bench/run
 
 $(BUILD)/bench/spheres: $(BUILD)/obj/bench/spheres.o $(BUILD)/libglint.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/bench/interactive: $(BUILD)/obj/bench/interactive.o $(BUILD)/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/bench/output: $(BUILD)/obj/bench/output.o $(BUILD)/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 $(BUILD)/bench/raybench: $(BUILD)/obj/bench/raybench.o $(BUILD)/libglint.a
 	@mkdir -p $(dir $@)
