@@ -663,6 +663,40 @@ Test(bvh, build_covers_every_primitive_once)
     bvh_free(&empty);
 }
 
+/* The parallel build makes the same tree as the serial one, node for node
+ * and in the same order: 2, 3 and 8 CPUs against 1, on enough boxes that
+ * several subtrees get threads of their own (and a cluster no split
+ * separates). */
+Test(bvh, parallel_build_makes_the_serial_tree)
+{
+    enum { N = 60000 };
+    static aabb boxes[N];
+    rng g = rng_seed(21, 3);
+    for (int i = 0; i < N; i++) {
+        vec3 c = rand_in(&g, -100, 100);
+        if (i % 50 == 0)
+            c = v3(-7, 4, 9);
+        vec3 e = rand_in(&g, 0, 1.5f);
+        boxes[i] = (aabb){v3_sub(c, e), v3_add(c, e)};
+    }
+    glint_error err = {0};
+    bvh one;
+    cr_assert_eq(bvh_build_threads(&one, boxes, N, 4, 1, &err), GLINT_OK, "%s", err.msg);
+    int cpus[] = {2, 3, 8};
+    for (int k = 0; k < 3; k++) {
+        bvh many;
+        cr_assert_eq(bvh_build_threads(&many, boxes, N, 4, cpus[k], &err), GLINT_OK, "%s",
+                     err.msg);
+        cr_assert_eq(many.nnodes, one.nnodes, "%d CPUs", cpus[k]);
+        cr_assert_eq(memcmp(many.nodes, one.nodes, sizeof *one.nodes * (size_t)one.nnodes), 0,
+                     "%d CPUs: the nodes differ", cpus[k]);
+        cr_assert_eq(memcmp(many.prims, one.prims, sizeof *one.prims * (size_t)N), 0,
+                     "%d CPUs: the primitive order differs", cpus[k]);
+        bvh_free(&many);
+    }
+    bvh_free(&one);
+}
+
 /* The scene's BVH over objects (with transforms, and a plane outside it):
  * scene_intersect and scene_occluded_opaque agree with testing every
  * object in turn. */

@@ -1,5 +1,5 @@
 /* The SIMD paths of src/accel/isa.h: the built-in scene and every scene of
- * the gallery (scenes/*.yaml) render to the same bytes whichever path
+ * the gallery (every .yaml file in scenes/) render to the same bytes whichever path
  * traverses the BVHs (scalar, SSE, AVX2, AVX-512; the ones this CPU lacks
  * are skipped), and a forced path is the one the built BVHs use. */
 #include <criterion/criterion.h>
