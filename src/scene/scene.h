@@ -103,7 +103,8 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 
-/* Surface at a hit, in world space, normals unit and outward. */
+/* Surface at a hit, in world space, normals unit and outward; (u, v) may
+ * be left 0 where the hit's material does not use them (material_uses_uv). */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
 
 /* The material at a hit. */

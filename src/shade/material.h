@@ -14,6 +14,7 @@
 #ifndef GLINT_SHADE_MATERIAL_H
 #define GLINT_SHADE_MATERIAL_H
 
+#include <stdbool.h>
 #include "core/vec3.h"
 
 typedef struct material {
@@ -23,6 +24,11 @@ typedef struct material {
     float reflect, transmit, ior;
     vec3 tint;
 } material;
+
+/* Whether shading this material reads the surface's (u, v); when not,
+ * scene_surface may skip computing them. Whatever reads (u, v) in shading
+ * must be named here. */
+static inline bool material_uses_uv(const material *m) { return m->texture >= 0; }
 
 /* Matte white: ambient 1, diffuse 1, specular 0, no reflection or transmission. */
 material material_default(void);
