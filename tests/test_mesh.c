@@ -1,5 +1,5 @@
 /* Meshes: importing files (src/load/mesh_import.h) and the hierarchies
- * rays traverse (src/accel/bvh.h, bvh4.h, src/geom/mesh.h, the scene's BVH
+ * rays traverse (src/accel/bvh.h, wide.h, traverse.h, src/geom/mesh.h, the scene's BVH
  * over objects in src/scene/scene.h).
  *
  * Import: small files written here into a mkdtemp directory (an OBJ

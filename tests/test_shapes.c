@@ -766,3 +766,19 @@ Test(shapes, convex_transformed_shapes_never_rehit_themselves)
     xform cx = xform_then(&cs, &r3);
     expect_no_rehit("stretched cylinder", shape_cylinder(v3(0, 0, 0), 1, 1, true), &cx, 403);
 }
+
+/* The normal is worked out in double: a triangle whose float normal
+ * overflows is too large, one with no area (or too small for floats) is
+ * degenerate, and neither is confused with the other. */
+Test(shapes, triangle_check_tells_too_large_from_degenerate)
+{
+    vec3 o = v3(0, 0, 0);
+    cr_expect_eq(triangle_check(o, v3(1, 0, 0), v3(0, 1, 0)), TRIANGLE_OK);
+    cr_expect_eq(triangle_check(o, v3(1e38f, 0, 0), v3(0, 1e38f, 0)), TRIANGLE_TOO_LARGE);
+    cr_expect_eq(triangle_check(o, v3(1e10f, 0, 0), v3(0, 1e10f, 0)), TRIANGLE_TOO_LARGE);
+    cr_expect_eq(triangle_check(o, v3(1e9f, 0, 0), v3(0, 1e9f, 0)), TRIANGLE_OK);
+    cr_expect_eq(triangle_check(o, v3(1e38f, 0, 0), v3(-1e38f, 0, 0)), TRIANGLE_DEGENERATE);
+    cr_expect_eq(triangle_check(o, v3(1, 1, 1), v3(2, 2, 2)), TRIANGLE_DEGENERATE);
+    cr_expect_eq(triangle_check(o, v3(1e-30f, 0, 0), v3(0, 1e-30f, 0)), TRIANGLE_DEGENERATE);
+    cr_expect_eq(triangle_check(o, v3(INFINITY, 0, 0), v3(0, 1, 0)), TRIANGLE_DEGENERATE);
+}

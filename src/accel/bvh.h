@@ -11,8 +11,9 @@
  * own (as many as the CPUs the process may run on), each into its own node
  * array, then joined in depth-first order: the tree is the same whatever
  * the number of threads.
- * Traversal lives with the primitives it tests (scene.c for objects), using
- * bvh_node_hit and the stack depth bound below. */
+ * Rays never traverse this binary tree: bvhw_from_bvh (wide.h) collapses
+ * it into the four- or eight-wide hierarchy they do traverse, with stacks
+ * sized by the depth bound below. */
 #ifndef GLINT_ACCEL_BVH_H
 #define GLINT_ACCEL_BVH_H
 

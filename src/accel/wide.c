@@ -126,8 +126,10 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
     collapse c = {b, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node),
                   NULL, 0, b->nnodes / (out->width - 1) + 2};
     c.nodes = aligned_alloc(64, c.node_size * (size_t)c.cap);
-    if (!c.nodes)
+    if (!c.nodes) {
+        bvh_free(b);
         return err_nomem(err);
+    }
     if (b->nodes[0].count) { /* a single leaf: one node with one lane */
         lanes l;
         for (int k = 0; k < c.width; k++) {
@@ -138,6 +140,7 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
         store(&c, new_node(&c), &l);
     } else if (collapse_node(&c, 0) < 0) {
         free(c.nodes);
+        bvh_free(b);
         return err_nomem(err);
     }
     if (c.width == 8)

@@ -47,7 +47,7 @@ typedef struct bvhw {
 } bvhw;
 
 /* Collapses b into out for the kernels of isa, taking over b's primitive
- * array (b is freed). */
+ * array. b is freed in every case, failure included. */
 glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err);
 void bvhw_free(bvhw *b);
 /* Bytes of the nodes. */

@@ -8,13 +8,6 @@
 #include "geom/tri4.h"
 #include "mesh_trace.h"
 
-static bool degenerate(vec3 a, vec3 b, vec3 c)
-{
-    if (!v3_is_finite(a) || !v3_is_finite(b) || !v3_is_finite(c))
-        return true;
-    vec3 n = v3_cross(v3_sub(b, a), v3_sub(c, a));
-    return !(v3_len2(n) > 0.0f);
-}
 
 /* Copies each leaf's triangles into tri4 blocks, in node order, and
  * renumbers the leaf to its first block, so traversal reaches the corners
@@ -68,7 +61,15 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
     for (int i = 0; i < m->ntris; i++) {
         const uint32_t *t = m->tri[i];
         if (t[0] >= (uint32_t)m->nverts || t[1] >= (uint32_t)m->nverts ||
-            t[2] >= (uint32_t)m->nverts || degenerate(m->pos[t[0]], m->pos[t[1]], m->pos[t[2]]))
+            t[2] >= (uint32_t)m->nverts)
+            continue;
+        triangle_fit fit = triangle_check(m->pos[t[0]], m->pos[t[1]], m->pos[t[2]]);
+        if (fit == TRIANGLE_TOO_LARGE) /* dropping it silently would leave a hole */
+            return err_set(err, GLINT_ERR_INPUT,
+                           "%s: triangle %d is too large for single precision (its normal "
+                           "overflows); scale the model down",
+                           name, i + 1);
+        if (fit == TRIANGLE_DEGENERATE)
             continue;
         memmove(m->tri[kept], m->tri[i], sizeof m->tri[i]);
         if (m->tri_material)

@@ -103,6 +103,16 @@ shape shape_cylinder(vec3 base, float radius, float height, bool capped);
 shape shape_triangle(vec3 p0, vec3 p1, vec3 p2);
 shape shape_mesh(const struct mesh *m);
 
+/* What a triangle's corners allow: its normal (the cross product of two
+ * edges) is worked out in double, so a triangle too large for single
+ * precision is told from one with no area. */
+typedef enum triangle_fit {
+    TRIANGLE_OK,
+    TRIANGLE_DEGENERATE, /* corners on one line (or not finite, or too small for floats) */
+    TRIANGLE_TOO_LARGE,  /* its normal overflows single precision (edges of about 4e9 or more) */
+} triangle_fit;
+triangle_fit triangle_check(vec3 p0, vec3 p1, vec3 p2);
+
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out);

@@ -67,6 +67,7 @@ enum {
     SET_UP = 1 << 8,
     SET_FOV = 1 << 9,
     SET_AMBIENT = 1 << 10,
+    SET_ADC_BAILOUT = 1 << 11,
 };
 
 typedef struct loader {

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "load/mesh_import.h"
 
@@ -55,8 +56,15 @@ static glint_rc load_triangle(loader *L, uint32_t map, shape *out)
         rc = load_need_vec3(L, map, pk[i], "triangle", &p[i]);
     if (rc != GLINT_OK)
         return rc;
-    if (v3_is_zero(v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0]))))
+    switch (triangle_check(p[0], p[1], p[2])) {
+    case TRIANGLE_OK:
+        break;
+    case TRIANGLE_DEGENERATE:
         return load_fail(L, map, "triangle is degenerate: p0, p1 and p2 lie on one line");
+    case TRIANGLE_TOO_LARGE:
+        return load_fail(L, map, "triangle is too large for single precision (its normal "
+                                 "overflows); scale it down");
+    }
     *out = shape_triangle(p[0], p[1], p[2]);
     uint32_t v = load_get(L, map, "uv");
     if (v == YDOC_NONE)
@@ -93,12 +101,13 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
     }
     glint_error merr = {0};
     if (L->reader == scene_read_file) {
-        FILE *probe = fopen(resolved, "rb");
-        if (!probe) {
-            rc = load_cannot_read(L, v, "mesh", written, resolved, strerror(errno));
+        int probe;
+        rc = load_open_regular(resolved, &probe, &merr);
+        if (rc != GLINT_OK) {
+            rc = load_cannot_read(L, v, "mesh", written, resolved, merr.msg);
             goto out;
         }
-        fclose(probe);
+        close(probe);
         rc = mesh_import(resolved, &mf, &merr);
     } else {
         size_t size;

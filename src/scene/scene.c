@@ -5,6 +5,7 @@
 
 #include "core/array.h"
 #include "core/error.h"
+#include "scene/settings.h"
 #include "scene_trace.h"
 
 scene *scene_new(void)
@@ -16,7 +17,8 @@ scene *scene_new(void)
     s->background = v3s(0.0f);
     s->ambient = v3s(0.2f);
     s->settings = (glint_settings){.width = 500, .height = 500, .samples = 1, .max_depth = 5,
-                                   .threads = 0, .transfer = GLINT_TRANSFER_NONE};
+                                   .threads = 0, .transfer = GLINT_TRANSFER_NONE,
+                                   .adc_bailout = SETTINGS_ADC_BAILOUT};
     return s;
 }
 
