@@ -1,6 +1,6 @@
 /* Meshes: importing files (src/load/mesh_import.h) and the hierarchies
- * rays traverse (src/accel/bvh.h, wide.h, traverse.h, src/geom/mesh.h, the scene's BVH
- * over objects in src/scene/scene.h).
+ * rays traverse (src/accel/bvh.h, wide.h, traverse.h, src/geom/mesh.h, the
+ * scene's BVH over objects in src/scene/scene.h).
  *
  * Import: small files written here into a mkdtemp directory (an OBJ
  * tetrahedron, an OBJ cube with and without normals and with UVs, an ASCII

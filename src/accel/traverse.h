@@ -10,6 +10,7 @@
 #ifndef GLINT_ACCEL_TRAVERSE_H
 #define GLINT_ACCEL_TRAVERSE_H
 
+#include <math.h>
 #include <stdint.h>
 #if defined(__SSE2__) && !defined(GLINT_NO_SIMD)
 #define GLINT_TRAVERSE_SSE 1
@@ -21,6 +22,13 @@
 #endif
 #include "accel/wide.h"
 #include "core/ray.h"
+
+/* The slab test rounds (lo - o) * (1 / d) and so can put a box's far
+ * distance just before its near one for a ray that passes exactly through
+ * an edge or corner of the box, skipping it. Growing the far distances by
+ * 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps) with eps = 2^-24, keeps the
+ * test conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013). */
+#define WIDE_FAR_SCALE (1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f))
 
 /* A path from the root is at most BVH_MAX_DEPTH long (collapsing never
  * deepens a tree), and a node pushes at most width - 1 entries besides the
@@ -75,7 +83,8 @@ __attribute__((always_inline)) static inline int wide_test4(const bvh4_node *n, 
     __m128 t0z = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->box[4 + r->nz]), oz), iz);
     __m128 t1z = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->box[5 - r->nz]), oz), iz);
     __m128 vn = _mm_max_ps(_mm_max_ps(t0x, t0y), _mm_max_ps(t0z, _mm_set1_ps(r->tmin)));
-    __m128 vf = _mm_min_ps(_mm_min_ps(t1x, t1y), _mm_min_ps(t1z, _mm_set1_ps(tmax)));
+    __m128 vf = _mm_min_ps(_mm_min_ps(t1x, t1y), _mm_min_ps(t1z, _mm_set1_ps(INFINITY)));
+    vf = _mm_min_ps(_mm_mul_ps(vf, _mm_set1_ps(WIDE_FAR_SCALE)), _mm_set1_ps(tmax));
     _mm_storeu_ps(tn, vn);
     return _mm_movemask_ps(_mm_cmple_ps(vn, vf));
 #else
@@ -86,7 +95,7 @@ __attribute__((always_inline)) static inline int wide_test4(const bvh4_node *n, 
         float b0 = (n->box[2 + r->ny][k] - o.y) * inv.y, b1 = (n->box[3 - r->ny][k] - o.y) * inv.y;
         float c0 = (n->box[4 + r->nz][k] - o.z) * inv.z, c1 = (n->box[5 - r->nz][k] - o.z) * inv.z;
         tn[k] = maxf(maxf(a0, b0), maxf(c0, r->tmin));
-        float tf = minf(minf(a1, b1), minf(c1, tmax));
+        float tf = minf(minf(minf(a1, b1), minf(c1, INFINITY)) * WIDE_FAR_SCALE, tmax);
         mask |= (tn[k] <= tf) << k;
     }
     return mask;
@@ -110,7 +119,8 @@ __attribute__((always_inline)) static inline int wide_test8(const bvh8_node *n, 
     __m256 t0z = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->box[4 + r->nz]), oz), iz);
     __m256 t1z = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->box[5 - r->nz]), oz), iz);
     __m256 vn = _mm256_max_ps(_mm256_max_ps(t0x, t0y), _mm256_max_ps(t0z, _mm256_set1_ps(r->tmin)));
-    __m256 vf = _mm256_min_ps(_mm256_min_ps(t1x, t1y), _mm256_min_ps(t1z, _mm256_set1_ps(tmax)));
+    __m256 vf = _mm256_min_ps(_mm256_min_ps(t1x, t1y), _mm256_min_ps(t1z, _mm256_set1_ps(INFINITY)));
+    vf = _mm256_min_ps(_mm256_mul_ps(vf, _mm256_set1_ps(WIDE_FAR_SCALE)), _mm256_set1_ps(tmax));
     _mm256_storeu_ps(tn, vn);
 #if defined(__AVX512VL__)
     return (int)_mm256_cmp_ps_mask(vn, vf, _CMP_LE_OQ);
@@ -181,8 +191,10 @@ wide_visit(const bvhw *b, int width, int32_t i, const wide_ray *r, float tmax, b
         return wide_descend(wide_test8(n, r, tmax, tn), tn, n->child, n->count, any, stack, sp,
                             cur, cur_count);
     }
+#else
+    if (width == 8) /* an eight-wide tree needs a kernel built with AVX2 */
+        __builtin_trap();
 #endif
-    (void)width;
     const bvh4_node *n = &b->n4[i];
     return wide_descend(wide_test4(n, r, tmax, tn), tn, n->child, n->count, any, stack, sp, cur,
                         cur_count);

@@ -175,12 +175,26 @@ bool mesh_occluded(const mesh *m, const ray *r)
     return isa == ACCEL_SCALAR ? mesh_occluded_scalar(m, r) : mesh_occluded_sse(m, r);
 }
 
+int mesh_crossings(const mesh *m, const ray *r, crossing *out, int max, bool *more)
+{
+    accel_isa isa = m->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        return mesh_crossings_avx512(m, r, out, max, more);
+    if (isa == ACCEL_AVX2)
+        return mesh_crossings_avx2(m, r, out, max, more);
+#endif
+    return isa == ACCEL_SCALAR ? mesh_crossings_scalar(m, r, out, max, more)
+                               : mesh_crossings_sse(m, r, out, max, more);
+}
+
 void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)
 {
     const uint32_t *t = m->tri[hit->part];
     float b1 = hit->b1, b2 = hit->b2, b0 = 1.0f - b1 - b2;
     vec3 p0 = m->pos[t[0]], p1 = m->pos[t[1]], p2 = m->pos[t[2]];
-    out->p = p;
+    (void)p; /* the point from the barycentrics, on the triangle (geom/shape.h) */
+    out->p = v3_madd(v3_madd(p0, v3_sub(p1, p0), b1), v3_sub(p2, p0), b2);
     out->ng = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
     out->n = out->ng;
     if (m->nrm) {
@@ -196,4 +210,81 @@ void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)
         out->u = b1;
         out->v = b2;
     }
+}
+
+/* ---- closedness --------------------------------------------------------- */
+
+static int vec_cmp(const void *pa, const void *pb)
+{
+    const vec3 *a = *(const vec3 *const *)pa, *b = *(const vec3 *const *)pb;
+    if (a->x != b->x)
+        return a->x < b->x ? -1 : 1;
+    if (a->y != b->y)
+        return a->y < b->y ? -1 : 1;
+    return (a->z > b->z) - (a->z < b->z);
+}
+
+typedef struct medge {
+    uint32_t lo, hi;
+    int dir; /* +1: lo -> hi, -1: hi -> lo */
+} medge;
+
+static int medge_cmp(const void *pa, const void *pb)
+{
+    const medge *a = pa, *b = pb;
+    if (a->lo != b->lo)
+        return a->lo < b->lo ? -1 : 1;
+    return (a->hi > b->hi) - (a->hi < b->hi);
+}
+
+/* Vertices at the same position count as one (files often repeat them
+ * where normals or texture coordinates change), so each vertex is renamed
+ * to the first of its position. */
+static uint32_t *weld(const mesh *m)
+{
+    const vec3 **order = malloc(sizeof *order * (size_t)m->nverts);
+    uint32_t *id = malloc(sizeof *id * (size_t)m->nverts);
+    if (!order || !id) {
+        free(order);
+        free(id);
+        return NULL;
+    }
+    for (int i = 0; i < m->nverts; i++)
+        order[i] = &m->pos[i];
+    qsort(order, (size_t)m->nverts, sizeof *order, vec_cmp);
+    for (int i = 0; i < m->nverts; i++) {
+        bool same = i > 0 && vec_cmp(&order[i], &order[i - 1]) == 0;
+        id[order[i] - m->pos] = same ? id[order[i - 1] - m->pos] : (uint32_t)(order[i] - m->pos);
+    }
+    free(order);
+    return id;
+}
+
+int mesh_open_edges(const mesh *m)
+{
+    uint32_t *id = weld(m);
+    medge *e = malloc(sizeof *e * (size_t)m->ntris * 3);
+    if (!id || !e) {
+        free(id);
+        free(e);
+        return -1;
+    }
+    int n = 0;
+    for (int t = 0; t < m->ntris; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = id[m->tri[t][k]], b = id[m->tri[t][(k + 1) % 3]];
+            e[n++] = a < b ? (medge){a, b, 1} : (medge){b, a, -1};
+        }
+    qsort(e, (size_t)n, sizeof *e, medge_cmp);
+    int bad = 0;
+    for (int i = 0; i < n;) {
+        int j = i, sum = 0;
+        for (; j < n && e[j].lo == e[i].lo && e[j].hi == e[i].hi; j++)
+            sum += e[j].dir;
+        bad += j - i != 2 || sum != 0;
+        i = j;
+    }
+    free(id);
+    free(e);
+    return bad;
 }

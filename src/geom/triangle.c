@@ -37,7 +37,8 @@ bool triangle_intersect(const struct triangle *s, const ray *r, shape_hit *hit)
 void triangle_surface(const struct triangle *s, vec3 p, const shape_hit *hit, surface *out)
 {
     float b0 = 1.0f - hit->b1 - hit->b2;
-    out->p = p;
+    (void)p; /* the point from the barycentrics, on the plane (shape.h) */
+    out->p = v3_madd(v3_madd(s->p0, v3_sub(s->p1, s->p0), hit->b1), v3_sub(s->p2, s->p0), hit->b2);
     out->n = v3_norm(v3_cross(v3_sub(s->p1, s->p0), v3_sub(s->p2, s->p0)));
     out->u = b0 * s->uv[0][0] + hit->b1 * s->uv[1][0] + hit->b2 * s->uv[2][0];
     out->v = b0 * s->uv[0][1] + hit->b1 * s->uv[1][1] + hit->b2 * s->uv[2][1];

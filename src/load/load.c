@@ -163,8 +163,25 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
 
 /* ---- after every file ------------------------------------------------- */
 
-/* Resolves the names materials give textures, or objects materials. */
-static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what)
+static void set_texture(scene *s, const ref *r, int index)
+{
+    scene_set_material_texture(s, r->index, index);
+}
+
+static void set_material(scene *s, const ref *r, int index)
+{
+    scene_set_object_material(s, r->index, index);
+}
+
+static void set_csg_material(scene *s, const ref *r, int index)
+{
+    scene_set_csg_material(s, r->index, r->leaf, index);
+}
+
+/* Resolves the names materials give textures, or objects (and csg
+ * operands) materials, through set. */
+static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what,
+                        void (*set)(scene *, const ref *, int))
 {
     for (int i = 0; i < n; i++) {
         const ydoc *d = L->files[refs[i].file].doc;
@@ -172,11 +189,7 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
         const char *name = ydoc_text(d, nn);
         int at = names_find(table, name, nn->count);
         if (at >= 0) {
-            int index = L->defs[at].index;
-            if (table == &L->texture_names)
-                scene_set_material_texture(L->s, refs[i].index, index);
-            else
-                scene_set_object_material(L->s, refs[i].index, index);
+            set(L->s, &refs[i], L->defs[at].index);
             continue;
         }
         char buf[SHOWN], hint[SHOWN + 32] = "";
@@ -196,9 +209,14 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
 
 static glint_rc finish(loader *L)
 {
-    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture");
+    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture",
+                          set_texture);
     if (rc == GLINT_OK)
-        rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material");
+        rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material",
+                     set_material);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->csg_refs, L->ncsg_refs, &L->material_names, "material",
+                     set_csg_material);
     if (rc != GLINT_OK)
         return rc;
     glint_error serr = {0};
@@ -238,6 +256,7 @@ static void loader_free(loader *L)
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);
+    free(L->csg_refs);
 }
 
 static glint_rc load(const char *text, size_t len, char *data, const char *name, const char *dir,

@@ -11,7 +11,9 @@
 #include "glint.h"
 #include "accel/wide.h"
 #include "core/mat4.h"
+#include "geom/csg.h"
 #include "geom/mesh.h"
+#include "geom/polyhedron.h"
 #include "geom/shape.h"
 #include "io/image.h"
 #include "scene/camera.h"
@@ -21,7 +23,7 @@
 
 typedef struct object {
     shape shape;
-    int material;   /* -1: a mesh's own per-triangle materials */
+    int material;   /* -1: a mesh's own per-triangle materials, or a csg's per operand */
     int xform;      /* -1: the shape is in world space */
     bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
 } object;
@@ -42,6 +44,10 @@ struct glint_scene {
     int nlights, cap_lights;
     mesh **meshes;
     int nmeshes, cap_meshes;
+    polyhedron **polyhedra;
+    int npolyhedra, cap_polyhedra;
+    csg **csgs;
+    int ncsgs, cap_csgs;
 
     camera camera;
     vec3 background;
@@ -69,6 +75,10 @@ int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
+/* The same for a polyhedron (by polyhedron_init or _preset) and a csg (by
+ * csg_finish); objects place them with shape_polyhedron and shape_csg. */
+int scene_add_polyhedron(scene *s, polyhedron *p);
+int scene_add_csg(scene *s, csg *c);
 
 /* The scene-wide values a front end sets; each marks the scene unbuilt. */
 void scene_set_camera(scene *s, const camera *c);
@@ -79,6 +89,8 @@ void scene_set_ambient(scene *s, vec3 color);
  * object's material (indices as returned by the adds). */
 void scene_set_material_texture(scene *s, int mat, int tex);
 void scene_set_object_material(scene *s, int obj, int mat);
+/* The material of operand leaf of the scene's csg number c. */
+void scene_set_csg_material(scene *s, int c, int leaf, int mat);
 
 camera scene_camera(const scene *s);
 glint_settings scene_settings(const scene *s);
@@ -111,7 +123,7 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
 static inline const material *scene_hit_material(const scene *s, const scene_hit *hit)
 {
     const object *o = &s->objects[hit->object];
-    int m = o->material >= 0 ? o->material : o->shape.mesh->tri_material[hit->h.part];
+    int m = o->material >= 0 ? o->material : shape_hit_material(&o->shape, &hit->h);
     return &s->materials[m];
 }
 
