@@ -15,8 +15,9 @@
 
 /* ---- files ------------------------------------------------------------ */
 
-static const char *const top_keys[] = {"image",     "camera",  "ambient", "lights",
-                                       "textures",  "materials", "objects", "include", NULL};
+static const char *const top_keys[] = {"image",    "camera",    "ambient", "fog",
+                                       "lights",   "textures",  "materials", "objects",
+                                       "include",  "animation", NULL};
 
 
 static glint_rc load_text(loader *L, const char *text, size_t len, char *data, const char *name,
@@ -104,10 +105,14 @@ static glint_rc load_top(loader *L, uint32_t root)
             rc = load_image_settings(L, v);
         } else if (strcmp(key, "camera") == 0) {
             rc = load_camera(L, v);
+        } else if (strcmp(key, "animation") == 0) {
+            rc = load_animation(L, v);
         } else if (strcmp(key, "ambient") == 0) {
             rc = load_color(L, v, "ambient", &c);
             if (rc == GLINT_OK && load_claim(L, SET_AMBIENT))
                 L->ambient = c;
+        } else if (strcmp(key, "fog") == 0) {
+            rc = load_fog(L, v);
         } else if (strcmp(key, "lights") == 0) {
             rc = load_list(L, v, "lights", load_light);
         } else if (strcmp(key, "textures") == 0) {
@@ -163,25 +168,40 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
 
 /* ---- after every file ------------------------------------------------- */
 
-static void set_texture(scene *s, const ref *r, int index)
+static glint_rc set_texture(loader *L, const ref *r, int index)
 {
-    scene_set_material_texture(s, r->index, index);
+    scene_set_material_texture(L->s, r->index, index);
+    return GLINT_OK;
 }
 
-static void set_material(scene *s, const ref *r, int index)
+/* A bump pattern is a function of a point in space: its gradient is taken
+ * there (texture.h). */
+static glint_rc set_bump(loader *L, const ref *r, int index)
 {
-    scene_set_object_material(s, r->index, index);
+    if (L->s->textures[index].space == SPACE_UV)
+        return load_fail_in(L, r->file, r->node,
+                            "a bump pattern must be in space object or world (its gradient "
+                            "is taken in space), not on (u, v)");
+    scene_set_material_bump(L->s, r->index, index);
+    return GLINT_OK;
 }
 
-static void set_csg_material(scene *s, const ref *r, int index)
+static glint_rc set_material(loader *L, const ref *r, int index)
 {
-    scene_set_csg_material(s, r->index, r->leaf, index);
+    scene_set_object_material(L->s, r->index, index);
+    return GLINT_OK;
 }
 
-/* Resolves the names materials give textures, or objects (and csg
- * operands) materials, through set. */
+static glint_rc set_csg_material(loader *L, const ref *r, int index)
+{
+    scene_set_csg_material(L->s, r->index, r->leaf, index);
+    return GLINT_OK;
+}
+
+/* Resolves the names materials give textures (and bump patterns), or
+ * objects (and csg operands) materials, through set. */
 static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what,
-                        void (*set)(scene *, const ref *, int))
+                        glint_rc (*set)(loader *, const ref *, int))
 {
     for (int i = 0; i < n; i++) {
         const ydoc *d = L->files[refs[i].file].doc;
@@ -189,7 +209,9 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
         const char *name = ydoc_text(d, nn);
         int at = names_find(table, name, nn->count);
         if (at >= 0) {
-            set(L->s, &refs[i], L->defs[at].index);
+            glint_rc rc = set(L, &refs[i], L->defs[at].index);
+            if (rc != GLINT_OK)
+                return rc;
             continue;
         }
         char buf[SHOWN], hint[SHOWN + 32] = "";
@@ -207,10 +229,25 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
     return GLINT_OK;
 }
 
+/* What the projection needs of the rest of the camera. */
+static glint_rc check_projection(loader *L)
+{
+    const camera *c = &L->camera;
+    if (c->projection == CAMERA_PERSPECTIVE && !(c->hfov < 180.0f))
+        return load_fail_in(L, L->fov_file, L->fov_node,
+                            "fov must be > 0 and < 180 degrees (got %g)", (double)c->hfov);
+    if (c->projection == CAMERA_ORTHOGRAPHIC && L->width_node == YDOC_NONE)
+        return load_fail_in(L, L->camera_file, L->camera_node,
+                            "an orthographic camera needs 'width' (of the view, in scene units)");
+    return GLINT_OK;
+}
+
 static glint_rc finish(loader *L)
 {
     glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture",
                           set_texture);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->bump_refs, L->nbump_refs, &L->texture_names, "texture", set_bump);
     if (rc == GLINT_OK)
         rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material",
                      set_material);
@@ -232,11 +269,16 @@ static glint_rc finish(loader *L)
     if (L->camera_file >= 0 && v3_is_zero(v3_cross(view, c->up)))
         return load_fail_in(L, L->camera_file, L->camera_node,
                        "camera up must not be parallel to the view direction");
+    rc = check_projection(L);
+    if (rc != GLINT_OK)
+        return rc;
     scene_set_settings(L->s, &L->settings);
     scene_set_camera(L->s, &L->camera);
     scene_set_background(L->s, L->background);
     scene_set_ambient(L->s, L->ambient);
-    return scene_build(L->s, L->err);
+    scene_set_fog(L->s, &L->fog);
+    /* every animated value at the first frame's time (this builds) */
+    return scene_set_time(L->s, L->s->anim.start, L->err);
 }
 
 static void loader_free(loader *L)
@@ -256,6 +298,8 @@ static void loader_free(loader *L)
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);
+    free(L->pending);
+    free(L->bump_refs);
     free(L->csg_refs);
 }
 
@@ -267,7 +311,8 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
                 .err = err,
                 .default_material = -1,
                 .size_file = -1,
-                .camera_file = -1};
+                .camera_file = -1,
+                .width_node = YDOC_NONE};
     glint_rc rc = GLINT_OK;
     char *key = path_join(NULL, name);
     L.s = scene_new();
@@ -280,6 +325,7 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
     L.camera = scene_camera(L.s);
     L.background = scene_background(L.s);
     L.ambient = scene_ambient(L.s);
+    L.fog = scene_fog(L.s);
     rc = load_text(&L, text, len, data, name, key, dir);
     if (rc == GLINT_OK)
         rc = finish(&L);

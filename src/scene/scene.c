@@ -13,12 +13,17 @@ scene *scene_new(void)
     scene *s = calloc(1, sizeof *s);
     if (!s)
         return NULL;
-    s->camera = (camera){v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 90.0f};
+    s->camera = (camera){.eye = v3(0, 0, 0), .target = v3(0, 0, -1), .up = v3(0, 1, 0),
+                         .hfov = 90.0f, .projection = CAMERA_PERSPECTIVE};
     s->background = v3s(0.0f);
     s->ambient = v3s(0.2f);
     s->settings = (glint_settings){.width = 500, .height = 500, .samples = 1, .max_depth = 5,
                                    .threads = 0, .transfer = GLINT_TRANSFER_NONE,
-                                   .adc_bailout = SETTINGS_ADC_BAILOUT};
+                                   .adc_bailout = SETTINGS_ADC_BAILOUT,
+                                   .sampler = GLINT_SAMPLER_GRID, .threshold = 0.05,
+                                   .adaptive_depth = 3, .alpha = 0};
+    s->anim.frames = 1;
+    s->anim.fps = 24.0f;
     return s;
 }
 
@@ -42,6 +47,7 @@ void scene_free(scene *s)
         free(s->meshes[i]);
     }
     free(s->meshes);
+    anim_free(&s->anim);
     for (int i = 0; i < s->npolyhedra; i++) {
         polyhedron_free(s->polyhedra[i]);
         free(s->polyhedra[i]);
@@ -80,7 +86,7 @@ int scene_add_image(scene *s, image *img)
 
 int scene_add_object(scene *s, const shape *sh, int mat, int xf)
 {
-    object o = {*sh, mat, xf, false};
+    object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}, -1, false};
     s->built = false;
     PUSH(s->objects, s->nobjects, s->cap_objects, o);
 }
@@ -108,6 +114,8 @@ void scene_set_background(scene *s, vec3 color) { s->background = color; }
 
 void scene_set_ambient(scene *s, vec3 color) { s->ambient = color; }
 
+void scene_set_fog(scene *s, const fog *f) { s->fog = *f; }
+
 void scene_set_material_texture(scene *s, int mat, int tex)
 {
     s->materials[mat].texture = tex;
@@ -117,6 +125,12 @@ void scene_set_material_texture(scene *s, int mat, int tex)
 void scene_set_object_material(scene *s, int obj, int mat)
 {
     s->objects[obj].material = mat;
+    s->built = false;
+}
+
+void scene_set_material_bump(scene *s, int mat, int tex)
+{
+    s->materials[mat].bump = tex;
     s->built = false;
 }
 
@@ -134,6 +148,8 @@ vec3 scene_background(const scene *s) { return s->background; }
 
 vec3 scene_ambient(const scene *s) { return s->ambient; }
 
+fog scene_fog(const scene *s) { return s->fog; }
+
 int scene_object_count(const scene *s) { return s->nobjects; }
 
 int scene_material_count(const scene *s) { return s->nmaterials; }
@@ -143,18 +159,6 @@ int scene_texture_count(const scene *s) { return s->ntextures; }
 int scene_mesh_count(const scene *s) { return s->nmeshes; }
 
 const struct mesh *scene_mesh(const scene *s, int index) { return s->meshes[index]; }
-
-static aabb xform_bounds(const xform *x, aabb b)
-{
-    if (aabb_is_empty(b))
-        return b;
-    aabb r = aabb_empty();
-    for (int i = 0; i < 8; i++) {
-        vec3 c = v3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
-        r = aabb_grow(r, mat4_point(&x->fwd, c));
-    }
-    return r;
-}
 
 /* The BVH over bounded objects; unbounded ones are listed apart. */
 static glint_rc build_accel(scene *s, glint_error *err)
@@ -226,15 +230,45 @@ static bool materials_ok(const scene *s, const shape *sh, int mat, bool *transmi
     return true;
 }
 
-glint_rc scene_build(scene *s, glint_error *err)
+/* Textures' images and materials' textures exist; bump patterns are
+ * functions of a point in space (their gradient is taken there). */
+static glint_rc check_shading(const scene *s, glint_error *err)
 {
     for (int i = 0; i < s->ntextures; i++)
         if (s->textures[i].kind == TEXTURE_IMAGE &&
-            (s->textures[i].image < 0 || s->textures[i].image >= s->nimages))
+            (s->textures[i].image.image < 0 || s->textures[i].image.image >= s->nimages))
             return err_set(err, GLINT_ERR_INPUT, "texture %d refers to a missing image", i);
-    for (int i = 0; i < s->nmaterials; i++)
-        if (s->materials[i].texture >= s->ntextures)
+    for (int i = 0; i < s->nmaterials; i++) {
+        const material *m = &s->materials[i];
+        if (m->texture >= s->ntextures || m->bump >= s->ntextures)
             return err_set(err, GLINT_ERR_INPUT, "material %d refers to a missing texture", i);
+        if (m->bump >= 0 && s->textures[m->bump].space == SPACE_UV)
+            return err_set(err, GLINT_ERR_INPUT,
+                           "material %d's bump texture is on (u, v); bump patterns must be in "
+                           "object or world space", i);
+    }
+    return GLINT_OK;
+}
+
+/* Where object-space textures have their origin: the centre of the
+ * shape's bounds, or a plane's point (texture.h). */
+static vec3 texture_origin(const shape *sh)
+{
+    if (sh->kind == SHAPE_PLANE)
+        return sh->plane.point;
+    aabb b = shape_bounds(sh);
+    if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+        return v3s(0.0f);
+    return v3_scale(v3_add(b.lo, b.hi), 0.5f);
+}
+
+glint_rc scene_build(scene *s, glint_error *err)
+{
+    glint_rc rc = check_shading(s, err);
+    if (rc == GLINT_OK)
+        rc = scene_link_motions(s, err);
+    if (rc != GLINT_OK)
+        return rc;
     free(s->bounds);
     s->bounds = malloc(sizeof *s->bounds * (size_t)(s->nobjects ? s->nobjects : 1));
     if (!s->bounds)
@@ -246,10 +280,10 @@ glint_rc scene_build(scene *s, glint_error *err)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
-        aabb b = shape_bounds(&o->shape);
-        s->bounds[i] = o->xform >= 0 ? xform_bounds(&s->xforms[o->xform], b) : b;
+        s->bounds[i] = scene_object_bounds(s, i);
+        o->origin = texture_origin(&o->shape);
     }
-    glint_rc rc = build_accel(s, err);
+    rc = build_accel(s, err);
     if (rc != GLINT_OK)
         return rc;
     s->any_transmit = false;
@@ -299,10 +333,29 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
         shape_surface(&o->shape, r, &hit->h, out);
         return;
     }
+    xform moved;
     const xform *x = &s->xforms[o->xform];
+    if (o->moving) {
+        moved = scene_object_xform_at(s, o, r->time);
+        x = &moved;
+    }
     ray lr = scene_object_ray(s, o, r);
     shape_surface(&o->shape, &lr, &hit->h, out);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
+}
+
+void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no)
+{
+    const object *o = &s->objects[i];
+    if (o->xform < 0) {
+        *po = v3_sub(p, o->origin);
+        *no = n;
+        return;
+    }
+    const xform *x = &s->xforms[o->xform];
+    mat4 ft = mat4_transpose(&x->fwd);
+    *po = v3_sub(mat4_point(&x->inv, p), o->origin);
+    *no = mat4_vector(&ft, n);
 }

@@ -16,7 +16,9 @@
 #include "geom/polyhedron.h"
 #include "geom/shape.h"
 #include "io/image.h"
+#include "scene/anim.h"
 #include "scene/camera.h"
+#include "shade/fog.h"
 #include "shade/light.h"
 #include "shade/material.h"
 #include "shade/texture.h"
@@ -26,6 +28,10 @@ typedef struct object {
     int material;   /* -1: a mesh's own per-triangle materials, or a csg's per operand */
     int xform;      /* -1: the shape is in world space */
     bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
+    vec3 origin;    /* of object-space textures, in the shape's space (by scene_build) */
+    int motion;     /* the anim motion driving its transform, or -1 (by scene_build) */
+    bool moving;    /* moves while the shutter is open: its transform is the motion's
+                       at each ray's time, not xforms[xform] (by scene_build) */
 } object;
 
 struct glint_scene {
@@ -52,12 +58,18 @@ struct glint_scene {
     camera camera;
     vec3 background;
     vec3 ambient; /* ambient light, scaled by each material's ambient */
+    fog fog;
     glint_settings settings;
     bvhw bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
     int nunbounded;
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
+
+    anim anim;             /* tracks, channels and motions; frames and fps */
+    float time;            /* seconds: when the shutter opens (scene_set_time) */
+    float shutter_seconds; /* how long it stays open: camera.shutter / fps */
+    bool camera_moves;     /* the camera changes while the shutter is open */
 };
 
 typedef struct glint_scene scene;
@@ -85,9 +97,11 @@ void scene_set_camera(scene *s, const camera *c);
 void scene_set_settings(scene *s, const glint_settings *st);
 void scene_set_background(scene *s, vec3 color);
 void scene_set_ambient(scene *s, vec3 color);
+void scene_set_fog(scene *s, const fog *f);
 /* Names resolved after their users were added: a material's texture and an
  * object's material (indices as returned by the adds). */
 void scene_set_material_texture(scene *s, int mat, int tex);
+void scene_set_material_bump(scene *s, int mat, int tex);
 void scene_set_object_material(scene *s, int obj, int mat);
 /* The material of operand leaf of the scene's csg number c. */
 void scene_set_csg_material(scene *s, int c, int leaf, int mat);
@@ -96,14 +110,35 @@ camera scene_camera(const scene *s);
 glint_settings scene_settings(const scene *s);
 vec3 scene_background(const scene *s);
 vec3 scene_ambient(const scene *s);
+fog scene_fog(const scene *s);
 int scene_object_count(const scene *s);
 int scene_material_count(const scene *s);
 int scene_texture_count(const scene *s);
 int scene_mesh_count(const scene *s);
 const struct mesh *scene_mesh(const scene *s, int index);
 
-/* Checks indices and computes derived data; call after the last add. */
+/* Checks indices and computes derived data; call after the last add. A
+ * moving object's bounds hold it over the whole shutter interval. */
 glint_rc scene_build(scene *s, glint_error *err);
+
+/* Sets the scene to time t (seconds): the camera, lights, materials and
+ * transforms take their animated values at t, the shutter interval becomes
+ * [t, t + camera.shutter / fps], and the scene is built again. Errors: a
+ * transform that is not invertible at t. */
+glint_rc scene_set_time(scene *s, float t, glint_error *err);
+/* After scene_set_camera: the shutter interval follows the camera's
+ * shutter, and a built scene whose objects start or stop moving is built
+ * again. */
+glint_rc scene_camera_changed(scene *s, glint_error *err);
+/* The camera at time t (its animated values evaluated at t). */
+camera scene_camera_at(const scene *s, float t);
+/* Bounds of object i over the shutter interval (scene_build's rule). */
+aabb scene_object_bounds(const scene *s, int i);
+/* scene_build's first step: which objects have a motion, and which of
+ * them move while the shutter is open. */
+glint_rc scene_link_motions(scene *s, glint_error *err);
+/* A moving object's transform at time t (object -> world, with inverse). */
+xform scene_object_xform_at(const scene *s, const object *o, float t);
 
 typedef struct scene_hit {
     shape_hit h;
@@ -118,6 +153,11 @@ bool scene_occluded_opaque(const scene *s, const ray *r);
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may
  * be left 0 where the hit's material does not use them (material_uses_uv). */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
+
+/* World point p and normal n of a surface of object i in the object's
+ * texture space: the shape's own coordinates measured from the object's
+ * origin (texture.h, step 1). The normal is not normalised. */
+void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no);
 
 /* The material at a hit. */
 static inline const material *scene_hit_material(const scene *s, const scene_hit *hit)

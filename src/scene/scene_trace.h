@@ -16,8 +16,14 @@ static inline ray scene_object_ray(const scene *s, const object *o, const ray *r
 {
     if (o->xform < 0)
         return *r;
+    if (__builtin_expect(o->moving, 0)) {
+        xform x = scene_object_xform_at(s, o, r->time);
+        return (ray){mat4_point(&x.inv, r->o), mat4_vector(&x.inv, r->d), r->tmin, r->tmax,
+                     r->time};
+    }
     const xform *x = &s->xforms[o->xform];
-    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax};
+    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
+                 r->time};
 }
 
 typedef struct scene_leaf_ctx {
