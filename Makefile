@@ -109,6 +109,17 @@ install: all
 	cp -R scenes $(DESTDIR)$(PREFIX)/share/glint/
 	install -m 644 README.md docs/*.md $(INSTALL_DOC)/
 
+# The eight-wide traversal kernels (src/accel/isa.h): files named *_avx2.c
+# and *_avx512.c are compiled for those instruction sets and only run where
+# the CPU has them. No contraction into FMA anywhere, so that every path
+# rounds the same way and images stay byte-identical across paths.
+ifneq ($(filter x86_64%,$(shell $(CC) -dumpmachine)),)
+KERNEL_FLAGS_avx2   := -mavx2 -ffp-contract=off
+KERNEL_FLAGS_avx512 := -mavx2 -mavx512f -mavx512vl -ffp-contract=off
+$(BUILD)/obj/src/%_avx2.o: CFLAGS += $(KERNEL_FLAGS_avx2)
+$(BUILD)/obj/src/%_avx512.o: CFLAGS += $(KERNEL_FLAGS_avx512)
+endif
+
 # Library objects serve both libraries: position-independent, and hidden
 # unless glint.h marks them GLINT_API.
 LIB_CFLAGS := -fPIC -fvisibility=hidden
@@ -211,12 +222,20 @@ EMBREE_LIBS = $(shell pkg-config --libs embree3 2>/dev/null || echo -lembree3)
 bench:
 	@scripts/install-deps bench
 	@$(MAKE) --no-print-directory SAN=0 $(BUILD)/glint $(BUILD)/bench/spheres $(BUILD)/bench/raybench \
-		scenes/textures/flag.png scenes/textures/globe.png
+		$(BUILD)/bench/output $(BUILD)/bench/interactive scenes/textures/flag.png scenes/textures/globe.png
 	BUILD=$(BUILD) bench/run
 
 $(BUILD)/bench/spheres: $(BUILD)/obj/bench/spheres.o $(BUILD)/libglint.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/bench/interactive: $(BUILD)/obj/bench/interactive.o $(BUILD)/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/bench/output: $(BUILD)/obj/bench/output.o $(BUILD)/libglint.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 $(BUILD)/bench/raybench: $(BUILD)/obj/bench/raybench.o $(BUILD)/libglint.a
 	@mkdir -p $(dir $@)

@@ -23,16 +23,20 @@
  * one untimed warm-up run of each whose answers are compared ray by ray.
  *
  * Builds: glint's mesh_init as a whole (dropping degenerate triangles,
- * triangle boxes, binned SAH build, collapse to the 4-wide BVH, reordering
- * triangles) against Embree's rtcCommitScene (high quality, on all threads
- * and on one), for the bunny and for the bunny with every triangle split
+ * triangle boxes, binned SAH build on as many threads as the process has
+ * CPUs, collapse to the wide BVH, reordering triangles) against Embree's
+ * rtcCommitScene (high quality), both on all threads and both on one (glint
+ * by pinning the process to one CPU for its build, Embree with a device
+ * made with threads=1), for the bunny and for the bunny with every triangle split
  * into 16 (midpoint subdivision twice, vertices shared along edges).
  * Bytes: mesh_bytes for glint on a mesh holding only positions and
  * indices; for Embree, what its memory monitor counts after the build plus
  * the vertex and index arrays it shares. Peak RSS: a fresh process per
  * back-end (this program, run again) reads the triangles from a file and
  * builds, then reports its peak resident set (see peak_rss_kib). */
+#define _GNU_SOURCE /* sched_setaffinity */
 #include <embree3/rtcore.h>
+#include <sched.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -163,6 +167,28 @@ static tris subdivide(const tris *in)
 /* ---- glint back-end ---- */
 
 /* mesh_init on fresh copies of the arrays; returns its wall time. */
+static double glint_build(const tris *t, size_t *bytes, int *kept);
+
+/* glint_build with the process pinned to its first CPU, so that the build
+ * runs on one thread; the affinity is restored after. */
+static double glint_build_one_cpu(const tris *t)
+{
+    cpu_set_t all, one;
+    if (sched_getaffinity(0, sizeof all, &all) != 0)
+        die("sched_getaffinity failed");
+    CPU_ZERO(&one);
+    for (int c = 0; c < CPU_SETSIZE; c++)
+        if (CPU_ISSET(c, &all)) {
+            CPU_SET(c, &one);
+            break;
+        }
+    if (sched_setaffinity(0, sizeof one, &one) != 0)
+        die("sched_setaffinity failed");
+    double dt = glint_build(t, NULL, NULL);
+    sched_setaffinity(0, sizeof all, &all);
+    return dt;
+}
+
 static double glint_build(const tris *t, size_t *bytes, int *kept)
 {
     mesh m;
@@ -479,9 +505,11 @@ static void time_queries(const opts *o, const targets *tg, const rayset *rs, que
     char cg[32], ce[32], cr[48], label[160];
     snprintf(cg, sizeof cg, "%.2f", g);
     snprintf(ce, sizeof ce, "%.2f", e);
-    ratio_cell(cr, sizeof cr, g / e, 0.8, true);
+    /* coherent primary rays must match Embree; incoherent ones reach 0.8 */
+    double goal = q == CLOSEST && strstr(what, "primary") ? 1.0 : 0.8;
+    ratio_cell(cr, sizeof cr, g / e, goal, true);
     snprintf(label, sizeof label, "%s, %d thread%s: Mrays/s", what, threads, threads == 1 ? "" : "s");
-    row("2", label, cg, ce, cr, "glint ÷ Embree ≥ 0.8");
+    row("2", label, cg, ce, cr, goal == 1.0 ? "glint ÷ Embree ≥ 1.0" : "glint ÷ Embree ≥ 0.8");
     free(tgl);
     free(tem);
 }
@@ -557,11 +585,12 @@ static bool trace_rows(const opts *o, const targets *tg, aabb bounds)
     return ok;
 }
 
-/* Build times: glint's mesh_init against Embree's commit on all threads
- * and on one thread, alternating. */
+/* Build times: glint's mesh_init against Embree's commit, both on all
+ * threads and both on one, alternating. */
 static void build_rows(const opts *o, const tris *t, const char *name, RTCDevice all, RTCDevice one)
 {
-    double *g = xmalloc(sizeof(double) * (size_t)o->runs);
+    double *ga = xmalloc(sizeof(double) * (size_t)o->runs);
+    double *g1 = xmalloc(sizeof(double) * (size_t)o->runs);
     double *ea = xmalloc(sizeof(double) * (size_t)o->runs);
     double *e1 = xmalloc(sizeof(double) * (size_t)o->runs);
     /* one untimed build of each first: page-faults, thread pools */
@@ -570,26 +599,33 @@ static void build_rows(const opts *o, const tris *t, const char *name, RTCDevice
     rtcReleaseScene(embree_scene(all, t, &dt));
     rtcReleaseScene(embree_scene(one, t, &dt));
     for (int r = 0; r < o->runs; r++) {
-        if (r % 2 == 0)
-            g[r] = glint_build(t, NULL, NULL);
+        if (r % 2 == 0) {
+            ga[r] = glint_build(t, NULL, NULL);
+            g1[r] = glint_build_one_cpu(t);
+        }
         rtcReleaseScene(embree_scene(all, t, &ea[r]));
         rtcReleaseScene(embree_scene(one, t, &e1[r]));
-        if (r % 2 == 1)
-            g[r] = glint_build(t, NULL, NULL);
+        if (r % 2 == 1) {
+            ga[r] = glint_build(t, NULL, NULL);
+            g1[r] = glint_build_one_cpu(t);
+        }
     }
-    double mg = median(g, o->runs), mea = median(ea, o->runs), me1 = median(e1, o->runs);
+    double mga = median(ga, o->runs), mg1 = median(g1, o->runs);
+    double mea = median(ea, o->runs), me1 = median(e1, o->runs);
     char cg[32], ce[32], cr[48], label[200];
-    snprintf(cg, sizeof cg, "%.4f", mg);
+    snprintf(cg, sizeof cg, "%.4f", mga);
     snprintf(ce, sizeof ce, "%.4f", mea);
-    ratio_cell(cr, sizeof cr, mg / mea, 1.5, false);
-    snprintf(label, sizeof label, "BVH build, %s (%d triangles), s: glint 1 thread, Embree %d threads",
-             name, t->ntris, o->threads);
-    row("3", label, cg, ce, cr, "glint ÷ Embree ≤ 1.5");
+    ratio_cell(cr, sizeof cr, mga / mea, 1.0, false);
+    snprintf(label, sizeof label, "BVH build, %s (%d triangles), s: both %d threads", name,
+             t->ntris, o->threads);
+    row("3", label, cg, ce, cr, "glint ÷ Embree ≤ 1.0");
+    snprintf(cg, sizeof cg, "%.4f", mg1);
     snprintf(ce, sizeof ce, "%.4f", me1);
-    ratio_cell(cr, sizeof cr, mg / me1, 1.5, false);
+    ratio_cell(cr, sizeof cr, mg1 / me1, 1.0, false);
     snprintf(label, sizeof label, "BVH build, %s, s: both 1 thread", name);
-    row("3", label, cg, ce, cr, "glint ÷ Embree ≤ 1.5");
-    free(g);
+    row("3", label, cg, ce, cr, "glint ÷ Embree ≤ 1.0");
+    free(ga);
+    free(g1);
     free(ea);
     free(e1);
 }

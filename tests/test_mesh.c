@@ -1,6 +1,6 @@
 /* Meshes: importing files (src/load/mesh_import.h) and the hierarchies
- * rays traverse (src/accel/bvh.h, bvh4.h, src/geom/mesh.h, the scene's BVH
- * over objects in src/scene/scene.h).
+ * rays traverse (src/accel/bvh.h, wide.h, traverse.h, src/geom/mesh.h, the
+ * scene's BVH over objects in src/scene/scene.h).
  *
  * Import: small files written here into a mkdtemp directory (an OBJ
  * tetrahedron, an OBJ cube with and without normals and with UVs, an ASCII
@@ -661,6 +661,40 @@ Test(bvh, build_covers_every_primitive_once)
     cr_assert_eq(bvh_build(&empty, boxes, 0, &err), GLINT_OK, "%s", err.msg);
     cr_assert_eq(empty.nnodes, 0);
     bvh_free(&empty);
+}
+
+/* The parallel build makes the same tree as the serial one, node for node
+ * and in the same order: 2, 3 and 8 CPUs against 1, on enough boxes that
+ * several subtrees get threads of their own (and a cluster no split
+ * separates). */
+Test(bvh, parallel_build_makes_the_serial_tree)
+{
+    enum { N = 60000 };
+    static aabb boxes[N];
+    rng g = rng_seed(21, 3);
+    for (int i = 0; i < N; i++) {
+        vec3 c = rand_in(&g, -100, 100);
+        if (i % 50 == 0)
+            c = v3(-7, 4, 9);
+        vec3 e = rand_in(&g, 0, 1.5f);
+        boxes[i] = (aabb){v3_sub(c, e), v3_add(c, e)};
+    }
+    glint_error err = {0};
+    bvh one;
+    cr_assert_eq(bvh_build_threads(&one, boxes, N, 4, 1, &err), GLINT_OK, "%s", err.msg);
+    int cpus[] = {2, 3, 8};
+    for (int k = 0; k < 3; k++) {
+        bvh many;
+        cr_assert_eq(bvh_build_threads(&many, boxes, N, 4, cpus[k], &err), GLINT_OK, "%s",
+                     err.msg);
+        cr_assert_eq(many.nnodes, one.nnodes, "%d CPUs", cpus[k]);
+        cr_assert_eq(memcmp(many.nodes, one.nodes, sizeof *one.nodes * (size_t)one.nnodes), 0,
+                     "%d CPUs: the nodes differ", cpus[k]);
+        cr_assert_eq(memcmp(many.prims, one.prims, sizeof *one.prims * (size_t)N), 0,
+                     "%d CPUs: the primitive order differs", cpus[k]);
+        bvh_free(&many);
+    }
+    bvh_free(&one);
 }
 
 /* The scene's BVH over objects (with transforms, and a plane outside it):

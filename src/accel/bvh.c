@@ -1,8 +1,13 @@
+#define _GNU_SOURCE /* sched_getaffinity */
 #include "bvh.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
 
@@ -18,7 +23,11 @@ typedef struct build {
     int32_t *prims;
     bvh_node *nodes;
     int nnodes, cap;
+    int spawn_depth; /* a second child this deep or less is built on a thread of its own */
 } build;
+
+/* Subtrees smaller than this are not worth a thread. */
+#define PAR_MIN 4096
 
 static int new_node(build *b)
 {
@@ -30,6 +39,7 @@ static int new_node(build *b)
         b->nodes = n;
         b->cap = cap;
     }
+    b->nodes[b->nnodes].pad = 0;
     return b->nnodes++;
 }
 
@@ -85,57 +95,142 @@ static float leaf_cost(const build *b, int n)
     return COST_INTERSECT * (float)((n + b->block - 1) / b->block);
 }
 
+/* Primitive counts and bounds per bin, on each of the three axes. */
+typedef struct bins {
+    aabb box[3][BINS];
+    int n[3][BINS];
+} bins;
+
+/* One pass over [lo, hi) fills the bins of all three axes (bin k of axis a
+ * holds the centres in [cmin + k / scale, cmin + (k + 1) / scale)). */
+static void bin_prims(const build *b, int lo, int hi, vec3 cmin, const float scale[3], bins *out)
+{
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < BINS; k++) {
+            out->box[a][k] = aabb_empty();
+            out->n[a][k] = 0;
+        }
+    for (int i = lo; i < hi; i++) {
+        int32_t p = b->prims[i];
+        vec3 c = b->centers[p];
+        aabb box = b->boxes[p];
+        for (int a = 0; a < 3; a++) {
+            int k = (int)((v3_at(c, a) - v3_at(cmin, a)) * scale[a]);
+            k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
+            out->n[a][k]++;
+            out->box[a][k] = aabb_union(out->box[a][k], box);
+        }
+    }
+}
+
+/* The planes between the bins of axis a, swept from both sides; keeps the
+ * cheapest below *best (relative to the parent's area). */
+static void sweep_axis(const build *b, const bins *bn, int a, float area, float cmin, float scale,
+                       float *best, int *axis, float *plane)
+{
+    float right_area[BINS];
+    int right_n[BINS];
+    aabb acc = aabb_empty();
+    int cnt = 0;
+    for (int i = BINS - 1; i > 0; i--) {
+        acc = aabb_union(acc, bn->box[a][i]);
+        cnt += bn->n[a][i];
+        right_area[i] = aabb_area(acc);
+        right_n[i] = cnt;
+    }
+    acc = aabb_empty();
+    cnt = 0;
+    for (int i = 1; i < BINS; i++) {
+        acc = aabb_union(acc, bn->box[a][i - 1]);
+        cnt += bn->n[a][i - 1];
+        if (cnt == 0 || right_n[i] == 0)
+            continue;
+        float cost = aabb_area(acc) * leaf_cost(b, cnt) + right_area[i] * leaf_cost(b, right_n[i]);
+        cost = area > 0.0f ? COST_TRAVERSE + cost / area : INFINITY;
+        if (cost < *best) {
+            *best = cost;
+            *axis = a;
+            *plane = cmin + (float)i / scale;
+        }
+    }
+}
+
 /* The best binned SAH split of [lo, hi) over all three axes: sets *axis
  * and *plane (a centre coordinate) and returns its cost relative to the
  * parent's area, or INFINITY when no plane separates the centres. */
 static float best_split(const build *b, int lo, int hi, aabb box, aabb cbox, int *axis,
                         float *plane)
 {
-    float best = INFINITY;
-    float area = aabb_area(box);
-    for (int a = 0; a < 3; a++) {
-        float cmin = v3_at(cbox.lo, a), cext = v3_at(cbox.hi, a) - cmin;
-        if (!(cext > 0.0f))
-            continue;
-        aabb bin_box[BINS];
-        int bin_n[BINS] = {0};
-        for (int i = 0; i < BINS; i++)
-            bin_box[i] = aabb_empty();
-        float scale = (float)BINS / cext;
-        for (int i = lo; i < hi; i++) {
-            int k = (int)((v3_at(b->centers[b->prims[i]], a) - cmin) * scale);
-            k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
-            bin_n[k]++;
-            bin_box[k] = aabb_union(bin_box[k], b->boxes[b->prims[i]]);
-        }
-        /* Sweep from the right for the area and count right of each plane. */
-        float right_area[BINS];
-        int right_n[BINS];
-        aabb acc = aabb_empty();
-        int cnt = 0;
-        for (int i = BINS - 1; i > 0; i--) {
-            acc = aabb_union(acc, bin_box[i]);
-            cnt += bin_n[i];
-            right_area[i] = aabb_area(acc);
-            right_n[i] = cnt;
-        }
-        acc = aabb_empty();
-        cnt = 0;
-        for (int i = 1; i < BINS; i++) {
-            acc = aabb_union(acc, bin_box[i - 1]);
-            cnt += bin_n[i - 1];
-            if (cnt == 0 || right_n[i] == 0)
-                continue;
-            float cost = aabb_area(acc) * leaf_cost(b, cnt) + right_area[i] * leaf_cost(b, right_n[i]);
-            cost = area > 0.0f ? COST_TRAVERSE + cost / area : INFINITY;
-            if (cost < best) {
-                best = cost;
-                *axis = a;
-                *plane = cmin + (float)i / scale;
-            }
-        }
-    }
+    float best = INFINITY, scale[3];
+    vec3 ext = aabb_extent(cbox);
+    for (int a = 0; a < 3; a++)
+        scale[a] = v3_at(ext, a) > 0.0f ? (float)BINS / v3_at(ext, a) : 0.0f;
+    bins bn;
+    bin_prims(b, lo, hi, cbox.lo, scale, &bn);
+    for (int a = 0; a < 3; a++)
+        if (v3_at(ext, a) > 0.0f)
+            sweep_axis(b, &bn, a, aabb_area(box), v3_at(cbox.lo, a), scale[a], &best, axis, plane);
     return best;
+}
+
+static int build_node(build *b, int lo, int hi, int depth);
+
+/* A subtree built on its own thread into its own node array. */
+typedef struct subtree {
+    build b;
+    int lo, hi, depth, root;
+} subtree;
+
+static void *subtree_run(void *arg)
+{
+    subtree *t = arg;
+    t->root = build_node(&t->b, t->lo, t->hi, t->depth);
+    return NULL;
+}
+
+/* Appends t's nodes to b's (after b's own), renumbering its second
+ * children; returns the index of t's root in b, or -1. */
+static int adopt(build *b, const subtree *t)
+{
+    int at = b->nnodes;
+    for (int i = 0; i < t->b.nnodes; i++) {
+        int k = new_node(b);
+        if (k < 0)
+            return -1;
+        b->nodes[k] = t->b.nodes[i];
+        if (b->nodes[k].count == 0)
+            b->nodes[k].index += at;
+    }
+    return at + t->root;
+}
+
+/* Builds [lo, mid) and [mid, hi) as the two children of the node just
+ * made (the first follows it directly); returns the second's index. Near
+ * the root the second is built on another thread at the same time and then
+ * appended, so the nodes come out in the same order as on one thread. */
+static int build_children(build *b, int lo, int mid, int hi, int depth)
+{
+    if (depth > b->spawn_depth || hi - mid < PAR_MIN || mid - lo < PAR_MIN) {
+        if (build_node(b, lo, mid, depth) < 0)
+            return -1;
+        return build_node(b, mid, hi, depth);
+    }
+    subtree t = {*b, mid, hi, depth, -1};
+    t.b.nnodes = 0;
+    t.b.cap = 2 * ((hi - mid) / MAX_LEAF + 1) + 1;
+    t.b.nodes = malloc(sizeof *t.b.nodes * (size_t)t.b.cap);
+    if (!t.b.nodes)
+        return -1;
+    pthread_t th;
+    bool threaded = pthread_create(&th, NULL, subtree_run, &t) == 0;
+    int first = build_node(b, lo, mid, depth);
+    if (threaded)
+        pthread_join(th, NULL);
+    else
+        subtree_run(&t);
+    int second = first < 0 || t.root < 0 ? -1 : adopt(b, &t);
+    free(t.b.nodes);
+    return second;
 }
 
 static int build_node(build *b, int lo, int hi, int depth)
@@ -182,13 +277,33 @@ split_median:
 recurse:
     b->nodes[self].axis = (uint8_t)axis;
     b->nodes[self].count = 0;
-    if (build_node(b, lo, mid, depth + 1) < 0)
-        return -1;
-    int second = build_node(b, mid, hi, depth + 1);
+    int second = build_children(b, lo, mid, hi, depth + 1);
     if (second < 0)
         return -1;
     b->nodes[self].index = second;
     return self;
+}
+
+/* The deepest child that gets a thread of its own: with T CPUs to run on
+ * (the process's affinity mask), the tree's top is cut into about 4T
+ * subtrees built at once, so that uneven splits even out; with one CPU,
+ * none (-1). */
+static int spawn_depth(int cpus)
+{
+    if (cpus <= 0) {
+#if defined(CPU_COUNT)
+        cpu_set_t set;
+        cpus = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 1;
+#else
+        cpus = (int)sysconf(_SC_NPROCESSORS_ONLN);
+#endif
+    }
+    if (cpus <= 1)
+        return -1;
+    int d = 2;
+    while ((1 << (d - 2)) < cpus && d < 8)
+        d++;
+    return d;
 }
 
 glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err)
@@ -198,10 +313,16 @@ glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err)
 
 glint_rc bvh_build_blocked(bvh *out, const aabb *boxes, int n, int block, glint_error *err)
 {
+    return bvh_build_threads(out, boxes, n, block, 0, err);
+}
+
+glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cpus,
+                           glint_error *err)
+{
     memset(out, 0, sizeof *out);
     if (n <= 0)
         return GLINT_OK;
-    build b = {boxes, block > 0 ? block : 1, NULL, NULL, NULL, 0, 0};
+    build b = {boxes, block > 0 ? block : 1, NULL, NULL, NULL, 0, 0, spawn_depth(cpus)};
     b.centers = malloc(sizeof *b.centers * (size_t)n);
     b.prims = malloc(sizeof *b.prims * (size_t)n);
     b.cap = 2 * (n / MAX_LEAF + 1) + 1;

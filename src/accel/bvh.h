@@ -6,10 +6,14 @@
  *
  * The build is the binned surface-area-heuristic build of Wald, "On fast
  * Construction of SAH-based Bounding Volume Hierarchies" (IEEE RT 2007),
- * with 32 bins on each of the three axes.
- * Rays never traverse this binary tree: bvh4_from_bvh (bvh4.h) collapses
- * it into the four-wide hierarchy they do traverse, with stacks sized by
- * the depth bound below. */
+ * with 32 bins on each of the three axes, binned in one pass. Near the root
+ * the two halves of a split are built at the same time on threads of their
+ * own (as many as the CPUs the process may run on), each into its own node
+ * array, then joined in depth-first order: the tree is the same whatever
+ * the number of threads.
+ * Rays never traverse this binary tree: bvhw_from_bvh (wide.h) collapses
+ * it into the four- or eight-wide hierarchy they do traverse, with stacks
+ * sized by the depth bound below. */
 #ifndef GLINT_ACCEL_BVH_H
 #define GLINT_ACCEL_BVH_H
 
@@ -43,6 +47,10 @@ glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err);
  * triangles, four to a tri4): the cost model counts a leaf's blocks, not
  * its primitives, so leaves fill up to a whole block. */
 glint_rc bvh_build_blocked(bvh *out, const aabb *boxes, int n, int block, glint_error *err);
+/* The same on as many threads as cpus CPUs warrant (0: the CPUs in the
+ * process's affinity mask; 1: the calling thread alone). */
+glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cpus,
+                           glint_error *err);
 void bvh_free(bvh *b);
 
 #endif

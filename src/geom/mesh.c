@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "geom/shape.h"
 #include "geom/tri4.h"
+#include "mesh_trace.h"
 
 
 /* Copies each leaf's triangles into tri4 blocks, in node order, and
@@ -13,12 +14,12 @@
  * without going through prims (which is then freed). */
 static glint_rc make_blocks(mesh *m, glint_error *err)
 {
-    bvh4 *b = &m->bvh;
+    bvhw *b = &m->bvh;
     size_t n = 0;
     for (int i = 0; i < b->nnodes; i++)
-        for (int k = 0; k < 4; k++)
-            if (b->nodes[i].child[k] < 0)
-                n += (b->nodes[i].count[k] + 3) / 4;
+        for (int k = 0; k < b->width; k++)
+            if (*bvhw_child(b, i, k) < 0)
+                n += (bvhw_count(b, i, k) + 3) / 4;
     m->blocks = aligned_alloc(16, (n ? n : 1) * sizeof *m->blocks);
     if (!m->blocks)
         return err_nomem(err);
@@ -26,13 +27,13 @@ static glint_rc make_blocks(mesh *m, glint_error *err)
     m->nblocks = (int)n;
     int next = 0;
     for (int i = 0; i < b->nnodes; i++)
-        for (int k = 0; k < 4; k++) {
-            int32_t c = b->nodes[i].child[k];
-            uint32_t count = b->nodes[i].count[k];
-            if (c >= 0 || count == 0)
+        for (int k = 0; k < b->width; k++) {
+            int32_t *c = bvhw_child(b, i, k);
+            uint32_t count = bvhw_count(b, i, k);
+            if (*c >= 0 || count == 0)
                 continue;
-            int32_t t0 = b->prims[-1 - c]; /* triangles are in leaf order: t0 .. t0 + count */
-            b->nodes[i].child[k] = -1 - next;
+            int32_t t0 = b->prims[-1 - *c]; /* triangles are in leaf order: t0 .. t0 + count */
+            *c = -1 - next;
             for (uint32_t j = 0; j < count; j += 4, next++) {
                 tri4 *blk = &m->blocks[next];
                 for (int lane = 0; lane < 4; lane++) {
@@ -116,7 +117,7 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
     free(m->tri_material);
     m->tri = tri;
     m->tri_material = tmat;
-    glint_rc rc2 = bvh4_from_bvh(&m->bvh, &bin, err);
+    glint_rc rc2 = bvhw_from_bvh(&m->bvh, &bin, accel_isa_active(), err);
     return rc2 == GLINT_OK ? make_blocks(m, err) : rc2;
 }
 
@@ -130,7 +131,7 @@ void mesh_free(mesh *m)
     free(m->tri);
     free(m->tri_material);
     free(m->blocks);
-    bvh4_free(&m->bvh);
+    bvhw_free(&m->bvh);
     memset(m, 0, sizeof *m);
 }
 
@@ -143,117 +144,48 @@ size_t mesh_bytes(const mesh *m)
         n += (size_t)m->nverts * sizeof m->uv[0];
     if (m->tri_material)
         n += (size_t)m->ntris * sizeof(int32_t);
-    n += (size_t)m->bvh.nnodes * sizeof(bvh4_node) + (size_t)m->bvh.nprims * sizeof(int32_t);
+    n += bvhw_node_bytes(&m->bvh) + (size_t)m->bvh.nprims * sizeof(int32_t);
     n += (size_t)m->nblocks * sizeof(tri4);
     return n;
 }
 
-typedef struct leaf_ctx {
-    const mesh *m;
-    tri4_ray q;
-    shape_hit *hit;
-} leaf_ctx;
-
-/* A leaf's count triangles fill (count + 3) / 4 blocks from block first. */
-__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, uint32_t first,
-                                                               uint32_t count, float tmin,
-                                                               float *tmax)
-{
-    leaf_ctx *c = ctx;
-    const tri4 *blk = &c->m->blocks[first];
-    bool found = false;
-    for (uint32_t j = 0; j < count; j += 4, blk++) {
-        float t[4], b1[4], b2[4];
-        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
-        for (int k = 0; mask; k++, mask >>= 1)
-            if ((mask & 1) && t[k] < *tmax) {
-                *tmax = t[k];
-                c->hit->t = t[k];
-                c->hit->part = blk->id[k];
-                c->hit->b1 = b1[k];
-                c->hit->b2 = b2[k];
-                found = true;
-            }
-    }
-    return found;
-}
-
-__attribute__((always_inline)) static inline bool leaf_any(void *ctx, uint32_t first,
-                                                           uint32_t count, float tmin, float *tmax)
-{
-    leaf_ctx *c = ctx;
-    const tri4 *blk = &c->m->blocks[first];
-    for (uint32_t j = 0; j < count; j += 4, blk++) {
-        float t[4], b1[4], b2[4];
-        if (tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2))
-            return true;
-    }
-    return false;
-}
+MESH_KERNELS(sse, 4)
 
 bool mesh_intersect(const mesh *m, const ray *r, shape_hit *hit)
 {
-    leaf_ctx c = {m, tri4_ray_make(r), hit};
-    float tmax = r->tmax;
-    return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_closest, &c);
+    accel_isa isa = m->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        return mesh_intersect_avx512(m, r, hit);
+    if (isa == ACCEL_AVX2)
+        return mesh_intersect_avx2(m, r, hit);
+#endif
+    return isa == ACCEL_SCALAR ? mesh_intersect_scalar(m, r, hit) : mesh_intersect_sse(m, r, hit);
 }
 
 bool mesh_occluded(const mesh *m, const ray *r)
 {
-    leaf_ctx c = {m, tri4_ray_make(r), NULL};
-    float tmax = r->tmax;
-    return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, true, leaf_any, &c);
-}
-
-typedef struct all_ctx {
-    const mesh *m;
-    tri4_ray q;
-    const ray *r;
-    crossing *out;
-    int n, max;
-    bool more;
-} all_ctx;
-
-/* Collects every hit of the leaf (tmax is left alone, so every leaf the
- * line meets is visited), keeping the max nearest in order. */
-__attribute__((always_inline)) static inline bool leaf_all(void *ctx, uint32_t first,
-                                                           uint32_t count, float tmin, float *tmax)
-{
-    all_ctx *c = ctx;
-    const tri4 *blk = &c->m->blocks[first];
-    for (uint32_t j = 0; j < count; j += 4, blk++) {
-        float t[4], b1[4], b2[4];
-        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
-        for (int k = 0; mask; k++, mask >>= 1) {
-            if (!(mask & 1))
-                continue;
-            const uint32_t *tri = c->m->tri[blk->id[k]];
-            vec3 p0 = c->m->pos[tri[0]];
-            vec3 ng = v3_cross(v3_sub(c->m->pos[tri[1]], p0), v3_sub(c->m->pos[tri[2]], p0));
-            crossing x = {{.t = t[k], .part = blk->id[k], .b1 = b1[k], .b2 = b2[k]},
-                          v3_dot(ng, c->r->d) < 0.0f};
-            int at = c->n < c->max ? c->n++ : c->n;
-            if (at == c->max) {
-                c->more = true;
-                if (t[k] >= c->out[c->max - 1].h.t)
-                    continue;
-                at = c->max - 1;
-            }
-            for (; at > 0 && c->out[at - 1].h.t > t[k]; at--)
-                c->out[at] = c->out[at - 1];
-            c->out[at] = x;
-        }
-    }
-    return false;
+    accel_isa isa = m->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        return mesh_occluded_avx512(m, r);
+    if (isa == ACCEL_AVX2)
+        return mesh_occluded_avx2(m, r);
+#endif
+    return isa == ACCEL_SCALAR ? mesh_occluded_scalar(m, r) : mesh_occluded_sse(m, r);
 }
 
 int mesh_crossings(const mesh *m, const ray *r, crossing *out, int max, bool *more)
 {
-    all_ctx c = {m, tri4_ray_make(r), r, out, 0, max, false};
-    float tmax = INFINITY;
-    bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_all, &c);
-    *more = c.more;
-    return c.n;
+    accel_isa isa = m->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        return mesh_crossings_avx512(m, r, out, max, more);
+    if (isa == ACCEL_AVX2)
+        return mesh_crossings_avx2(m, r, out, max, more);
+#endif
+    return isa == ACCEL_SCALAR ? mesh_crossings_scalar(m, r, out, max, more)
+                               : mesh_crossings_sse(m, r, out, max, more);
 }
 
 void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)

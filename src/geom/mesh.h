@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 #include "glint.h"
-#include "accel/bvh4.h"
+#include "accel/wide.h"
 #include "core/ray.h"
 
 struct surface;
@@ -21,7 +21,7 @@ typedef struct mesh {
     uint32_t (*tri)[3];
     int32_t *tri_material; /* per triangle scene material, or NULL */
     int nverts, ntris;
-    bvh4 bvh;         /* triangles are stored in leaf order; a leaf names its
+    bvhw bvh;         /* triangles are stored in leaf order; a leaf names its
                          first tri4 block (bvh.prims is not kept) */
     struct tri4 *blocks; /* each leaf's triangles, four to a block */
     int nblocks;

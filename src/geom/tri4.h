@@ -9,13 +9,14 @@
  * shear, the same edge functions, and the same double-precision retry when
  * an edge function is exactly zero, so a ray that hits an edge shared by
  * two triangles still hits one of them. Unused lanes have id -1 and all
- * corners at the origin, and are masked out. A scalar
- * path does the same work where SSE is missing. */
+ * corners at the origin, and are masked out. A scalar path does the same
+ * work where SSE is missing or GLINT_NO_SIMD is defined (accel/isa.h). */
 #ifndef GLINT_GEOM_TRI4_H
 #define GLINT_GEOM_TRI4_H
 
 #include <stdint.h>
-#if defined(__SSE2__)
+#if defined(__SSE2__) && !defined(GLINT_NO_SIMD)
+#define GLINT_TRI4_SSE 1
 #include <emmintrin.h>
 #endif
 #include "geom/watertight.h"
@@ -69,7 +70,7 @@ __attribute__((always_inline)) static inline int tri4_intersect(const tri4_ray *
                                                                 float t[4], float b1[4],
                                                                 float b2[4])
 {
-#if defined(__SSE2__)
+#if defined(GLINT_TRI4_SSE)
     const __m128 ox = _mm_set1_ps(q->ox), oy = _mm_set1_ps(q->oy), oz = _mm_set1_ps(q->oz);
     const __m128 sx = _mm_set1_ps(q->sx), sy = _mm_set1_ps(q->sy), sz = _mm_set1_ps(q->sz);
     __m128 ex[3], ey[3], ez[3];

@@ -6,6 +6,7 @@
 #include "core/array.h"
 #include "core/error.h"
 #include "scene/settings.h"
+#include "scene_trace.h"
 
 scene *scene_new(void)
 {
@@ -34,7 +35,7 @@ void scene_free(scene *s)
         image_free(&s->images[i]);
     free(s->objects);
     free(s->bounds);
-    bvh4_free(&s->bvh);
+    bvhw_free(&s->bvh);
     free(s->unbounded);
     free(s->xforms);
     free(s->materials);
@@ -162,7 +163,7 @@ const struct mesh *scene_mesh(const scene *s, int index) { return s->meshes[inde
 /* The BVH over bounded objects; unbounded ones are listed apart. */
 static glint_rc build_accel(scene *s, glint_error *err)
 {
-    bvh4_free(&s->bvh);
+    bvhw_free(&s->bvh);
     free(s->unbounded);
     s->unbounded = NULL;
     s->nunbounded = 0;
@@ -192,7 +193,7 @@ static glint_rc build_accel(scene *s, glint_error *err)
     /* Leaves refer to objects directly. */
     for (int i = 0; i < bin.nprims; i++)
         bin.prims[i] = bounded[bin.prims[i]];
-    rc = bvh4_from_bvh(&s->bvh, &bin, err);
+    rc = bvhw_from_bvh(&s->bvh, &bin, accel_isa_active(), err);
 out:
     free(bounded);
     free(boxes);
@@ -292,102 +293,43 @@ glint_rc scene_build(scene *s, glint_error *err)
     return GLINT_OK;
 }
 
-/* The ray in the object's own space; t values carry over unchanged because
- * the direction is transformed without renormalising. */
-static inline ray object_ray(const scene *s, const object *o, const ray *r)
-{
-    if (o->xform < 0)
-        return *r;
-    if (__builtin_expect(o->moving, 0)) {
-        xform x = scene_object_xform_at(s, o, r->time);
-        return (ray){mat4_point(&x.inv, r->o), mat4_vector(&x.inv, r->d), r->tmin, r->tmax,
-                     r->time};
-    }
-    const xform *x = &s->xforms[o->xform];
-    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
-                 r->time};
-}
-
-typedef struct leaf_ctx {
-    const scene *s;
-    const ray *r;
-    scene_hit *hit;
-} leaf_ctx;
-
-__attribute__((always_inline)) static inline bool intersect_object(const scene *s, int i,
-                                                                   const ray *r, float tmin,
-                                                                   float *tmax, scene_hit *hit)
-{
-    const object *o = &s->objects[i];
-    ray lr = object_ray(s, o, r);
-    lr.tmin = tmin;
-    lr.tmax = *tmax;
-    if (!shape_intersect(&o->shape, &lr, &hit->h))
-        return false;
-    *tmax = hit->h.t;
-    hit->object = i;
-    return true;
-}
-
-__attribute__((always_inline)) static inline bool leaf_closest(void *ctx, uint32_t first,
-                                                               uint32_t count, float tmin,
-                                                               float *tmax)
-{
-    leaf_ctx *c = ctx;
-    const int32_t *prims = c->s->bvh.prims + first;
-    bool found = false;
-    for (uint32_t i = 0; i < count; i++)
-        found |= intersect_object(c->s, prims[i], c->r, tmin, tmax, c->hit);
-    return found;
-}
+SCENE_KERNELS(sse, 4)
 
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 {
-    float tmax = r->tmax;
-    bool found = false;
-    for (int i = 0; i < s->nunbounded; i++)
-        found |= intersect_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
-    leaf_ctx c = {s, r, hit};
-    found |= bvh4_traverse(&s->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_closest, &c);
-    return found;
-}
-
-__attribute__((always_inline)) static inline bool occludes(const scene *s, int i, const ray *r)
-{
-    const object *o = &s->objects[i];
-    if (o->transmits)
-        return false;
-    ray lr = object_ray(s, o, r);
-    return shape_occluded(&o->shape, &lr);
-}
-
-__attribute__((always_inline)) static inline bool leaf_any(void *ctx, uint32_t first,
-                                                           uint32_t count, float tmin,
-                                                           float *tmax)
-{
-    (void)tmin, (void)tmax;
-    leaf_ctx *c = ctx;
-    const int32_t *prims = c->s->bvh.prims + first;
-    for (uint32_t i = 0; i < count; i++)
-        if (occludes(c->s, prims[i], c->r))
-            return true;
-    return false;
+    accel_isa isa = s->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        return scene_intersect_avx512(s, r, hit);
+    if (isa == ACCEL_AVX2)
+        return scene_intersect_avx2(s, r, hit);
+#endif
+    return isa == ACCEL_SCALAR ? scene_intersect_scalar(s, r, hit) : scene_intersect_sse(s, r, hit);
 }
 
 bool scene_occluded_opaque(const scene *s, const ray *r)
 {
-    for (int i = 0; i < s->nunbounded; i++)
-        if (occludes(s, s->unbounded[i], r))
-            return true;
-    leaf_ctx c = {s, r, NULL};
-    float tmax = r->tmax;
-    return bvh4_traverse(&s->bvh, r->o, r->d, r->tmin, &tmax, true, leaf_any, &c);
+    accel_isa isa = s->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        return scene_occluded_avx512(s, r);
+    if (isa == ACCEL_AVX2)
+        return scene_occluded_avx2(s, r);
+#endif
+    return isa == ACCEL_SCALAR ? scene_occluded_scalar(s, r) : scene_occluded_sse(s, r);
 }
 
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)
 {
     const object *o = &s->objects[hit->object];
     if (o->xform < 0) {
+        /* An untextured sphere needs no (u, v): its normal alone, as
+         * shape_surface would compute it. */
+        if (o->shape.kind == SHAPE_SPHERE && !material_uses_uv(scene_hit_material(s, hit))) {
+            sphere_surface_no_uv(&o->shape.sphere, ray_at(r, hit->h.t), out);
+            out->ng = out->n;
+            return;
+        }
         shape_surface(&o->shape, r, &hit->h, out);
         return;
     }
@@ -397,7 +339,7 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
         moved = scene_object_xform_at(s, o, r->time);
         x = &moved;
     }
-    ray lr = object_ray(s, o, r);
+    ray lr = scene_object_ray(s, o, r);
     shape_surface(&o->shape, &lr, &hit->h, out);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));

@@ -9,7 +9,7 @@
 
 #include <stdbool.h>
 #include "glint.h"
-#include "accel/bvh4.h"
+#include "accel/wide.h"
 #include "core/mat4.h"
 #include "geom/csg.h"
 #include "geom/mesh.h"
@@ -60,7 +60,7 @@ struct glint_scene {
     vec3 ambient; /* ambient light, scaled by each material's ambient */
     fog fog;
     glint_settings settings;
-    bvh4 bvh;        /* over the objects with finite bounds, by scene_build */
+    bvhw bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
     int nunbounded;
     bool built;
@@ -150,7 +150,8 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 
-/* Surface at a hit, in world space, normals unit and outward. */
+/* Surface at a hit, in world space, normals unit and outward; (u, v) may
+ * be left 0 where the hit's material does not use them (material_uses_uv). */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
 
 /* World point p and normal n of a surface of object i in the object's

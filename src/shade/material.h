@@ -39,6 +39,12 @@ typedef struct material {
     float bump_strength;
 } material;
 
+/* Whether shading this material may read the surface's (u, v) (its
+ * texture or its bump pattern, in uv space or not); when not,
+ * scene_surface may skip computing them. Whatever reads (u, v) in shading
+ * must be named here. */
+static inline bool material_uses_uv(const material *m) { return m->texture >= 0 || m->bump >= 0; }
+
 /* Matte white: ambient 1, diffuse 1, specular 0, no reflection or
  * transmission, no absorption or emission, Fresnel on, no bump. */
 material material_default(void);

@@ -1,0 +1,169 @@
+#include "wide.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+/* A node's children before they are stored in one layout or the other. */
+typedef struct lanes {
+    aabb box[8];
+    int32_t child[8];
+    uint32_t count[8];
+} lanes;
+
+typedef struct collapse {
+    const bvh *src;
+    int width;
+    size_t node_size;
+    char *nodes;
+    int nnodes, cap;
+} collapse;
+
+static void store(const collapse *c, int at, const lanes *l)
+{
+    int w = c->width;
+    float *box = (float *)(c->nodes + (size_t)at * c->node_size); /* box[6][w] */
+    int32_t *child = (int32_t *)(box + 6 * w);
+    uint32_t *count = (uint32_t *)(child + w);
+    for (int k = 0; k < w; k++) {
+        aabb b = l->box[k];
+        box[0 * w + k] = b.lo.x;
+        box[1 * w + k] = b.hi.x;
+        box[2 * w + k] = b.lo.y;
+        box[3 * w + k] = b.hi.y;
+        box[4 * w + k] = b.lo.z;
+        box[5 * w + k] = b.hi.z;
+        child[k] = l->child[k];
+        count[k] = l->count[k];
+    }
+}
+
+static int new_node(collapse *c)
+{
+    if (c->nnodes == c->cap) {
+        int cap = c->cap * 2;
+        char *n = aligned_alloc(64, c->node_size * (size_t)cap);
+        if (!n)
+            return -1;
+        memcpy(n, c->nodes, c->node_size * (size_t)c->nnodes);
+        free(c->nodes);
+        c->nodes = n;
+        c->cap = cap;
+    }
+    return c->nnodes++;
+}
+
+/* The binary nodes that become node `bin`'s children: its two, then the
+ * interior one of largest area opened until there are width of them. */
+static int gather(const collapse *c, int bin, int kids[8])
+{
+    const bvh_node *bn = c->src->nodes;
+    int nk = 2;
+    kids[0] = bin + 1;
+    kids[1] = bn[bin].index;
+    while (nk < c->width) {
+        int best = -1;
+        float best_area = -1.0f;
+        for (int k = 0; k < nk; k++)
+            if (bn[kids[k]].count == 0 && aabb_area(bn[kids[k]].box) > best_area) {
+                best_area = aabb_area(bn[kids[k]].box);
+                best = k;
+            }
+        if (best < 0)
+            break;
+        int open = kids[best];
+        kids[best] = open + 1;
+        kids[nk++] = bn[open].index;
+    }
+    return nk;
+}
+
+/* Makes a wide node from binary node `bin` (an interior node); returns its
+ * index or -1 when out of memory. Nodes are numbered depth first. */
+static int collapse_node(collapse *c, int bin)
+{
+    int self = new_node(c);
+    if (self < 0)
+        return -1;
+    const bvh_node *bn = c->src->nodes;
+    int kids[8];
+    int nk = gather(c, bin, kids);
+    lanes l;
+    for (int k = 0; k < c->width; k++) {
+        l.box[k] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
+        l.child[k] = -1;
+        l.count[k] = 0;
+        if (k >= nk)
+            continue;
+        const bvh_node *kid = &bn[kids[k]];
+        l.box[k] = kid->box;
+        if (kid->count) {
+            l.child[k] = -1 - kid->index;
+            l.count[k] = kid->count;
+        } else {
+            int sub = collapse_node(c, kids[k]);
+            if (sub < 0)
+                return -1;
+            l.child[k] = sub;
+        }
+    }
+    store(c, self, &l);
+    return self;
+}
+
+glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->isa = isa;
+    out->width = accel_isa_width(isa);
+    out->bounds = aabb_empty();
+    if (b->nnodes == 0) {
+        bvh_free(b);
+        return GLINT_OK;
+    }
+    collapse c = {b, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node),
+                  NULL, 0, b->nnodes / (out->width - 1) + 2};
+    c.nodes = aligned_alloc(64, c.node_size * (size_t)c.cap);
+    if (!c.nodes) {
+        bvh_free(b);
+        return err_nomem(err);
+    }
+    if (b->nodes[0].count) { /* a single leaf: one node with one lane */
+        lanes l;
+        for (int k = 0; k < c.width; k++) {
+            l.box[k] = k == 0 ? b->nodes[0].box : (aabb){v3s(INFINITY), v3s(-INFINITY)};
+            l.child[k] = k == 0 ? -1 - b->nodes[0].index : -1;
+            l.count[k] = k == 0 ? b->nodes[0].count : 0;
+        }
+        store(&c, new_node(&c), &l);
+    } else if (collapse_node(&c, 0) < 0) {
+        free(c.nodes);
+        bvh_free(b);
+        return err_nomem(err);
+    }
+    if (c.width == 8)
+        out->n8 = (bvh8_node *)(void *)c.nodes;
+    else
+        out->n4 = (bvh4_node *)(void *)c.nodes;
+    out->nnodes = c.nnodes;
+    out->prims = b->prims;
+    out->nprims = b->nprims;
+    out->bounds = b->nodes[0].box;
+    b->prims = NULL;
+    bvh_free(b);
+    return GLINT_OK;
+}
+
+void bvhw_free(bvhw *b)
+{
+    free(b->width == 8 ? (void *)b->n8 : (void *)b->n4);
+    free(b->prims);
+    memset(b, 0, sizeof *b);
+}
+
+size_t bvhw_node_bytes(const bvhw *b)
+{
+    return (size_t)b->nnodes * (b->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node));
+}

@@ -1,0 +1,67 @@
+/* wide: a BVH with four or eight children per node, made by collapsing a
+ * binary one (accel/bvh.h), so that one SIMD box test decides all of a
+ * node's children at once (Dammertz et al., "Shallow Bounding Volume
+ * Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR 2008;
+ * Wald et al., "Getting Rid of Packets", IEEE RT 2008). Four wide for SSE
+ * and the scalar path, eight wide for AVX2 and AVX-512 (accel/isa.h picks;
+ * accel/traverse.h walks either).
+ *
+ * Each node keeps its children's boxes per axis, one lane per child
+ * (structure of arrays). A child is an interior node (child >= 0), a leaf
+ * (child < 0: primitives prims[-1 - child .. + count)) or empty (count 0
+ * with an inverted box that no ray can hit). Collapsing opens the child
+ * with the largest area until the node is full, so both widths are made of
+ * the binary tree's own boxes. */
+#ifndef GLINT_ACCEL_WIDE_H
+#define GLINT_ACCEL_WIDE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "glint.h"
+#include "accel/bvh.h"
+#include "accel/isa.h"
+
+typedef struct bvh4_node {
+    float box[6][4]; /* lo x, hi x, lo y, hi y, lo z, hi z; one lane per child */
+    int32_t child[4];
+    uint32_t count[4];
+} __attribute__((aligned(64))) bvh4_node;
+
+typedef struct bvh8_node {
+    float box[6][8];
+    int32_t child[8];
+    uint32_t count[8];
+} __attribute__((aligned(64))) bvh8_node;
+
+typedef struct bvhw {
+    int width; /* 4 or 8 */
+    accel_isa isa; /* the kernels it was laid out for */
+    union {
+        bvh4_node *n4;
+        bvh8_node *n8;
+    };
+    int nnodes;
+    int32_t *prims; /* taken over from the binary BVH */
+    int nprims;
+    aabb bounds;
+} bvhw;
+
+/* Collapses b into out for the kernels of isa, taking over b's primitive
+ * array. b is freed in every case, failure included. */
+glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err);
+void bvhw_free(bvhw *b);
+/* Bytes of the nodes. */
+size_t bvhw_node_bytes(const bvhw *b);
+
+/* Child k of node i, for owners that renumber leaves. */
+static inline int32_t *bvhw_child(bvhw *b, int i, int k)
+{
+    return b->width == 8 ? &b->n8[i].child[k] : &b->n4[i].child[k];
+}
+
+static inline uint32_t bvhw_count(const bvhw *b, int i, int k)
+{
+    return b->width == 8 ? b->n8[i].count[k] : b->n4[i].count[k];
+}
+
+#endif

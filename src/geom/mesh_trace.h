@@ -1,0 +1,141 @@
+/* mesh_trace: a ray against a mesh's BVH and its tri4 blocks (nearest hit,
+ * any hit, every crossing), written once
+ * and compiled once per SIMD path (accel/isa.h): mesh.c holds the SSE
+ * copy, mesh_scalar.c, mesh_avx2.c and mesh_avx512.c the others (the
+ * Makefile gives the last two their -m flags). mesh_intersect and
+ * mesh_occluded call the copy that matches the layout the mesh was built
+ * for. */
+#ifndef GLINT_GEOM_MESH_TRACE_H
+#define GLINT_GEOM_MESH_TRACE_H
+
+#include "accel/traverse.h"
+#include "geom/mesh.h"
+#include "geom/shape.h"
+#include "geom/tri4.h"
+
+typedef struct mesh_leaf_ctx {
+    const mesh *m;
+    tri4_ray q;
+    shape_hit *hit;
+} mesh_leaf_ctx;
+
+/* A leaf's count triangles fill (count + 3) / 4 blocks from block first. */
+__attribute__((always_inline)) static inline bool mesh_leaf_closest(void *ctx, uint32_t first,
+                                                                    uint32_t count, float tmin,
+                                                                    float *tmax)
+{
+    mesh_leaf_ctx *c = ctx;
+    const tri4 *blk = &c->m->blocks[first];
+    bool found = false;
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        float t[4], b1[4], b2[4];
+        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
+        for (int k = 0; mask; k++, mask >>= 1)
+            if ((mask & 1) && t[k] < *tmax) {
+                *tmax = t[k];
+                c->hit->t = t[k];
+                c->hit->part = blk->id[k];
+                c->hit->b1 = b1[k];
+                c->hit->b2 = b2[k];
+                found = true;
+            }
+    }
+    return found;
+}
+
+__attribute__((always_inline)) static inline bool mesh_leaf_any(void *ctx, uint32_t first,
+                                                                uint32_t count, float tmin,
+                                                                float *tmax)
+{
+    mesh_leaf_ctx *c = ctx;
+    const tri4 *blk = &c->m->blocks[first];
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        float t[4], b1[4], b2[4];
+        if (tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2))
+            return true;
+    }
+    return false;
+}
+
+typedef struct mesh_all_ctx {
+    const mesh *m;
+    tri4_ray q;
+    const ray *r;
+    crossing *out;
+    int n, max;
+    bool more;
+} mesh_all_ctx;
+
+/* Collects every hit of the leaf (tmax is left alone, so every leaf the
+ * line meets is visited), keeping the max nearest in order. */
+__attribute__((always_inline)) static inline bool mesh_leaf_all(void *ctx, uint32_t first,
+                                                           uint32_t count, float tmin, float *tmax)
+{
+    mesh_all_ctx *c = ctx;
+    const tri4 *blk = &c->m->blocks[first];
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        float t[4], b1[4], b2[4];
+        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
+        for (int k = 0; mask; k++, mask >>= 1) {
+            if (!(mask & 1))
+                continue;
+            const uint32_t *tri = c->m->tri[blk->id[k]];
+            vec3 p0 = c->m->pos[tri[0]];
+            vec3 ng = v3_cross(v3_sub(c->m->pos[tri[1]], p0), v3_sub(c->m->pos[tri[2]], p0));
+            crossing x = {{.t = t[k], .part = blk->id[k], .b1 = b1[k], .b2 = b2[k]},
+                          v3_dot(ng, c->r->d) < 0.0f};
+            int at = c->n < c->max ? c->n++ : c->n;
+            if (at == c->max) {
+                c->more = true;
+                if (t[k] >= c->out[c->max - 1].h.t)
+                    continue;
+                at = c->max - 1;
+            }
+            for (; at > 0 && c->out[at - 1].h.t > t[k]; at--)
+                c->out[at] = c->out[at - 1];
+            c->out[at] = x;
+        }
+    }
+    return false;
+}
+
+/* Defines mesh_intersect_<isa>, mesh_occluded_<isa> and
+ * mesh_crossings_<isa> for nodes of the given width. */
+#define MESH_KERNELS(isa, width)                                                               \
+    bool mesh_intersect_##isa(const mesh *m, const ray *r, shape_hit *hit)                     \
+    {                                                                                          \
+        mesh_leaf_ctx c = {m, tri4_ray_make(r), hit};                                          \
+        float tmax = r->tmax;                                                                  \
+        return wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, false,                \
+                             mesh_leaf_closest, &c);                                           \
+    }                                                                                          \
+    bool mesh_occluded_##isa(const mesh *m, const ray *r)                                      \
+    {                                                                                          \
+        mesh_leaf_ctx c = {m, tri4_ray_make(r), NULL};                                         \
+        float tmax = r->tmax;                                                                  \
+        return wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, true, mesh_leaf_any,  \
+                             &c);                                                              \
+    }                                                                                          \
+    int mesh_crossings_##isa(const mesh *m, const ray *r, crossing *out, int max, bool *more)  \
+    {                                                                                          \
+        mesh_all_ctx c = {m, tri4_ray_make(r), r, out, 0, max, false};                         \
+        float tmax = INFINITY;                                                                 \
+        wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, false, mesh_leaf_all, &c);   \
+        *more = c.more;                                                                        \
+        return c.n;                                                                            \
+    }
+
+bool mesh_intersect_scalar(const mesh *m, const ray *r, shape_hit *hit);
+bool mesh_occluded_scalar(const mesh *m, const ray *r);
+int mesh_crossings_scalar(const mesh *m, const ray *r, crossing *out, int max, bool *more);
+bool mesh_intersect_sse(const mesh *m, const ray *r, shape_hit *hit);
+bool mesh_occluded_sse(const mesh *m, const ray *r);
+int mesh_crossings_sse(const mesh *m, const ray *r, crossing *out, int max, bool *more);
+bool mesh_intersect_avx2(const mesh *m, const ray *r, shape_hit *hit);
+bool mesh_occluded_avx2(const mesh *m, const ray *r);
+int mesh_crossings_avx2(const mesh *m, const ray *r, crossing *out, int max, bool *more);
+bool mesh_intersect_avx512(const mesh *m, const ray *r, shape_hit *hit);
+bool mesh_occluded_avx512(const mesh *m, const ray *r);
+int mesh_crossings_avx512(const mesh *m, const ray *r, crossing *out, int max, bool *more);
+
+#endif

@@ -1,0 +1,12 @@
+/* The scene kernels of scene_trace.h for the avx2 path (accel/isa.h); the
+ * Makefile compiles this file with the avx2 flags. */
+#include "scene_trace.h"
+
+#if defined(GLINT_WIDE_KERNELS)
+#if !defined(__AVX2__)
+#error "compile with the avx2 flags (Makefile: KERNEL_FLAGS_avx2)"
+#endif
+SCENE_KERNELS(avx2, 8)
+#else
+typedef int scene_avx2_unused; /* not x86-64: no kernels here */
+#endif

@@ -1,0 +1,12 @@
+/* The scene kernels of scene_trace.h for the avx512 path (accel/isa.h); the
+ * Makefile compiles this file with the avx512 flags. */
+#include "scene_trace.h"
+
+#if defined(GLINT_WIDE_KERNELS)
+#if !defined(__AVX512VL__)
+#error "compile with the avx512 flags (Makefile: KERNEL_FLAGS_avx512)"
+#endif
+SCENE_KERNELS(avx512, 8)
+#else
+typedef int scene_avx512_unused; /* not x86-64: no kernels here */
+#endif

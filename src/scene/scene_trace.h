@@ -1,0 +1,118 @@
+/* scene_trace: a ray against the scene's objects (the scene's BVH, then
+ * each object's own test), written once and compiled once per SIMD path
+ * (accel/isa.h): scene.c holds the SSE copy, scene_scalar.c,
+ * scene_avx2.c and scene_avx512.c the others. scene_intersect and
+ * scene_occluded_opaque call the copy that matches the layout the scene's
+ * BVH was built for. */
+#ifndef GLINT_SCENE_SCENE_TRACE_H
+#define GLINT_SCENE_SCENE_TRACE_H
+
+#include "accel/traverse.h"
+#include "scene/scene.h"
+
+/* The ray in the object's own space; t values carry over unchanged because
+ * the direction is transformed without renormalising. */
+static inline ray scene_object_ray(const scene *s, const object *o, const ray *r)
+{
+    if (o->xform < 0)
+        return *r;
+    if (__builtin_expect(o->moving, 0)) {
+        xform x = scene_object_xform_at(s, o, r->time);
+        return (ray){mat4_point(&x.inv, r->o), mat4_vector(&x.inv, r->d), r->tmin, r->tmax,
+                     r->time};
+    }
+    const xform *x = &s->xforms[o->xform];
+    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
+                 r->time};
+}
+
+typedef struct scene_leaf_ctx {
+    const scene *s;
+    const ray *r;
+    scene_hit *hit;
+} scene_leaf_ctx;
+
+__attribute__((always_inline)) static inline bool scene_hit_object(const scene *s, int i,
+                                                                   const ray *r, float tmin,
+                                                                   float *tmax, scene_hit *hit)
+{
+    const object *o = &s->objects[i];
+    ray lr = scene_object_ray(s, o, r);
+    lr.tmin = tmin;
+    lr.tmax = *tmax;
+    if (!shape_intersect(&o->shape, &lr, &hit->h))
+        return false;
+    *tmax = hit->h.t;
+    hit->object = i;
+    return true;
+}
+
+__attribute__((always_inline)) static inline bool scene_leaf_closest(void *ctx, uint32_t first,
+                                                                     uint32_t count, float tmin,
+                                                                     float *tmax)
+{
+    scene_leaf_ctx *c = ctx;
+    const int32_t *prims = c->s->bvh.prims + first;
+    bool found = false;
+    for (uint32_t i = 0; i < count; i++)
+        found |= scene_hit_object(c->s, prims[i], c->r, tmin, tmax, c->hit);
+    return found;
+}
+
+__attribute__((always_inline)) static inline bool scene_blocks(const scene *s, int i, const ray *r)
+{
+    const object *o = &s->objects[i];
+    if (o->transmits)
+        return false;
+    ray lr = scene_object_ray(s, o, r);
+    return shape_occluded(&o->shape, &lr);
+}
+
+__attribute__((always_inline)) static inline bool scene_leaf_any(void *ctx, uint32_t first,
+                                                                 uint32_t count, float tmin,
+                                                                 float *tmax)
+{
+    (void)tmin, (void)tmax;
+    scene_leaf_ctx *c = ctx;
+    const int32_t *prims = c->s->bvh.prims + first;
+    for (uint32_t i = 0; i < count; i++)
+        if (scene_blocks(c->s, prims[i], c->r))
+            return true;
+    return false;
+}
+
+/* Defines scene_intersect_<isa> and scene_occluded_<isa> for nodes of the
+ * given width: unbounded objects first, then the BVH. */
+#define SCENE_KERNELS(isa, width)                                                              \
+    bool scene_intersect_##isa(const scene *s, const ray *r, scene_hit *hit)                   \
+    {                                                                                          \
+        float tmax = r->tmax;                                                                  \
+        bool found = false;                                                                    \
+        for (int i = 0; i < s->nunbounded; i++)                                                \
+            found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);             \
+        scene_leaf_ctx c = {s, r, hit};                                                        \
+        found |= wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, false,              \
+                               scene_leaf_closest, &c);                                        \
+        return found;                                                                          \
+    }                                                                                          \
+    bool scene_occluded_##isa(const scene *s, const ray *r)                                    \
+    {                                                                                          \
+        for (int i = 0; i < s->nunbounded; i++)                                                \
+            if (scene_blocks(s, s->unbounded[i], r))                                           \
+                return true;                                                                   \
+        scene_leaf_ctx c = {s, r, NULL};                                                       \
+        float tmax = r->tmax;                                                                  \
+        return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true, scene_leaf_any, \
+                             &c);                                                              \
+    }
+
+bool scene_intersect_scalar(const scene *s, const ray *r, scene_hit *hit);
+bool scene_occluded_scalar(const scene *s, const ray *r);
+bool scene_intersect_sse(const scene *s, const ray *r, scene_hit *hit);
+bool scene_occluded_sse(const scene *s, const ray *r);
+bool scene_intersect_avx2(const scene *s, const ray *r, scene_hit *hit);
+bool scene_occluded_avx2(const scene *s, const ray *r);
+bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
+bool scene_occluded_avx512(const scene *s, const ray *r);
+
+#endif
