@@ -908,8 +908,8 @@ Test(load_errors, meshes)
     };
     expect_error("objects: [{type: mesh}]\n", "scene.yaml:1:11: mesh needs 'file'");
     expect_error("objects: [{type: mesh, file: m.obj, radius: 2}]\n",
-                 "scene.yaml:1:37: unknown key 'radius' in mesh (valid: type, file, material, "
-                 "transform)");
+                 "scene.yaml:1:37: unknown key 'radius' in mesh (valid: type, file, smooth_angle, "
+                 "material, transform)");
     expect_error_with("objects: [{type: mesh, file: nope.obj}]\n", files,
                       "scene.yaml:1:30: cannot read mesh 'nope.obj': No such file or directory");
     expect_error_with("objects: [{type: mesh, file: lines.obj}]\n", files,

@@ -218,6 +218,12 @@ int main(int argc, char **argv)
                       : glint_scene_builtin(&scene, &err);
     if (rc != GLINT_OK)
         goto fail;
+    for (const char *w = glint_scene_warnings(scene); *w;) {
+        const char *end = strchr(w, '\n');
+        int n = end ? (int)(end - w) : (int)strlen(w);
+        fprintf(stderr, "glint: warning: %.*s\n", n, w);
+        w += n + (end != NULL);
+    }
 
     glint_settings s;
     rc = glint_scene_settings(scene, &s, &err);

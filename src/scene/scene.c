@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/array.h"
 #include "core/error.h"
@@ -25,6 +26,7 @@ void scene_free(scene *s)
         return;
     for (int i = 0; i < s->nimages; i++)
         image_free(&s->images[i]);
+    free(s->warnings);
     free(s->objects);
     free(s->bounds);
     bvh4_free(&s->bvh);
@@ -300,14 +302,34 @@ bool scene_occluded_opaque(const scene *s, const ray *r)
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)
 {
     const object *o = &s->objects[hit->object];
+    out->color = v3s(1.0f);
     if (o->xform < 0) {
         shape_surface(&o->shape, r, &hit->h, out);
+        if (o->material >= 0) /* a material given in the scene replaces the file's colours */
+            out->color = v3s(1.0f);
         return;
     }
     const xform *x = &s->xforms[o->xform];
     ray lr = object_ray(s, o, r);
     shape_surface(&o->shape, &lr, &hit->h, out);
+    if (o->material >= 0)
+        out->color = v3s(1.0f);
     out->p = ray_at(r, hit->h.t);
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
 }
+
+bool scene_add_warnings(scene *s, const char *lines)
+{
+    size_t have = s->warnings ? strlen(s->warnings) : 0, n = strlen(lines);
+    if (n == 0)
+        return true;
+    char *w = realloc(s->warnings, have + n + 1);
+    if (!w)
+        return false;
+    memcpy(w + have, lines, n + 1);
+    s->warnings = w;
+    return true;
+}
+
+const char *scene_warnings(const scene *s) { return s->warnings ? s->warnings : ""; }

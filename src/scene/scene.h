@@ -50,6 +50,7 @@ struct glint_scene {
     bvh4 bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
     int nunbounded;
+    char *warnings; /* lines for the user from building the scene, or NULL */
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
 };
@@ -69,6 +70,11 @@ int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
+/* Appends lines (each ending in '\n'; "" adds nothing) to the scene's
+ * warnings; false when out of memory. */
+bool scene_add_warnings(scene *s, const char *lines);
+/* The warnings so far, "" when none. */
+const char *scene_warnings(const scene *s);
 
 /* The scene-wide values a front end sets; each marks the scene unbuilt. */
 void scene_set_camera(scene *s, const camera *c);

@@ -54,7 +54,7 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
     if (v3_dot(n, ng) < 0.0f)
         n = ng;
 
-    vec3 base = m->color;
+    vec3 base = v3_mul(m->color, sf.color);
     if (m->texture >= 0)
         base = v3_mul(base, texture_eval(&s->textures[m->texture], s->images, ctx->decode,
                                          sf.u, sf.v));
