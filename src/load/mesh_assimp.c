@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "load/mesh_material.h"
+#include "load/mesh_normals.h"
 
 /* Deepest node hierarchy followed; a deeper one is refused. */
 #define NODE_DEPTH_MAX 256
@@ -176,6 +177,7 @@ typedef struct walk {
     mesh_data *md;
     uint64_t nverts, ntris; /* counted, then filled */
     uint32_t flags;
+    float smooth_angle;
     bool fill, too_deep;
     double (*skin_p)[4];    /* scratch for skinned meshes: position and weight */
     double (*skin_n)[3];
@@ -285,10 +287,11 @@ static bool visit_mesh(walk *w, const struct aiMesh *am, const struct aiMatrix4x
     if (!is_triangle_mesh(am))
         return true;
     if (!w->fill) {
-        w->nverts += am->mNumVertices;
+        /* room for the vertices split by mesh_normals_crease */
+        uint64_t room = am->mNormals ? 0 : 3ull * am->mNumFaces;
+        w->nverts += room > am->mNumVertices ? room : am->mNumVertices;
         w->ntris += am->mNumFaces;
-        w->flags |= (am->mNormals ? MESH_HAS_NORMALS : 0) |
-                    (am->mTextureCoords[0] ? MESH_HAS_UV : 0) |
+        w->flags |= MESH_HAS_NORMALS | (am->mTextureCoords[0] ? MESH_HAS_UV : 0) |
                     (am->mColors[0] ? MESH_HAS_COLORS : 0);
         return true;
     }
@@ -304,6 +307,7 @@ static bool visit_mesh(walk *w, const struct aiMesh *am, const struct aiMatrix4x
     for (unsigned v = 0; v < am->mNumVertices; v++)
         fill_vertex(w, am, &x, v, base + v);
     uint32_t mat = am->mMaterialIndex < md->nmats ? am->mMaterialIndex : 0;
+    uint32_t t0 = (uint32_t)w->ntris, nv = am->mNumVertices;
     for (unsigned f = 0; f < am->mNumFaces; f++) {
         const struct aiFace *face = &am->mFaces[f];
         if (face->mNumIndices != 3 || face->mIndices[0] >= am->mNumVertices ||
@@ -315,7 +319,10 @@ static bool visit_mesh(walk *w, const struct aiMesh *am, const struct aiMatrix4x
             md->tri[w->ntris][k] = base + face->mIndices[k];
         md->tri_mat[w->ntris++] = mat;
     }
-    w->nverts += am->mNumVertices;
+    if (!am->mNormals &&
+        !mesh_normals_crease(md, base, &nv, t0, (uint32_t)w->ntris, w->smooth_angle))
+        return false;
+    w->nverts += nv;
     free(w->skin_p);
     free(w->skin_n);
     w->skin_p = NULL;
@@ -346,7 +353,7 @@ static glint_rc gather(const struct aiScene *sc, const char *name, const mesh_as
 {
     struct aiMatrix4x4 id;
     aiIdentityMatrix4(&id);
-    walk w = {.sc = sc, .md = md};
+    walk w = {.sc = sc, .md = md, .smooth_angle = opts->smooth_angle};
     if (!sc->mRootNode || !walk_node(&w, sc->mRootNode, &id, 0))
         return err_set(err, GLINT_ERR_INPUT, "%s: the node hierarchy is deeper than %d", name,
                        NODE_DEPTH_MAX);
@@ -373,12 +380,14 @@ static glint_rc gather(const struct aiScene *sc, const char *name, const mesh_as
         return err_nomem(err);
     }
     md->ntris = (uint32_t)w.ntris;
+    md->nverts = (uint32_t)w.nverts;
     return GLINT_OK;
 }
 
+/* Normals are not asked of assimp: mesh_normals computes them with a
+ * crease angle where the file has none. */
 static const unsigned import_flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                     aiProcess_GenSmoothNormals | aiProcess_SortByPType |
-                                     aiProcess_ValidateDataStructure;
+                                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
 
 glint_rc mesh_assimp_read(const char *name, const void *data, size_t size,
                           const mesh_assimp_opts *opts, mesh_data *out, glint_error *err)
@@ -387,7 +396,6 @@ glint_rc mesh_assimp_read(const char *name, const void *data, size_t size,
     struct aiPropertyStore *props = aiCreatePropertyStore();
     if (!props)
         return err_nomem(err);
-    aiSetImportPropertyFloat(props, AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, opts->smooth_angle);
     const struct aiScene *sc;
     if (data) {
         const char *dot = strrchr(name, '.'), *slash = strrchr(name, '/');

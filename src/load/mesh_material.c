@@ -13,7 +13,7 @@
 #include "core/error.h"
 #include "io/image.h"
 
-typedef enum format { FORMAT_OTHER, FORMAT_GLTF, FORMAT_COLLADA } format;
+typedef enum format { FORMAT_OTHER, FORMAT_GLTF, FORMAT_COLLADA, FORMAT_PLY } format;
 
 static format format_of(const char *name)
 {
@@ -24,6 +24,8 @@ static format format_of(const char *name)
         return FORMAT_GLTF;
     if (strcasecmp(dot, ".dae") == 0 || strcasecmp(dot, ".zae") == 0)
         return FORMAT_COLLADA;
+    if (strcasecmp(dot, ".ply") == 0)
+        return FORMAT_PLY;
     return FORMAT_OTHER;
 }
 
@@ -148,9 +150,11 @@ static glint_rc one_material(texs *t, const struct aiScene *sc, const struct aiM
                              format fmt, mesh_mat *m)
 {
     *m = matte_white();
+    /* assimp's stand-ins: "DefaultMaterial", and PLY's unnamed one (PLY has no materials) */
     struct aiString name;
-    if (aiGetMaterialString(am, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS &&
-        strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0)
+    if (aiGetMaterialString(am, AI_MATKEY_NAME, &name) != aiReturn_SUCCESS)
+        name.data[0] = 0;
+    if (strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0 || (fmt == FORMAT_PLY && !name.data[0]))
         return GLINT_OK;
     struct aiColor4D c;
     float alpha = 1;

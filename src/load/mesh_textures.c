@@ -4,10 +4,13 @@
  * of src/io that read scene textures. */
 #include "mesh_import.h"
 
+#include <ctype.h>
+#include <dirent.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "core/error.h"
 #include "io/image.h"
@@ -28,9 +31,26 @@ static void note(mesh_file *f, const char *fmt, ...)
     strcat(f->warnings, "\n");
 }
 
-/* A texture named by the model: the path as written (with '\' read as '/')
- * in the model's folder, else its last part there (exporters often write
- * the author's own absolute path). */
+/* The file in dir whose name matches name but for case ("EarthCylindric.jpg"
+ * written, "earthCylindric.jpg" on disk), or NULL. */
+static char *match_case(const char *dir, const char *name)
+{
+    DIR *d = opendir(dir[0] ? dir : ".");
+    char *found = NULL;
+    struct dirent *e;
+    while (d && !found && (e = readdir(d)) != NULL)
+        if (strcasecmp(e->d_name, name) == 0)
+            found = path_join(dir, e->d_name);
+    if (d)
+        closedir(d);
+    return found;
+}
+
+/* A texture named by the model (with '\' read as '/'), tried in turn: as
+ * written, relative to the model's folder (absolute paths as they are); an
+ * absolute or drive-letter path again inside the model's folder; its last
+ * part there; its last part there in any case (exporters often write the
+ * author's own paths, from Windows). The first attempt's error is kept. */
 static glint_rc read_named(mesh_file *f, const mesh_tex *t, image *img, glint_error *err)
 {
     char *written = strndup((const char *)t->bytes, t->size);
@@ -39,17 +59,21 @@ static glint_rc read_named(mesh_file *f, const mesh_tex *t, image *img, glint_er
     for (char *c = written; *c; c++)
         if (*c == '\\')
             *c = '/';
+    const char *rel = written;
+    if (isalpha((unsigned char)rel[0]) && rel[1] == ':')
+        rel += 2;
+    while (*rel == '/')
+        rel++;
     const char *last = strrchr(written, '/') ? strrchr(written, '/') + 1 : written;
     glint_rc rc = GLINT_ERR_INPUT;
-    for (int attempt = 0; attempt < 2 && rc == GLINT_ERR_INPUT; attempt++) {
-        if (attempt == 1 && last == written)
-            break;
-        char *p = path_join(f->dir, attempt == 0 ? written : last);
-        if (!p) {
-            rc = err_nomem(err);
-            break;
-        }
-        rc = image_load(p, img, err);
+    glint_error e = {0};
+    for (int attempt = 0; attempt < 4 && rc == GLINT_ERR_INPUT; attempt++) {
+        char *p = attempt == 0   ? path_join(f->dir, written)
+                  : attempt == 1 ? (rel != written ? path_join(f->dir, rel) : NULL)
+                  : attempt == 2 ? (last != rel ? path_join(f->dir, last) : NULL)
+                                 : match_case(f->dir, last);
+        if (p)
+            rc = image_load(p, img, attempt == 0 ? err : &e);
         free(p);
     }
     free(written);
@@ -85,8 +109,8 @@ static glint_rc add_texture(scene *s, mesh_file *f, int i, int *tex, glint_error
     snprintf(shown, sizeof shown, "texture %d", i);
     *tex = -1;
     if (t->kind == MESH_TEX_FILE && !f->dir)
-        rc = err_set(&e, GLINT_ERR_INPUT, "'%.200s' is not read for a mesh given from memory",
-                     (const char *)t->bytes);
+        rc = err_set(&e, GLINT_ERR_INPUT, "'%.*s' is not read for a mesh given from memory",
+                     (int)(t->size < 200 ? t->size : 200), (const char *)t->bytes);
     else if (t->kind == MESH_TEX_FILE)
         rc = read_named(f, t, &img, &e);
     else if (t->kind == MESH_TEX_ENCODED)
