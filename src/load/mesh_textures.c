@@ -65,17 +65,22 @@ static glint_rc read_named(mesh_file *f, const mesh_tex *t, image *img, glint_er
     while (*rel == '/')
         rel++;
     const char *last = strrchr(written, '/') ? strrchr(written, '/') + 1 : written;
-    glint_rc rc = GLINT_ERR_INPUT;
+    char *folder = path_join(f->dir, rel), *slash = folder ? strrchr(folder, '/') : NULL;
+    if (slash)
+        *slash = 0;
+    glint_rc rc = folder ? GLINT_ERR_INPUT : err_nomem(err);
     glint_error e = {0};
-    for (int attempt = 0; attempt < 4 && rc == GLINT_ERR_INPUT; attempt++) {
+    for (int attempt = 0; attempt < 5 && rc == GLINT_ERR_INPUT; attempt++) {
         char *p = attempt == 0   ? path_join(f->dir, written)
                   : attempt == 1 ? (rel != written ? path_join(f->dir, rel) : NULL)
-                  : attempt == 2 ? (last != rel ? path_join(f->dir, last) : NULL)
+                  : attempt == 2 ? (slash ? match_case(folder, last) : NULL)
+                  : attempt == 3 ? (last != rel ? path_join(f->dir, last) : NULL)
                                  : match_case(f->dir, last);
         if (p)
             rc = image_load(p, img, attempt == 0 ? err : &e);
         free(p);
     }
+    free(folder);
     free(written);
     return rc;
 }
