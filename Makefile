@@ -166,7 +166,7 @@ FUZZ_ARGS_texture   := -dict=../../fuzz/image.dict seeds-texture
 FUZZ_PREP_mesh      := fuzz-seeds-mesh
 FUZZ_ARGS_mesh      := seeds-mesh
 FUZZ_FLAGS_mesh     := -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1
-FUZZ_ENV_mesh       := LSAN_OPTIONS=suppressions=../../fuzz/mesh.lsan
+FUZZ_ENV_mesh       := LSAN_OPTIONS=suppressions=../../fuzz/mesh.lsan ASAN_OPTIONS=symbolize=0
 fuzz:
 	@scripts/install-deps fuzz
 	@test -f fuzz/fuzz_$(TARGET).c || { echo "make fuzz: no target fuzz/fuzz_$(TARGET).c" >&2; exit 2; }

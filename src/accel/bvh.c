@@ -103,8 +103,10 @@ static float best_split(const build *b, int lo, int hi, aabb box, aabb cbox, int
             bin_box[i] = aabb_empty();
         float scale = (float)BINS / cext;
         for (int i = lo; i < hi; i++) {
-            int k = (int)((v3_at(b->centers[b->prims[i]], a) - cmin) * scale);
-            k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
+            /* compared as a float first: with an extent near the smallest
+             * normal float, scale is infinite and so may be the product */
+            float f = (v3_at(b->centers[b->prims[i]], a) - cmin) * scale;
+            int k = f >= (float)BINS ? BINS - 1 : f > 0.0f ? (int)f : 0;
             bin_n[k]++;
             bin_box[k] = aabb_union(bin_box[k], b->boxes[b->prims[i]]);
         }

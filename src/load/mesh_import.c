@@ -219,7 +219,7 @@ static glint_rc read_head(const char *path, char *head, size_t *n, uint64_t *siz
     return rc;
 }
 
-static glint_rc run_import(const char *name, const void *data, size_t size,
+static glint_rc run_import(const char *name, const void *data, size_t size, uint64_t faces,
                            const mesh_options *opts, mesh_file *out, glint_error *err)
 {
     mesh_limits lim;
@@ -240,8 +240,12 @@ static glint_rc run_import(const char *name, const void *data, size_t size,
     if (rc == GLINT_OK && md.ntris > lim.triangles)
         rc = err_set(err, GLINT_ERR_INPUT, "%s: mesh is too large (%u triangles, limit %llu)", name,
                      md.ntris, (unsigned long long)lim.triangles);
+    uint64_t got = rc == GLINT_OK ? (uint64_t)md.ntris + md.dropped : 0;
     if (rc == GLINT_OK)
         rc = mesh_file_from_data(&md, name, out, err);
+    if (rc == GLINT_OK && got < faces)
+        warn(out, "%s: the header declares %llu faces but the file holds %llu (truncated file?)",
+             name, (unsigned long long)faces, (unsigned long long)got);
     mesh_data_free(&md);
     return rc;
 }
@@ -265,17 +269,17 @@ glint_rc mesh_import(const char *path, const mesh_options *opts, mesh_file *out,
     if (!head)
         return err_nomem(err);
     size_t n = 0;
-    uint64_t size = 0;
+    uint64_t size = 0, faces = 0;
     mesh_limits lim;
     mesh_limits_get(&lim);
     glint_rc rc = read_head(path, head, &n, &size, err);
     if (rc == GLINT_OK)
-        rc = mesh_precheck(path, head, n, size, &lim, err);
+        rc = mesh_precheck(path, head, n, size, &lim, &faces, err);
     free(head);
     if (rc == GLINT_OK)
         rc = set_names(out, path, true, err);
     if (rc == GLINT_OK)
-        rc = run_import(path, NULL, 0, opts, out, err);
+        rc = run_import(path, NULL, 0, faces, opts, out, err);
     if (rc != GLINT_OK)
         mesh_file_free(out);
     return rc;
@@ -290,12 +294,13 @@ glint_rc mesh_import_memory(const void *data, size_t size, const char *name,
                        size ? "file too large" : "file is empty");
     mesh_limits lim;
     mesh_limits_get(&lim);
+    uint64_t faces = 0;
     glint_rc rc = mesh_precheck(name, data, size < MESH_HEAD_BYTES ? size : MESH_HEAD_BYTES,
-                                size, &lim, err);
+                                size, &lim, &faces, err);
     if (rc == GLINT_OK)
         rc = set_names(out, name, false, err);
     if (rc == GLINT_OK)
-        rc = run_import(name, data, size, opts, out, err);
+        rc = run_import(name, data, size, faces, opts, out, err);
     if (rc != GLINT_OK)
         mesh_file_free(out);
     return rc;

@@ -98,14 +98,15 @@ static bool ply_line(const char *line, bool *ascii, ply_elem *e, uint64_t *need,
         *need = mad_sat(e->count, *ascii ? 2 : ply_type_size(a), *need);
     } else if (sscanf(line, "property %31s %31s", a, b) == 2) {
         *need = mad_sat(e->count, *ascii ? 2 : ply_type_size(a), *need);
-    } else if (strncmp(line, "end_header", 10) == 0) {
+    } else if (strncmp(line, "end_header", 10) == 0 &&
+               (line[10] == 0 || isspace((unsigned char)line[10]))) {
         return false;
     }
     return true;
 }
 
 static glint_rc ply_check(const char *name, const char *head, size_t n, uint64_t size,
-                          const mesh_limits *lim, glint_error *err)
+                          const mesh_limits *lim, uint64_t *declared, glint_error *err)
 {
     bool ascii = true;
     ply_elem e = {"", 0, 0};
@@ -129,6 +130,7 @@ static glint_rc ply_check(const char *name, const char *head, size_t n, uint64_t
             break;
     }
     uint64_t body = size - at;
+    *declared = faces;
     if (verts > 3 * lim->triangles)
         return too_many(name, verts, "vertices", 3 * lim->triangles, err);
     if (faces > lim->triangles)
@@ -172,11 +174,12 @@ static bool off_number(const char *h, size_t n, size_t *at, uint64_t *out)
 }
 
 static glint_rc off_check(const char *name, const char *head, size_t n, size_t at, uint64_t size,
-                          const mesh_limits *lim, glint_error *err)
+                          const mesh_limits *lim, uint64_t *declared, glint_error *err)
 {
     uint64_t nv, nf;
     if (!off_number(head, n, &at, &nv) || !off_number(head, n, &at, &nf))
         return GLINT_OK;
+    *declared = nf;
     if (nv > 3 * lim->triangles)
         return too_many(name, nv, "vertices", 3 * lim->triangles, err);
     if (nf > lim->triangles)
@@ -189,22 +192,24 @@ static glint_rc off_check(const char *name, const char *head, size_t n, size_t a
 }
 
 glint_rc mesh_precheck(const char *name, const char *head, size_t n, uint64_t size,
-                       const mesh_limits *lim, glint_error *err)
+                       const mesh_limits *lim, uint64_t *faces, glint_error *err)
 {
+    *faces = 0;
     if (n > size)
         n = (size_t)size;
     if (n >= 3 && strncasecmp(head, "ply", 3) == 0) /* what assimp's PLY reader looks for */
-        return ply_check(name, head, n, size, lim, err);
+        return ply_check(name, head, n, size, lim, faces, err);
     size_t at = off_skip(head, n, 0), start = at;
     while (at < n && isalnum((unsigned char)head[at]) && at - start < 8)
         at++;
     if (at - start >= 3 && at - start <= 6 && memcmp(head + at - 3, "OFF", 3) == 0 &&
         (at == n || isspace((unsigned char)head[at])))
-        return off_check(name, head, n, at, size, lim, err);
+        return off_check(name, head, n, at, size, lim, faces, err);
     const char *dot = strrchr(name, '.');
     if (dot && strcasecmp(dot, ".stl") == 0 && n >= 84 && strncmp(head, "solid", 5) != 0) {
         uint32_t facets;
         memcpy(&facets, head + 80, 4);
+        *faces = facets;
         if (facets > lim->triangles)
             return too_many(name, facets, "triangles", lim->triangles, err);
         if (84 + 50ull * facets > size)

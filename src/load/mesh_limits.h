@@ -40,8 +40,10 @@ void mesh_limits_get(mesh_limits *out);
  * size <= n) declares against the file's size and the limits: PLY element
  * counts, OFF vertex and face counts, the facet count of a binary STL, and
  * a PLY header that never ends. A file that fails is GLINT_ERR_INPUT naming
- * name; anything the checks do not understand passes (the importer judges). */
+ * name; anything the checks do not understand passes (the importer judges).
+ * *faces gets the number of faces the header declares, or 0 when it
+ * declares none (the caller warns when fewer arrive: a truncated file). */
 glint_rc mesh_precheck(const char *name, const char *head, size_t n, uint64_t size,
-                       const mesh_limits *lim, glint_error *err);
+                       const mesh_limits *lim, uint64_t *faces, glint_error *err);
 
 #endif
