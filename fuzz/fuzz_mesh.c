@@ -77,8 +77,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     mesh_limits lim = {MESH_DEFAULT_MEMORY_MIB, MESH_DEFAULT_SECONDS, 1u << 20, true};
     glint_error err = {0};
     size_t head = size < MESH_HEAD_BYTES ? size : MESH_HEAD_BYTES;
-    uint64_t faces;
-    if (mesh_precheck(name, (const char *)data, head, size, &lim, &faces, &err) != GLINT_OK)
+    mesh_header hdr;
+    if (mesh_precheck(name, (const char *)data, head, size, &lim, &hdr, &err) != GLINT_OK)
         return 0;
     mesh_assimp_opts opts = {30.0f, lim.triangles};
     mesh_data md;

@@ -219,8 +219,45 @@ static glint_rc read_head(const char *path, char *head, size_t *n, uint64_t *siz
     return rc;
 }
 
-static glint_rc run_import(const char *name, const void *data, size_t size, uint64_t faces,
-                           const mesh_options *opts, mesh_file *out, glint_error *err)
+/* The lines of an ASCII PLY's body, from the file at path or from data. */
+static uint64_t body_lines(const char *path, const void *data, size_t size, uint64_t body)
+{
+    bool open = false;
+    if (data)
+        return body < size ? mesh_count_lines((const char *)data + body, size - body, &open) : 0;
+    FILE *f = fopen(path, "rb"); /* a regular file: read_head checked it */
+    if (!f || fseek(f, (long)body, SEEK_SET) != 0) {
+        if (f)
+            fclose(f);
+        return 0;
+    }
+    char buf[65536];
+    uint64_t lines = 0;
+    size_t got;
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0)
+        lines += mesh_count_lines(buf, got, &open);
+    fclose(f);
+    return lines;
+}
+
+/* A warning when the file holds fewer faces than its header declares. */
+static void check_count(mesh_file *out, const char *name, const void *data, size_t size,
+                        const mesh_header *hdr, uint64_t got)
+{
+    uint64_t faces = hdr->faces;
+    if (hdr->lines) {
+        uint64_t lines = body_lines(name, data, size, hdr->body);
+        uint64_t missing = lines < hdr->lines ? hdr->lines - lines : 0;
+        got = missing < faces ? faces - missing : 0;
+    }
+    if (got < faces)
+        warn(out, "%s: the header declares %llu faces but the file holds %llu (truncated file?)",
+             name, (unsigned long long)faces, (unsigned long long)got);
+}
+
+static glint_rc run_import(const char *name, const void *data, size_t size,
+                           const mesh_header *hdr, const mesh_options *opts, mesh_file *out,
+                           glint_error *err)
 {
     mesh_limits lim;
     mesh_limits_get(&lim);
@@ -243,9 +280,8 @@ static glint_rc run_import(const char *name, const void *data, size_t size, uint
     uint64_t got = rc == GLINT_OK ? (uint64_t)md.ntris + md.dropped : 0;
     if (rc == GLINT_OK)
         rc = mesh_file_from_data(&md, name, out, err);
-    if (rc == GLINT_OK && got < faces)
-        warn(out, "%s: the header declares %llu faces but the file holds %llu (truncated file?)",
-             name, (unsigned long long)faces, (unsigned long long)got);
+    if (rc == GLINT_OK)
+        check_count(out, name, data, size, hdr, got);
     mesh_data_free(&md);
     return rc;
 }
@@ -269,17 +305,18 @@ glint_rc mesh_import(const char *path, const mesh_options *opts, mesh_file *out,
     if (!head)
         return err_nomem(err);
     size_t n = 0;
-    uint64_t size = 0, faces = 0;
+    uint64_t size = 0;
+    mesh_header hdr;
     mesh_limits lim;
     mesh_limits_get(&lim);
     glint_rc rc = read_head(path, head, &n, &size, err);
     if (rc == GLINT_OK)
-        rc = mesh_precheck(path, head, n, size, &lim, &faces, err);
+        rc = mesh_precheck(path, head, n, size, &lim, &hdr, err);
     free(head);
     if (rc == GLINT_OK)
         rc = set_names(out, path, true, err);
     if (rc == GLINT_OK)
-        rc = run_import(path, NULL, 0, faces, opts, out, err);
+        rc = run_import(path, NULL, 0, &hdr, opts, out, err);
     if (rc != GLINT_OK)
         mesh_file_free(out);
     return rc;
@@ -294,13 +331,13 @@ glint_rc mesh_import_memory(const void *data, size_t size, const char *name,
                        size ? "file too large" : "file is empty");
     mesh_limits lim;
     mesh_limits_get(&lim);
-    uint64_t faces = 0;
+    mesh_header hdr;
     glint_rc rc = mesh_precheck(name, data, size < MESH_HEAD_BYTES ? size : MESH_HEAD_BYTES,
-                                size, &lim, &faces, err);
+                                size, &lim, &hdr, err);
     if (rc == GLINT_OK)
         rc = set_names(out, name, false, err);
     if (rc == GLINT_OK)
-        rc = run_import(name, data, size, faces, opts, out, err);
+        rc = run_import(name, data, size, &hdr, opts, out, err);
     if (rc != GLINT_OK)
         mesh_file_free(out);
     return rc;

@@ -81,7 +81,7 @@ static unsigned ply_type_size(const char *t)
 
 /* One header line; returns false at end_header. */
 static bool ply_line(const char *line, bool *ascii, ply_elem *e, uint64_t *need,
-                     uint64_t *verts, uint64_t *faces)
+                     uint64_t *verts, uint64_t *faces, uint64_t *elements)
 {
     char a[32] = "", b[32] = "", c[32] = "";
     unsigned long long n = 0;
@@ -90,6 +90,7 @@ static bool ply_line(const char *line, bool *ascii, ply_elem *e, uint64_t *need,
     } else if (sscanf(line, "element %31s %llu", e->name, &n) == 2) {
         e->count = n;
         e->bytes = 0;
+        *elements = mad_sat(1, n, *elements);
         if (strcmp(e->name, "vertex") == 0)
             *verts += n;
         if (strcmp(e->name, "face") == 0)
@@ -106,11 +107,11 @@ static bool ply_line(const char *line, bool *ascii, ply_elem *e, uint64_t *need,
 }
 
 static glint_rc ply_check(const char *name, const char *head, size_t n, uint64_t size,
-                          const mesh_limits *lim, uint64_t *declared, glint_error *err)
+                          const mesh_limits *lim, mesh_header *hdr, glint_error *err)
 {
     bool ascii = true;
     ply_elem e = {"", 0, 0};
-    uint64_t need = 0, verts = 0, faces = 0;
+    uint64_t need = 0, verts = 0, faces = 0, elements = 0;
     size_t at = 0;
     for (;;) {
         const char *nl = memchr(head + at, '\n', n - at);
@@ -126,11 +127,11 @@ static glint_rc ply_check(const char *name, const char *head, size_t n, uint64_t
         memcpy(line, head + at, len < sizeof line - 1 ? len : sizeof line - 1);
         line[len < sizeof line - 1 ? len : sizeof line - 1] = 0;
         at += len + 1;
-        if (!ply_line(line, &ascii, &e, &need, &verts, &faces))
+        if (!ply_line(line, &ascii, &e, &need, &verts, &faces, &elements))
             break;
     }
     uint64_t body = size - at;
-    *declared = faces;
+    *hdr = (mesh_header){faces, ascii ? elements : 0, at};
     if (verts > 3 * lim->triangles)
         return too_many(name, verts, "vertices", 3 * lim->triangles, err);
     if (faces > lim->triangles)
@@ -174,12 +175,12 @@ static bool off_number(const char *h, size_t n, size_t *at, uint64_t *out)
 }
 
 static glint_rc off_check(const char *name, const char *head, size_t n, size_t at, uint64_t size,
-                          const mesh_limits *lim, uint64_t *declared, glint_error *err)
+                          const mesh_limits *lim, mesh_header *hdr, glint_error *err)
 {
     uint64_t nv, nf;
     if (!off_number(head, n, &at, &nv) || !off_number(head, n, &at, &nf))
         return GLINT_OK;
-    *declared = nf;
+    hdr->faces = nf;
     if (nv > 3 * lim->triangles)
         return too_many(name, nv, "vertices", 3 * lim->triangles, err);
     if (nf > lim->triangles)
@@ -192,28 +193,42 @@ static glint_rc off_check(const char *name, const char *head, size_t n, size_t a
 }
 
 glint_rc mesh_precheck(const char *name, const char *head, size_t n, uint64_t size,
-                       const mesh_limits *lim, uint64_t *faces, glint_error *err)
+                       const mesh_limits *lim, mesh_header *hdr, glint_error *err)
 {
-    *faces = 0;
+    *hdr = (mesh_header){0, 0, 0};
     if (n > size)
         n = (size_t)size;
     if (n >= 3 && strncasecmp(head, "ply", 3) == 0) /* what assimp's PLY reader looks for */
-        return ply_check(name, head, n, size, lim, faces, err);
+        return ply_check(name, head, n, size, lim, hdr, err);
     size_t at = off_skip(head, n, 0), start = at;
     while (at < n && isalnum((unsigned char)head[at]) && at - start < 8)
         at++;
     if (at - start >= 3 && at - start <= 6 && memcmp(head + at - 3, "OFF", 3) == 0 &&
         (at == n || isspace((unsigned char)head[at])))
-        return off_check(name, head, n, at, size, lim, faces, err);
+        return off_check(name, head, n, at, size, lim, hdr, err);
     const char *dot = strrchr(name, '.');
     if (dot && strcasecmp(dot, ".stl") == 0 && n >= 84 && strncmp(head, "solid", 5) != 0) {
         uint32_t facets;
         memcpy(&facets, head + 80, 4);
-        *faces = facets;
+        hdr->faces = facets;
         if (facets > lim->triangles)
             return too_many(name, facets, "triangles", lim->triangles, err);
         if (84 + 50ull * facets > size)
             return too_short(name, "STL", facets, "triangles", size - 84, err);
     }
     return GLINT_OK;
+}
+
+uint64_t mesh_count_lines(const char *p, size_t n, bool *open)
+{
+    uint64_t lines = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (p[i] == '\n') {
+            *open = false;
+        } else if (!*open && !isspace((unsigned char)p[i])) {
+            *open = true;
+            lines++;
+        }
+    }
+    return lines;
 }

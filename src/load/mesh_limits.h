@@ -41,9 +41,21 @@ void mesh_limits_get(mesh_limits *out);
  * counts, OFF vertex and face counts, the facet count of a binary STL, and
  * a PLY header that never ends. A file that fails is GLINT_ERR_INPUT naming
  * name; anything the checks do not understand passes (the importer judges).
- * *faces gets the number of faces the header declares, or 0 when it
- * declares none (the caller warns when fewer arrive: a truncated file). */
+ * *hdr gets what the header declares, for the caller to warn when fewer
+ * faces arrive (a truncated file that still parses). */
+typedef struct mesh_header {
+    uint64_t faces; /* faces declared; 0: none */
+    uint64_t lines; /* an ASCII PLY: lines its elements take (one each), else 0 */
+    uint64_t body;  /* where those lines start */
+} mesh_header;
+
 glint_rc mesh_precheck(const char *name, const char *head, size_t n, uint64_t size,
-                       const mesh_limits *lim, uint64_t *faces, glint_error *err);
+                       const mesh_limits *lim, mesh_header *hdr, glint_error *err);
+
+/* Lines holding something other than white space in the n bytes at p, for
+ * counting an ASCII PLY's elements; *open says whether the last one is
+ * still open (carry it from one block of a file to the next, starting
+ * false). */
+uint64_t mesh_count_lines(const char *p, size_t n, bool *open);
 
 #endif

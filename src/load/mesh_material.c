@@ -13,7 +13,7 @@
 #include "core/error.h"
 #include "io/image.h"
 
-typedef enum format { FORMAT_OTHER, FORMAT_GLTF, FORMAT_COLLADA, FORMAT_PLY } format;
+typedef enum format { FORMAT_OTHER, FORMAT_GLTF, FORMAT_COLLADA, FORMAT_PLAIN } format;
 
 static format format_of(const char *name)
 {
@@ -24,8 +24,9 @@ static format format_of(const char *name)
         return FORMAT_GLTF;
     if (strcasecmp(dot, ".dae") == 0 || strcasecmp(dot, ".zae") == 0)
         return FORMAT_COLLADA;
-    if (strcasecmp(dot, ".ply") == 0)
-        return FORMAT_PLY;
+    if (strcasecmp(dot, ".ply") == 0 || strcasecmp(dot, ".off") == 0 ||
+        strcasecmp(dot, ".stl") == 0)
+        return FORMAT_PLAIN;
     return FORMAT_OTHER;
 }
 
@@ -150,11 +151,12 @@ static glint_rc one_material(texs *t, const struct aiScene *sc, const struct aiM
                              format fmt, mesh_mat *m)
 {
     *m = matte_white();
-    /* assimp's stand-ins: "DefaultMaterial", and PLY's unnamed one (PLY has no materials) */
+    /* assimp's stand-ins: "DefaultMaterial", and whatever it makes for PLY,
+     * OFF and STL, which have no materials */
     struct aiString name;
     if (aiGetMaterialString(am, AI_MATKEY_NAME, &name) != aiReturn_SUCCESS)
         name.data[0] = 0;
-    if (strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0 || (fmt == FORMAT_PLY && !name.data[0]))
+    if (strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0 || fmt == FORMAT_PLAIN)
         return GLINT_OK;
     struct aiColor4D c;
     float alpha = 1;

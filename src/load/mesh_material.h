@@ -18,8 +18,8 @@
  *    (opacity 0) is taken as an exporter's inverted convention and is opaque.
  *
  * Files without materials, or with only assimp's stand-in material
- * ("DefaultMaterial", or PLY's unnamed one), are matte white like the scene
- * format's default. */
+ * ("DefaultMaterial"; any in PLY, OFF and STL, which have none), are matte
+ * white like the scene format's default. */
 #ifndef GLINT_LOAD_MESH_MATERIAL_H
 #define GLINT_LOAD_MESH_MATERIAL_H
 

@@ -81,6 +81,25 @@ static void incidence(crease *c, uint32_t ngroups)
             c->faces[fill[c->group[c->md->tri[c->t0 + t][k] - c->v0]]++] = t;
 }
 
+/* The angle of triangle h at its corner in group g (Thürmer and Wüthrich's
+ * weight, which makes the result independent of how faces were split into
+ * triangles). */
+static double corner_angle(const crease *c, uint32_t h, uint32_t g)
+{
+    const uint32_t *tri = c->md->tri[c->t0 + h];
+    int k = 0;
+    while (k < 2 && c->group[tri[k] - c->v0] != g)
+        k++;
+    const float *p = c->md->pos[tri[k]], *a = c->md->pos[tri[(k + 1) % 3]],
+                *b = c->md->pos[tri[(k + 2) % 3]];
+    double u[3] = {a[0] - p[0], a[1] - p[1], a[2] - p[2]};
+    double v[3] = {b[0] - p[0], b[1] - p[1], b[2] - p[2]};
+    double x[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    double angle = atan2(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]),
+                         u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
+    return isfinite(angle) ? angle : 0;
+}
+
 static void corner_normal(const crease *c, uint32_t t, uint32_t g, double cosmax, float out[3])
 {
     double s[3] = {0, 0, 0};
@@ -91,9 +110,11 @@ static void corner_normal(const crease *c, uint32_t t, uint32_t g, double cosmax
             uint32_t h = c->faces[i];
             const double *m = c->fn[h];
             if (c->len[h] > 0 &&
-                (m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= cosmax * c->len[h] * c->len[t])
+                (m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= cosmax * c->len[h] * c->len[t]) {
+                double w = corner_angle(c, h, g) / c->len[h];
                 for (int k = 0; k < 3; k++)
-                    s[k] += m[k];
+                    s[k] += m[k] * w;
+            }
         }
     } else {
         memcpy(s, n, sizeof s);
@@ -110,10 +131,10 @@ static bool split(crease *c, double cosmax)
     mesh_data *md = c->md;
     uint32_t cap = 3 * c->nt, n = 0;
     int64_t *head = malloc(c->nv * sizeof *head), *next = malloc(cap * sizeof *next);
-    uint32_t *src = malloc(cap * sizeof *src);
+    uint32_t *src = malloc(cap * sizeof *src), (*tri)[3] = malloc(c->nt * sizeof *tri);
     float(*nrm)[3] = malloc(cap * sizeof *nrm);
-    if (!head || !next || !src || !nrm) {
-        free(head), free(next), free(src), free(nrm);
+    if (!head || !next || !src || !nrm || !tri) {
+        free(head), free(next), free(src), free(nrm), free(tri);
         return false;
     }
     for (uint32_t v = 0; v < c->nv; v++)
@@ -133,7 +154,7 @@ static bool split(crease *c, double cosmax)
                 next[e] = head[v];
                 head[v] = e;
             }
-            md->tri[c->t0 + t][k] = c->v0 + (uint32_t)e;
+            tri[t][k] = c->v0 + (uint32_t)e; /* md->tri is still read above */
         }
     /* copy the attributes of each new vertex's source (scratch first: ranges overlap) */
     bool ok = true;
@@ -150,6 +171,7 @@ static bool split(crease *c, double cosmax)
             if (tcol)
                 memcpy(tcol[e], md->col[c->v0 + src[e]], sizeof tcol[e]);
         }
+        memcpy(md->tri + c->t0, tri, (size_t)c->nt * sizeof *tri);
         memcpy(md->pos + c->v0, tmp, (size_t)n * sizeof *tmp);
         memcpy(md->nrm + c->v0, nrm, (size_t)n * sizeof *nrm);
         if (tuv)
@@ -158,7 +180,7 @@ static bool split(crease *c, double cosmax)
             memcpy(md->col + c->v0, tcol, (size_t)n * sizeof *tcol);
         c->nv = n;
     }
-    free(head), free(next), free(src), free(nrm), free(tmp), free(tuv), free(tcol);
+    free(head), free(next), free(src), free(nrm), free(tmp), free(tuv), free(tcol), free(tri);
     return ok;
 }
 

@@ -2,9 +2,9 @@
  * crease angle, as modelling tools compute them.
  *
  * Corners at the same position are welded (whatever their texture
- * coordinates). A corner's normal is the area-weighted sum of the normals
- * of the triangles around its position whose normal lies within the crease
- * angle of its own triangle's, so edges sharper than the angle stay hard
+ * coordinates). A corner's normal is the sum of the unit normals of the
+ * triangles around its position whose normal lies within the crease angle
+ * of its own triangle's, each weighted by its angle at that corner, so edges sharper than the angle stay hard
  * (a cube's twelve edges at 90 degrees) and gentler ones are smoothed. A
  * vertex whose corners get different normals is split. Positions shared by
  * more than MESH_NORMALS_MAX_FAN triangles take each triangle's own normal
