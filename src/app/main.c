@@ -191,6 +191,32 @@ static int parse_args(int argc, char **argv, struct cli *c)
     return -1;
 }
 
+static void print_stats(const glint_settings *s, const glint_stats *stats)
+{
+    uint64_t total = stats->primary_rays + stats->secondary_rays + stats->shadow_rays;
+    int threads = s->threads > 0 ? s->threads : glint_default_threads();
+    fprintf(stderr,
+            "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
+            "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
+            "time:    %.3f s\n"
+            "speed:   %.2f Mrays/s\n",
+            s->width, s->height, s->samples, s->max_depth, threads, threads == 1 ? "" : "s",
+            (unsigned long long)total, (unsigned long long)stats->primary_rays,
+            (unsigned long long)stats->secondary_rays, (unsigned long long)stats->shadow_rays,
+            stats->seconds, stats->seconds > 0 ? (double)total / stats->seconds * 1e-6 : 0.0);
+}
+
+/* What the scene's files left to say (dropped triangles, unused textures). */
+static void print_warnings(const glint_scene *scene)
+{
+    for (const char *w = glint_scene_warnings(scene); *w;) {
+        const char *end = strchr(w, '\n');
+        int n = end ? (int)(end - w) : (int)strlen(w);
+        fprintf(stderr, "glint: warning: %.*s\n", n, w);
+        w += n + (end != NULL);
+    }
+}
+
 static void on_progress(void *user, const glint_progress *p)
 {
     progress_update(user, p->percent);
@@ -218,12 +244,7 @@ int main(int argc, char **argv)
                       : glint_scene_builtin(&scene, &err);
     if (rc != GLINT_OK)
         goto fail;
-    for (const char *w = glint_scene_warnings(scene); *w;) {
-        const char *end = strchr(w, '\n');
-        int n = end ? (int)(end - w) : (int)strlen(w);
-        fprintf(stderr, "glint: warning: %.*s\n", n, w);
-        w += n + (end != NULL);
-    }
+    print_warnings(scene);
 
     glint_settings s;
     rc = glint_scene_settings(scene, &s, &err);
@@ -263,19 +284,8 @@ int main(int argc, char **argv)
     if (rc != GLINT_OK)
         goto fail;
 
-    if (c.stats) {
-        uint64_t total = stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
-        int threads = s.threads > 0 ? s.threads : glint_default_threads();
-        fprintf(stderr,
-                "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
-                "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
-                "time:    %.3f s\n"
-                "speed:   %.2f Mrays/s\n",
-                s.width, s.height, s.samples, s.max_depth, threads, threads == 1 ? "" : "s",
-                (unsigned long long)total, (unsigned long long)stats.primary_rays,
-                (unsigned long long)stats.secondary_rays, (unsigned long long)stats.shadow_rays,
-                stats.seconds, stats.seconds > 0 ? (double)total / stats.seconds * 1e-6 : 0.0);
-    }
+    if (c.stats)
+        print_stats(&s, &stats);
     glint_film_free(&film);
     glint_scene_free(scene);
     return 0;
