@@ -117,8 +117,11 @@ $(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
 $(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
+# The library's allocations pass through tests/test_alloc.c, which makes
+# each fail in turn.
+TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
 $(BUILD)/tests: $(TEST_OBJ) $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
 
