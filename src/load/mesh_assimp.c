@@ -61,9 +61,9 @@ static enum aiReturn f_seek(struct aiFile *f, size_t off, enum aiOrigin origin)
 
 static void f_flush(struct aiFile *f) { (void)f; }
 
+/* io->UserData points at a bool set when an open failed for want of memory. */
 static struct aiFile *f_open(struct aiFileIO *io, const char *name, const char *mode)
 {
-    (void)io;
     if (strpbrk(mode, "wa+"))
         return NULL;
     int fd = open(name, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
@@ -81,6 +81,8 @@ static struct aiFile *f_open(struct aiFileIO *io, const char *name, const char *
             fclose(fp);
         else
             close(fd);
+        if (fp)
+            *(bool *)io->UserData = true;
         return NULL;
     }
     *f = (struct aiFile){f_read, f_write, f_tell, f_size, f_seek, f_flush, (aiUserData)fp};
@@ -397,6 +399,7 @@ glint_rc mesh_assimp_read(const char *name, const void *data, size_t size,
     if (!props)
         return err_nomem(err);
     const struct aiScene *sc;
+    bool nomem = false;
     if (data) {
         const char *dot = strrchr(name, '.'), *slash = strrchr(name, '/');
         const char *hint = dot && (!slash || dot > slash) ? dot + 1 : "";
@@ -405,10 +408,12 @@ glint_rc mesh_assimp_read(const char *name, const void *data, size_t size,
                  : aiImportFileFromMemoryWithProperties(data, (unsigned)size, import_flags, hint,
                                                         props);
     } else {
-        struct aiFileIO io = {f_open, f_close, NULL};
+        struct aiFileIO io = {f_open, f_close, (aiUserData)&nomem};
         sc = aiImportFileExWithProperties(name, import_flags, &io, props);
     }
     aiReleasePropertyStore(props);
+    if (!sc && nomem)
+        return err_nomem(err);
     if (!sc) {
         const char *why = data && size == 0 ? "file is empty"
                           : data && size > UINT_MAX ? "file too large"
