@@ -569,8 +569,8 @@ Test(mesh_files, a_missing_texture_is_a_warning)
 }
 
 /* Inputs that crashed, hung or leaked in the fuzz target (fuzz/fuzz_mesh.c):
- * assimp aborting in a PLY's post-processing or dereferencing NULL on a
- * Collada file (both contained by the child process), a PLY
+ * assimp aborting in a PLY's post-processing or dereferencing bad pointers
+ * on a Collada and a glTF file (contained by the child process), a PLY
  * header that spun the importer, a mesh too small for the BVH's bins, a
  * failure that leaked its materials. */
 Test(mesh_files, fuzz_findings_stay_harmless)
@@ -578,7 +578,8 @@ Test(mesh_files, fuzz_findings_stay_harmless)
     static const char *const files[] = {"abort-postprocess-1.ply", "abort-postprocess-2.ply",
                                         "abort-postprocess-3.ply", "segv-binary.ply",
                                         "header-spin.ply", "tiny-extent.stl",
-                                        "no-usable-triangles.ply", "segv-collada.dae"};
+                                        "no-usable-triangles.ply", "segv-collada.dae",
+                                        "segv-gltf.gltf"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         char path[512];
         snprintf(path, sizeof path, "%s/tests/mesh-regress/%s", GLINT_SOURCE_DIR, files[i]);
