@@ -178,6 +178,27 @@ Test(cli, bad_scene_files_exit_2_naming_file_line_and_column)
     cr_expect(!exists("glint.png"), "bad input writes no image");
 }
 
+/* A model file that crashes the importer (assimp aborts on it) is one line
+ * naming the file and exit 2; dropped triangles are a warning line. */
+Test(cli, a_model_that_crashes_the_importer_exits_2_with_one_line)
+{
+    char out[4096], text[1024];
+    snprintf(text, sizeof text, "objects: [{type: mesh, file: %s/tests/mesh-regress/"
+             "abort-postprocess-1.ply}]\n", GLINT_SOURCE_DIR);
+    put("crash.yaml", text);
+    cr_expect_eq(run("-q -r 8x8 crash.yaml", out, sizeof out), 2);
+    char want[1024];
+    snprintf(want, sizeof want, "glint: crash.yaml:1:30: %s/tests/mesh-regress/"
+             "abort-postprocess-1.ply: the importer failed (truncated or corrupt file?)\n",
+             GLINT_SOURCE_DIR);
+    cr_expect_str_eq(out, want);
+    cr_expect(!exists("glint.png"), "bad input writes no image");
+    put("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+    put("zero.yaml", "objects: [{type: mesh, file: zero.obj}]\n");
+    cr_expect_eq(run("-q -r 8x8 zero.yaml -o z.ppm", out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "glint: warning: zero.obj: 1 of 2 triangles dropped (1 of zero area)\n");
+}
+
 Test(cli, options_override_the_scene_settings)
 {
     char out[4096];
