@@ -84,6 +84,11 @@ typedef struct glint_settings {
     int max_depth;         /* reflection/refraction recursion limit, 0 to 64 */
     int threads;           /* 0: one per core; at most 1024 */
     glint_transfer transfer;
+    /* Adaptive depth control (Hall and Greenberg 1983): a reflected or
+     * transmitted ray whose share of the pixel falls below this is not
+     * traced. 0 to 1; 0 never prunes (the tree of rays then grows as
+     * 2^depth through glass). A scene's default is 1/255. */
+    double adc_bailout;
 } glint_settings;
 
 /* Checks settings for a render: sizes, sample counts, memory limits. */
@@ -99,7 +104,10 @@ typedef struct glint_scene glint_scene;
 /* The assignment's nine-object scene, built. */
 GLINT_API glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
 /* A scene file (YAML, docs/scene-format.md), built; paths in it are
- * relative to its folder. Errors name the file, line and column. */
+ * relative to its folder. Errors name the file, line and column. The scene
+ * and the files it names must be regular files (a FIFO, a device or a
+ * folder is refused before anything is read); "-" and "/dev/stdin" read
+ * standard input to its end, with paths relative to the current folder. */
 GLINT_API glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 /* Frees the scene and everything in it; NULL is fine. */
 GLINT_API void glint_scene_free(glint_scene *scene);
@@ -115,6 +123,15 @@ GLINT_API glint_rc glint_scene_settings(const glint_scene *scene, glint_settings
 /* Checks (as glint_settings_check) and stores them. */
 GLINT_API glint_rc glint_scene_set_settings(glint_scene *scene, const glint_settings *s,
                                             glint_error *err);
+
+/* What a scene holds, so that a front end can say when something is
+ * missing (no lights: only the ambient term shows; no objects: only the
+ * background). Meshes count the files, objects their instances. */
+typedef struct glint_scene_counts {
+    int objects, lights, materials, textures, meshes;
+} glint_scene_counts;
+GLINT_API glint_rc glint_scene_count(const glint_scene *scene, glint_scene_counts *out,
+                                     glint_error *err);
 
 /* ---- camera -------------------------------------------------------------- */
 

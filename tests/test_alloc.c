@@ -75,6 +75,11 @@ Test(alloc, scene_of_shapes_and_textures)
     fail_each_allocation(GLINT_SOURCE_DIR "/scenes/shapes.yaml");
 }
 
+Test(alloc, csg_trees_and_polyhedra)
+{
+    fail_each_allocation(GLINT_SOURCE_DIR "/scenes/csg.yaml");
+}
+
 /* The mesh is imported in this process (GLINT_MESH_TRUSTED), so that every
  * allocation of the import is counted here; in the usual child process a
  * failure there is the child's, reported as the importer running out of

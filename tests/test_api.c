@@ -74,7 +74,7 @@ static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255};
     OK(glint_scene_set_settings(s, &st, &err));
     glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
     OK(glint_scene_set_camera(s, &cam, &err));
@@ -434,6 +434,9 @@ Test(api, null_arguments_are_refused)
     REFUSED(glint_scene_new(NULL, &err), "out is NULL");
     REFUSED(glint_scene_settings(NULL, &st, &err), "scene is NULL");
     REFUSED(glint_scene_settings(s, NULL, &err), "out is NULL");
+    glint_scene_counts counts;
+    REFUSED(glint_scene_count(NULL, &counts, &err), "scene is NULL");
+    REFUSED(glint_scene_count(s, NULL, &err), "out is NULL");
     REFUSED(glint_scene_set_settings(NULL, &st, &err), "scene is NULL");
     REFUSED(glint_scene_set_settings(s, NULL, &err), "settings is NULL");
     REFUSED(glint_settings_check(NULL, &err), "settings is NULL");
@@ -568,5 +571,29 @@ Test(api, values_out_of_range_are_refused)
     OK(glint_scene_build(s, &err));
     OK(glint_render(s, NULL, NULL, &film, NULL, &err));
     glint_film_free(&film);
+    glint_scene_free(s);
+}
+
+/* What a scene holds, for front ends that warn about a scene without
+ * lights or objects. */
+Test(api, scene_counts)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    glint_scene_counts n;
+    OK(glint_scene_count(s, &n, &err));
+    cr_expect(n.objects == 0 && n.lights == 0 && n.textures == 0 && n.meshes == 0);
+    glint_light l = {GLINT_LIGHT_POINT, {0, 5, 0}, {1, 1, 1}};
+    OK(glint_scene_add_light(s, &l, NULL, &err));
+    glint_material m = glint_material_default();
+    int mat;
+    OK(glint_scene_add_material(s, &m, &mat, &err));
+    glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, -5}, 1}}, mat, NULL, 0};
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_count(s, &n, &err));
+    cr_expect_eq(n.objects, 2);
+    cr_expect_eq(n.lights, 1);
+    cr_expect_geq(n.materials, 1);
     glint_scene_free(s);
 }

@@ -10,6 +10,11 @@
  * are exact fractions; tolerance 1e-6 (float rounding of a lerp). */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "glint.h"
 
 #include "geom/shape.h"
 #include "io/image.h"
@@ -257,4 +262,41 @@ Test(texture, scale_offset_and_decode, .init = setup)
     ASSERT_NEAR(d.x, 0.0, TOL);
     ASSERT_NEAR(d.y, 10 / 255.0 / 12.92, TOL); /* linear segment */
     ASSERT_NEAR(d.z, pow((250 / 255.0 + 0.055) / 1.055, 2.4), 1e-6);
+}
+
+/* HDR textures were gamma-encoded to 8 bits and clamped (0.25 became
+ * 0.533, 7.5 became 1): they are read as linear floats and looked up as
+ * they are, whatever the decode table. A 2x2 Radiance file is written and
+ * read back; RGBE keeps 8 bits of mantissa, so each value is within 1/128
+ * of its pixel's brightest channel. */
+Test(texture, hdr_texels_are_linear_and_unclamped)
+{
+    float rgb[2 * 2 * 3] = {0.25f, 0.25f, 0.25f, 7.5f, 7.5f, 7.5f,
+                            1.0f / 64, 1.0f / 64, 1.0f / 64, 3.0f, 0.5f, 0.125f};
+    glint_film film = {2, 2, rgb};
+    char path[] = "/tmp/glint-hdr-XXXXXX.hdr";
+    int fd = mkstemps(path, 4);
+    cr_assert_geq(fd, 0);
+    close(fd);
+    glint_error err = {0};
+    cr_assert_eq(glint_film_write(&film, path, NULL, &err), GLINT_OK, "%s", err.msg);
+    image img;
+    cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "%s", err.msg);
+    remove(path);
+    cr_assert_not_null(img.linear, "HDR images stay floats");
+    float srgb[256];
+    image_decode_table(GLINT_TRANSFER_SRGB, srgb);
+    texture t = texture_image(0);
+    /* texel centres: (0.25, 0.75) is the top-left texel, row 0 */
+    vec3 c = texture_eval(&t, &img, srgb, 0.25f, 0.75f);
+    ASSERT_NEAR(c.x, 0.25, (0.25) / 128);
+    c = texture_eval(&t, &img, srgb, 0.75f, 0.75f);
+    ASSERT_NEAR(c.x, 7.5, (7.5) / 128);
+    c = texture_eval(&t, &img, srgb, 0.25f, 0.25f);
+    ASSERT_NEAR(c.x, 1.0 / 64, (1.0 / 64) / 128);
+    c = texture_eval(&t, &img, srgb, 0.75f, 0.25f);
+    ASSERT_NEAR(c.x, 3.0, (3.0) / 128);
+    ASSERT_NEAR(c.y, 0.5, 3.0 / 128); /* the exponent is the brightest channel's */
+    ASSERT_NEAR(c.z, 0.125, 3.0 / 128);
+    image_free(&img);
 }

@@ -229,10 +229,12 @@ static glint_rc make_shape(const glint_scene *s, const glint_shape *in, shape *o
         vec3 p0 = api_vec3(in->triangle.p0), p1 = api_vec3(in->triangle.p1),
              p2 = api_vec3(in->triangle.p2);
         if (!api_finite(in->triangle.p0, 3) || !api_finite(in->triangle.p1, 3) ||
-            !api_finite(in->triangle.p2, 3) ||
-            v3_is_zero(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0))))
+            !api_finite(in->triangle.p2, 3) || triangle_check(p0, p1, p2) == TRIANGLE_DEGENERATE)
             return api_bad(err, fn, "triangle is degenerate (p0, p1 and p2 lie on one line) or "
                                     "not finite");
+        if (triangle_check(p0, p1, p2) == TRIANGLE_TOO_LARGE)
+            return api_bad(err, fn, "triangle is too large for single precision (its normal "
+                                    "overflows)");
         *out = shape_triangle(p0, p1, p2);
         return GLINT_OK;
     }

@@ -1,5 +1,10 @@
 /* glint command line: the first client of the library (include/glint.h).
- * The option set is a stable contract, documented in README.md. */
+ * The option set is a stable contract, documented in README.md.
+ *
+ * Options live in one table (options[] below): each row names the option,
+ * its value, its help text and the function that takes it, and the
+ * getopt_long tables and --help are made from it. A new option is a row
+ * and a function. */
 #include <errno.h>
 #include <getopt.h>
 #include <stdarg.h>
@@ -13,46 +18,19 @@
 #include "glint.h"
 #include "progress.h"
 
-static const char usage[] =
-    "usage: glint [options] [SCENE.yaml]\n"
-    "Renders SCENE.yaml, or with no scene the built-in nine-object scene.\n"
-    "\n"
-    "  -o, --output FILE      output image (default glint.png); '-' for standard output\n"
-    "                         .png .ppm .jpg .hdr .pfm .exr, by extension or --format\n"
-    "      --format F         png, ppm, jpg, hdr, pfm or exr, whatever the name\n"
-    "      --quality N        JPEG quality, 1 to 100 (default 90)\n"
-    "      --bits N           bits per channel: PNG, PPM 8 (default) or 16;\n"
-    "                         EXR 16 (half, default) or 32 (float)\n"
-    "  -r, --resolution WxH   image size, overriding the scene's\n"
-    "  -s, --spp N            samples per pixel, a perfect square (4 = 2x2 grid)\n"
-    "  -d, --depth N          reflection/refraction recursion limit\n"
-    "  -t, --threads N        render threads (default: all cores)\n"
-    "      --transfer T       none (default) or srgb: how film values become pixels\n"
-    "      --stats            print rays, time and Mrays/s to stderr\n"
-    "  -q, --quiet            no progress bar\n"
-    "  -h, --help             show this help\n"
-    "  -V, --version          show the version\n"
-    "\n"
-    "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input.\n";
+static const char usage_head[] =
+    "usage: glint [options] [SCENE.yaml | -]\n"
+    "Renders SCENE.yaml ('-': the scene from standard input, its paths relative to\n"
+    "the current folder), or with no scene the built-in nine-object scene. The scene\n"
+    "format: docs/scene-format.md (installed in share/doc/glint).\n"
+    "\n";
 
-enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS };
-
-static const struct option long_options[] = {
-    {"output", required_argument, NULL, 'o'},
-    {"resolution", required_argument, NULL, 'r'},
-    {"spp", required_argument, NULL, 's'},
-    {"depth", required_argument, NULL, 'd'},
-    {"threads", required_argument, NULL, 't'},
-    {"transfer", required_argument, NULL, OPT_TRANSFER},
-    {"format", required_argument, NULL, OPT_FORMAT},
-    {"quality", required_argument, NULL, OPT_QUALITY},
-    {"bits", required_argument, NULL, OPT_BITS},
-    {"stats", no_argument, NULL, OPT_STATS},
-    {"quiet", no_argument, NULL, 'q'},
-    {"help", no_argument, NULL, 'h'},
-    {"version", no_argument, NULL, 'V'},
-    {NULL, 0, NULL, 0},
-};
+static const char usage_tail[] =
+    "\n"
+    "Options override the scene's image settings; the rest come from the scene.\n"
+    "Exit status: 0 success; 1 the render or the output failed (out of memory,\n"
+    "a write error); 2 bad usage or bad input: an option, the scene or a file it\n"
+    "names, an unreadable one included.\n";
 
 struct cli {
     const char *output;
@@ -111,77 +89,240 @@ static int flush_stdout(void)
     return 0;
 }
 
+/* ---- the options ---------------------------------------------------------- */
+
+/* Each takes the option's value (NULL for flags) and returns -1 to go on,
+ * or the exit code to stop with. */
+typedef int (*option_fn)(struct cli *c, const char *arg);
+
+static int opt_output(struct cli *c, const char *arg)
+{
+    c->output = arg;
+    return -1;
+}
+
+static int opt_resolution(struct cli *c, const char *arg)
+{
+    if (!parse_resolution(arg, &c->width, &c->height))
+        return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'", arg);
+    return -1;
+}
+
+static int opt_spp(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 1, INT_MAX, &c->samples))
+        return usage_error("-s: expected a positive whole number, got '%s'", arg);
+    return -1;
+}
+
+static int opt_depth(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 0, INT_MAX, &c->depth))
+        return usage_error("-d: expected a whole number >= 0, got '%s'", arg);
+    return -1;
+}
+
+static int opt_threads(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 0, INT_MAX, &c->threads))
+        return usage_error("-t: expected a whole number >= 0 (0: all cores), got '%s'", arg);
+    return -1;
+}
+
+static int opt_transfer(struct cli *c, const char *arg)
+{
+    if (strcmp(arg, "none") == 0)
+        c->transfer = GLINT_TRANSFER_NONE;
+    else if (strcmp(arg, "srgb") == 0)
+        c->transfer = GLINT_TRANSFER_SRGB;
+    else
+        return usage_error("--transfer: expected none or srgb, got '%s'", arg);
+    return -1;
+}
+
+static int opt_format(struct cli *c, const char *arg)
+{
+    glint_error err;
+    if (glint_format_parse(arg, &c->write.format, &err) != GLINT_OK)
+        return usage_error("--format: %s", err.msg);
+    return -1;
+}
+
+static int opt_quality(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 1, 100, &c->write.quality))
+        return usage_error("--quality: expected a whole number from 1 to 100, got '%s'", arg);
+    return -1;
+}
+
+static int opt_bits(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 8, 32, &c->write.bits))
+        return usage_error("--bits: expected 8, 16 or 32, got '%s'", arg);
+    return -1;
+}
+
+static int opt_stats(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->stats = true;
+    return -1;
+}
+
+static int opt_quiet(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->quiet = true;
+    return -1;
+}
+
+static int opt_help(struct cli *c, const char *arg);
+
+static int opt_version(struct cli *c, const char *arg)
+{
+    (void)c, (void)arg;
+    printf("glint %s\n", GLINT_VERSION);
+    return flush_stdout();
+}
+
+typedef struct option_row {
+    const char *name;    /* the long name */
+    char letter;         /* the short name, 0: none */
+    const char *value;   /* NULL: a flag; else what --help calls its value */
+    option_fn take;
+    const char *help;    /* lines after the first are indented under it */
+} option_row;
+
+static const option_row options[] = {
+    {"output", 'o', "FILE", opt_output,
+     "output image (default glint.png); '-' for standard output\n"
+     ".png .ppm .jpg .hdr .pfm .exr, by extension or --format"},
+    {"format", 0, "F", opt_format, "png, ppm, jpg, hdr, pfm or exr, whatever the name"},
+    {"quality", 0, "N", opt_quality, "JPEG quality, 1 to 100 (default 90)"},
+    {"bits", 0, "N", opt_bits,
+     "bits per channel: PNG, PPM 8 (default) or 16;\n"
+     "EXR 16 (half, default) or 32 (float)"},
+    {"resolution", 'r', "WxH", opt_resolution,
+     "image size, 1 to 32768 a side (default: the scene's, else\n"
+     "500x500); the horizontal field of view is kept"},
+    {"spp", 's', "N", opt_spp,
+     "samples per pixel, a perfect square from 1 to 1024 on a\n"
+     "regular grid, 4 = 2x2 (default: the scene's, else 1)"},
+    {"depth", 'd', "N", opt_depth,
+     "reflection/refraction recursion limit, 0 to 64\n"
+     "(default: the scene's, else 5)"},
+    {"threads", 't', "N", opt_threads, "render threads, 0 to 1024 (default 0: one per core)"},
+    {"transfer", 0, "T", opt_transfer,
+     "none or srgb: how film values become pixels\n"
+     "(default: the scene's, else none)"},
+    {"stats", 0, NULL, opt_stats, "print rays, time and Mrays/s to stderr"},
+    {"quiet", 'q', NULL, opt_quiet, "no progress bar"},
+    {"help", 'h', NULL, opt_help, "show this help"},
+    {"version", 'V', NULL, opt_version, "show the version"},
+};
+
+#define NOPTIONS (sizeof options / sizeof options[0])
+#define HELP_COLUMN 25
+
+static int opt_help(struct cli *c, const char *arg)
+{
+    (void)c, (void)arg;
+    fputs(usage_head, stdout);
+    for (size_t i = 0; i < NOPTIONS; i++) {
+        const option_row *o = &options[i];
+        char left[64];
+        snprintf(left, sizeof left, "  %c%c%c --%s%s%s", o->letter ? '-' : ' ',
+                 o->letter ? o->letter : ' ', o->letter ? ',' : ' ', o->name, o->value ? " " : "",
+                 o->value ? o->value : "");
+        printf("%-*s", HELP_COLUMN - 1, left);
+        for (const char *line = o->help; line;) {
+            const char *nl = strchr(line, '\n');
+            int len = nl ? (int)(nl - line) : (int)strlen(line);
+            if (line == o->help)
+                printf(" %.*s\n", len, line);
+            else
+                printf("%*s%.*s\n", HELP_COLUMN, "", len, line);
+            line = nl ? nl + 1 : NULL;
+        }
+    }
+    fputs(usage_tail, stdout);
+    return flush_stdout();
+}
+
+/* The option named by a getopt_long value (a letter or a row's index plus
+ * 256), or NULL. */
+static const option_row *option_by_key(int key)
+{
+    for (size_t i = 0; i < NOPTIONS; i++)
+        if (key == (options[i].letter ? options[i].letter : 256 + (int)i))
+            return &options[i];
+    return NULL;
+}
+
+/* How an option is shown in a message: "-r" or "--resolution", as it was
+ * written. */
+static const char *option_shown(const option_row *o, const char *written, char *buf, size_t cap)
+{
+    if (o->letter && strncmp(written, "--", 2) != 0)
+        snprintf(buf, cap, "-%c", o->letter);
+    else
+        snprintf(buf, cap, "--%s", o->name);
+    return buf;
+}
+
+/* getopt_long's tables, made from options[]. */
+static void option_tables(char *shorts, struct option *longs)
+{
+    char *s = shorts;
+    *s++ = ':'; /* a missing value is ':', not '?' */
+    for (size_t i = 0; i < NOPTIONS; i++) {
+        const option_row *o = &options[i];
+        int key = o->letter ? o->letter : 256 + (int)i;
+        longs[i] = (struct option){o->name, o->value ? required_argument : no_argument, NULL, key};
+        if (o->letter) {
+            *s++ = o->letter;
+            if (o->value)
+                *s++ = ':';
+        }
+    }
+    *s = '\0';
+    longs[NOPTIONS] = (struct option){NULL, 0, NULL, 0};
+}
+
+/* The message for an option getopt_long refused: a value missing, a value
+ * given to a flag, or no such option. The option is named as written
+ * (optopt holds a value that is no character for a long option). */
+static int option_error(int opt, char **argv)
+{
+    char buf[64];
+    const option_row *o = option_by_key(optopt);
+    const char *written = argv[optind - 1];
+    if (opt == ':')
+        return usage_error("%s needs a value", o ? option_shown(o, written, buf, sizeof buf)
+                                                 : written);
+    if (o && !o->value && strncmp(written, "--", 2) == 0 && strchr(written, '='))
+        return usage_error("--%s takes no value (got '%s')", o->name, written);
+    if (optopt > 0 && optopt < 256)
+        return usage_error("unknown option -%c", optopt);
+    return usage_error("unknown option %s", written);
+}
+
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
     *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, {0}};
+    char shorts[2 * NOPTIONS + 2];
+    struct option longs[NOPTIONS + 1];
+    option_tables(shorts, longs);
     opterr = 0;
     int opt;
-    while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:qhV", long_options, NULL)) != -1) {
-        switch (opt) {
-        case 'o':
-            c->output = optarg;
-            break;
-        case 'r':
-            if (!parse_resolution(optarg, &c->width, &c->height))
-                return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'", optarg);
-            break;
-        case 's':
-            if (!parse_int(optarg, 1, INT_MAX, &c->samples))
-                return usage_error("-s: expected a positive whole number, got '%s'", optarg);
-            break;
-        case 'd':
-            if (!parse_int(optarg, 0, INT_MAX, &c->depth))
-                return usage_error("-d: expected a whole number >= 0, got '%s'", optarg);
-            break;
-        case 't':
-            if (!parse_int(optarg, 1, INT_MAX, &c->threads))
-                return usage_error("-t: expected a positive whole number, got '%s'", optarg);
-            break;
-        case OPT_TRANSFER:
-            if (strcmp(optarg, "none") == 0)
-                c->transfer = GLINT_TRANSFER_NONE;
-            else if (strcmp(optarg, "srgb") == 0)
-                c->transfer = GLINT_TRANSFER_SRGB;
-            else
-                return usage_error("--transfer: expected none or srgb, got '%s'", optarg);
-            break;
-        case OPT_FORMAT: {
-            glint_error err;
-            if (glint_format_parse(optarg, &c->write.format, &err) != GLINT_OK)
-                return usage_error("--format: %s", err.msg);
-            break;
-        }
-        case OPT_QUALITY:
-            if (!parse_int(optarg, 1, 100, &c->write.quality))
-                return usage_error("--quality: expected a whole number from 1 to 100, got '%s'",
-                                   optarg);
-            break;
-        case OPT_BITS:
-            if (!parse_int(optarg, 8, 32, &c->write.bits))
-                return usage_error("--bits: expected 8, 16 or 32, got '%s'", optarg);
-            break;
-        case OPT_STATS:
-            c->stats = true;
-            break;
-        case 'q':
-            c->quiet = true;
-            break;
-        case 'h':
-            fputs(usage, stdout);
-            return flush_stdout();
-        case 'V':
-            printf("glint %s\n", GLINT_VERSION);
-            return flush_stdout();
-        case ':':
-            if (optopt)
-                return usage_error("-%c needs a value", optopt);
-            return usage_error("%s needs a value", argv[optind - 1]);
-        default:
-            if (optopt)
-                return usage_error("unknown option -%c", optopt);
-            return usage_error("unknown option %s", argv[optind - 1]);
-        }
+    while ((opt = getopt_long(argc, argv, shorts, longs, NULL)) != -1) {
+        const option_row *o = opt == ':' || opt == '?' ? NULL : option_by_key(opt);
+        if (!o)
+            return option_error(opt, argv);
+        int code = o->take(c, optarg);
+        if (code >= 0)
+            return code;
     }
     if (optind < argc)
         c->scene_path = argv[optind++];
@@ -189,6 +330,77 @@ static int parse_args(int argc, char **argv, struct cli *c)
         return usage_error("more than one scene given ('%s' and '%s')", c->scene_path,
                            argv[optind]);
     return -1;
+}
+
+/* ---- the render ------------------------------------------------------------ */
+
+/* The scene's settings with the command line's on top. */
+static glint_rc settings_for(const glint_scene *scene, const struct cli *c, glint_settings *s,
+                             glint_error *err)
+{
+    glint_rc rc = glint_scene_settings(scene, s, err);
+    if (rc != GLINT_OK)
+        return rc;
+    if (c->width > 0) {
+        s->width = c->width;
+        s->height = c->height;
+    }
+    if (c->samples > 0)
+        s->samples = c->samples;
+    if (c->depth >= 0)
+        s->max_depth = c->depth;
+    if (c->threads >= 0)
+        s->threads = c->threads;
+    if (c->transfer >= 0)
+        s->transfer = (glint_transfer)c->transfer;
+    return glint_settings_check(s, err);
+}
+
+/* One line on stderr for each thing the scene's files left to say (dropped
+ * triangles, textures left out), and for a scene that will render but
+ * probably not as meant: nothing in it, or nothing lighting it. */
+static void warn_about(const glint_scene *scene, const char *path)
+{
+    for (const char *w = glint_scene_warnings(scene); *w;) {
+        const char *end = strchr(w, '\n');
+        int len = end ? (int)(end - w) : (int)strlen(w);
+        fprintf(stderr, "glint: warning: %.*s\n", len, w);
+        w += len + (end != NULL);
+    }
+    glint_scene_counts n;
+    if (glint_scene_count(scene, &n, NULL) != GLINT_OK)
+        return;
+    const char *name = !path ? "the built-in scene" : strcmp(path, "-") == 0 ? "<stdin>" : path;
+    if (n.objects == 0)
+        fprintf(stderr, "glint: warning: %s has no objects: the image is the background\n",
+                name);
+    else if (n.lights == 0)
+        fprintf(stderr,
+                "glint: warning: %s has no lights: only ambient light shows (add a 'lights' "
+                "list)\n",
+                name);
+}
+
+static void on_progress(void *user, const glint_progress *p)
+{
+    progress_update(user, p->percent);
+}
+
+static glint_rc render(const glint_scene *scene, const glint_settings *s, bool quiet,
+                       glint_film *film, glint_stats *stats, glint_error *err)
+{
+    progress bar;
+    glint_callbacks cb = {0};
+    bool show = !quiet && isatty(STDERR_FILENO);
+    if (show) {
+        progress_begin(&bar, stderr);
+        cb.progress = on_progress;
+        cb.user = &bar;
+    }
+    glint_rc rc = glint_render(scene, s, &cb, film, stats, err);
+    if (show)
+        progress_end(&bar);
+    return rc;
 }
 
 static void print_stats(const glint_settings *s, const glint_stats *stats)
@@ -206,93 +418,41 @@ static void print_stats(const glint_settings *s, const glint_stats *stats)
             stats->seconds, stats->seconds > 0 ? (double)total / stats->seconds * 1e-6 : 0.0);
 }
 
-/* What the scene's files left to say (dropped triangles, unused textures). */
-static void print_warnings(const glint_scene *scene)
+/* Loads, renders and writes; returns the exit code. */
+static int run(struct cli *c)
 {
-    for (const char *w = glint_scene_warnings(scene); *w;) {
-        const char *end = strchr(w, '\n');
-        int n = end ? (int)(end - w) : (int)strlen(w);
-        fprintf(stderr, "glint: warning: %.*s\n", n, w);
-        w += n + (end != NULL);
+    glint_error err = {0};
+    glint_scene *scene = NULL;
+    glint_film film = {0};
+    glint_stats stats = {0};
+    glint_settings s;
+    /* a bad output name fails now, not after the render */
+    glint_rc rc = glint_output_check(c->output, &c->write, &err);
+    if (rc == GLINT_OK)
+        rc = c->scene_path ? glint_scene_load(c->scene_path, &scene, &err)
+                           : glint_scene_builtin(&scene, &err);
+    if (rc == GLINT_OK)
+        rc = settings_for(scene, c, &s, &err);
+    if (rc == GLINT_OK) {
+        warn_about(scene, c->scene_path);
+        rc = render(scene, &s, c->quiet, &film, &stats, &err);
     }
-}
-
-static void on_progress(void *user, const glint_progress *p)
-{
-    progress_update(user, p->percent);
+    if (rc == GLINT_OK) {
+        c->write.transfer = s.transfer;
+        rc = glint_film_write(&film, c->output, &c->write, &err);
+    }
+    if (rc == GLINT_OK && c->stats)
+        print_stats(&s, &stats);
+    if (rc != GLINT_OK)
+        fprintf(stderr, "glint: %s\n", err.msg);
+    glint_film_free(&film);
+    glint_scene_free(scene);
+    return glint_exit_code(rc);
 }
 
 int main(int argc, char **argv)
 {
     struct cli c;
     int code = parse_args(argc, argv, &c);
-    if (code >= 0)
-        return code;
-
-    glint_error err = {0};
-    glint_scene *scene = NULL;
-    glint_film film = {0};
-    glint_stats stats = {0};
-    glint_rc rc;
-
-    /* a bad output name fails now, not after the render */
-    rc = glint_output_check(c.output, &c.write, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    rc = c.scene_path ? glint_scene_load(c.scene_path, &scene, &err)
-                      : glint_scene_builtin(&scene, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-    print_warnings(scene);
-
-    glint_settings s;
-    rc = glint_scene_settings(scene, &s, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-    if (c.width > 0) {
-        s.width = c.width;
-        s.height = c.height;
-    }
-    if (c.samples > 0)
-        s.samples = c.samples;
-    if (c.depth >= 0)
-        s.max_depth = c.depth;
-    if (c.threads > 0)
-        s.threads = c.threads;
-    if (c.transfer >= 0)
-        s.transfer = (glint_transfer)c.transfer;
-    rc = glint_settings_check(&s, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    progress bar;
-    glint_callbacks cb = {0};
-    bool show = !c.quiet && isatty(STDERR_FILENO);
-    if (show) {
-        progress_begin(&bar, stderr);
-        cb.progress = on_progress;
-        cb.user = &bar;
-    }
-    rc = glint_render(scene, &s, &cb, &film, &stats, &err);
-    if (show)
-        progress_end(&bar);
-    if (rc != GLINT_OK)
-        goto fail;
-    c.write.transfer = s.transfer;
-    rc = glint_film_write(&film, c.output, &c.write, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    if (c.stats)
-        print_stats(&s, &stats);
-    glint_film_free(&film);
-    glint_scene_free(scene);
-    return 0;
-
-fail:
-    fprintf(stderr, "glint: %s\n", err.msg);
-    glint_film_free(&film);
-    glint_scene_free(scene);
-    return glint_exit_code(rc);
+    return code >= 0 ? code : run(&c);
 }

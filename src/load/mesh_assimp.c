@@ -388,6 +388,19 @@ static glint_rc gather(const struct aiScene *sc, const char *name, const mesh_as
 
 /* Normals are not asked of assimp: mesh_normals computes them with a
  * crease angle where the file has none. */
+/* assimp's validation of a file without faces or meshes speaks of its own
+ * structures ("Mesh  contains no faces", "aiScene::mNumMeshes is 0"); the
+ * user is told what the documentation says. Memory running out in assimp
+ * is out of memory, not bad input. */
+static glint_rc import_error(const char *name, const char *why, glint_error *err)
+{
+    if (strstr(why, "contains no faces") || strstr(why, "mNumMeshes is 0"))
+        return err_set(err, GLINT_ERR_INPUT, "%s: mesh has no triangles", name);
+    if (strstr(why, "bad_alloc")) /* a C++ allocation failed inside assimp */
+        return err_nomem(err);
+    return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, why);
+}
+
 static const unsigned import_flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                      aiProcess_SortByPType | aiProcess_ValidateDataStructure;
 
@@ -418,7 +431,7 @@ glint_rc mesh_assimp_read(const char *name, const void *data, size_t size,
         const char *why = data && size == 0 ? "file is empty"
                           : data && size > UINT_MAX ? "file too large"
                                                     : aiGetErrorString();
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, why);
+        return import_error(name, why, err);
     }
     glint_rc rc = gather(sc, name, opts, out, err);
     aiReleaseImport(sc);

@@ -13,13 +13,16 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "geom/shape.h"
 #include "load/mesh_assimp.h"
 #include "load/mesh_isolate.h"
 #include "load/mesh_limits.h"
+#include "load/load.h"
 #include "load/names.h"
 
 /* Corners farther than this from the origin are dropped: products of two
- * coordinates (cross products, ray offsets) must stay finite in float. */
+ * coordinates (cross products, ray offsets) must stay finite in float. So
+ * are triangles whose normal overflows single precision (triangle_check). */
 #define MESH_MAX_COORD 1e15f
 
 /* assimp keeps the reason for the last failure in one process-wide string,
@@ -68,6 +71,14 @@ static void screen(const mesh_data *md, uint32_t (*tri)[3], drops *d)
         double n0 = e1[1] * e2[2] - e1[2] * e2[1], n1 = e1[2] * e2[0] - e1[0] * e2[2],
                n2 = e1[0] * e2[1] - e1[1] * e2[0];
         bool zero = !(n0 * n0 + n1 * n1 + n2 * n2 > 0);
+        if (finite && !huge && !zero) { /* the renderer's own test, in floats */
+            const float *p0 = md->pos[tri[t][0]], *p1 = md->pos[tri[t][1]],
+                        *p2 = md->pos[tri[t][2]];
+            triangle_fit fit = triangle_check(v3(p0[0], p0[1], p0[2]), v3(p1[0], p1[1], p1[2]),
+                                              v3(p2[0], p2[1], p2[2]));
+            huge = fit == TRIANGLE_TOO_LARGE;
+            zero = fit == TRIANGLE_DEGENERATE;
+        }
         if (!finite)
             d->nonfinite++;
         else if (huge)
@@ -95,7 +106,7 @@ static void drop_warning(mesh_file *f, const char *name, const drops *d, int dro
         snprintf(why + strlen(why), sizeof why - strlen(why), ", %d of zero area", zero);
     if (d->huge)
         snprintf(why + strlen(why), sizeof why - strlen(why),
-                 ", %d with coordinates beyond %g (overflow)", d->huge, (double)MESH_MAX_COORD);
+                 ", %d too large for single precision (overflow)", d->huge);
     warn(f, "%s: %d of %u triangles dropped (%s)", name, dropped, total, why + 2);
 }
 
@@ -191,30 +202,25 @@ glint_rc mesh_file_from_data(mesh_data *md, const char *name, mesh_file *out, gl
 /* ---- importing ------------------------------------------------------------ */
 
 /* The first bytes of the file at path, refusing anything but a regular file
- * without blocking; *size gets its size. */
+ * without blocking (load_open_regular); *size gets its size. */
 static glint_rc read_head(const char *path, char *head, size_t *n, uint64_t *size,
                           glint_error *err)
 {
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-    if (fd < 0)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
+    int fd;
+    glint_error oerr = {0};
+    if (load_open_regular(path, &fd, &oerr) != GLINT_OK)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, oerr.msg);
     struct stat st;
     glint_rc rc = GLINT_OK;
-    if (fstat(fd, &st) != 0) {
-        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
-    } else if (!S_ISREG(st.st_mode)) {
-        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path,
-                     S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
-    } else {
+    ssize_t got = -1;
+    if (fstat(fd, &st) == 0) {
         *size = (uint64_t)st.st_size;
-        ssize_t got;
         while ((got = read(fd, head, MESH_HEAD_BYTES)) < 0 && errno == EINTR)
             ;
-        if (got < 0)
-            rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read mesh: %s", path,
-                         strerror(errno));
-        *n = got < 0 ? 0 : (size_t)got;
     }
+    if (got < 0)
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read mesh: %s", path, strerror(errno));
+    *n = got < 0 ? 0 : (size_t)got;
     close(fd);
     return rc;
 }

@@ -87,7 +87,7 @@ static _Noreturn void child(int fd, const char *name, const void *data, size_t s
         }
         rc = GLINT_ERR_NOMEM;
     }
-    if (rc == GLINT_ERR_NOMEM || strstr(e.msg, "bad_alloc"))
+    if (rc == GLINT_ERR_NOMEM)
         reply_error(fd, REPLY_NOMEM, "");
     else
         reply_error(fd, REPLY_ERROR, e.msg);

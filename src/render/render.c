@@ -121,7 +121,8 @@ static void render_tile(job *j, trace_ctx *ctx, glint_rect r)
 static void *worker(void *arg)
 {
     job *j = arg;
-    trace_ctx ctx = {j->scene, j->decode, j->settings->max_depth, 0, 0};
+    trace_ctx ctx = {j->scene, j->decode, j->settings->max_depth, 0, 0,
+                     (float)j->settings->adc_bailout, 1.0f};
     const glint_callbacks *cb = j->cb;
     for (;;) {
         if (atomic_load(&j->cancelled))

@@ -6,6 +6,7 @@
 
 #include "core/array.h"
 #include "core/error.h"
+#include "scene/settings.h"
 
 scene *scene_new(void)
 {
@@ -16,7 +17,8 @@ scene *scene_new(void)
     s->background = v3s(0.0f);
     s->ambient = v3s(0.2f);
     s->settings = (glint_settings){.width = 500, .height = 500, .samples = 1, .max_depth = 5,
-                                   .threads = 0, .transfer = GLINT_TRANSFER_NONE};
+                                   .threads = 0, .transfer = GLINT_TRANSFER_NONE,
+                                   .adc_bailout = SETTINGS_ADC_BAILOUT};
     return s;
 }
 
@@ -41,6 +43,16 @@ void scene_free(scene *s)
         free(s->meshes[i]);
     }
     free(s->meshes);
+    for (int i = 0; i < s->npolyhedra; i++) {
+        polyhedron_free(s->polyhedra[i]);
+        free(s->polyhedra[i]);
+    }
+    free(s->polyhedra);
+    for (int i = 0; i < s->ncsgs; i++) {
+        csg_free(s->csgs[i]);
+        free(s->csgs[i]);
+    }
+    free(s->csgs);
     free(s);
 }
 
@@ -79,6 +91,16 @@ int scene_add_mesh(scene *s, mesh *m)
     PUSH(s->meshes, s->nmeshes, s->cap_meshes, m);
 }
 
+int scene_add_polyhedron(scene *s, polyhedron *p)
+{
+    PUSH(s->polyhedra, s->npolyhedra, s->cap_polyhedra, p);
+}
+
+int scene_add_csg(scene *s, csg *c)
+{
+    PUSH(s->csgs, s->ncsgs, s->cap_csgs, c);
+}
+
 void scene_set_camera(scene *s, const camera *c) { s->camera = *c; }
 
 void scene_set_settings(scene *s, const glint_settings *st) { s->settings = *st; }
@@ -96,6 +118,12 @@ void scene_set_material_texture(scene *s, int mat, int tex)
 void scene_set_object_material(scene *s, int obj, int mat)
 {
     s->objects[obj].material = mat;
+    s->built = false;
+}
+
+void scene_set_csg_material(scene *s, int c, int leaf, int mat)
+{
+    s->csgs[c]->leaves[leaf].material = mat;
     s->built = false;
 }
 
@@ -169,6 +197,36 @@ out:
     return rc;
 }
 
+/* Whether the material a shape uses (mat, or with mat -1 those of a
+ * mesh's triangles or a csg's operands) exist; *transmits is set when one
+ * of them transmits. */
+static bool materials_ok(const scene *s, const shape *sh, int mat, bool *transmits)
+{
+    if (mat >= s->nmaterials)
+        return false;
+    if (mat >= 0) {
+        *transmits = *transmits || s->materials[mat].transmit > 0.0f;
+        return true;
+    }
+    if (sh->kind == SHAPE_CSG) {
+        const csg *c = sh->csg;
+        for (int k = 0; k < c->nleaves; k++)
+            if (!materials_ok(s, &c->leaves[k].shape, c->leaves[k].material, transmits))
+                return false;
+        return true;
+    }
+    const mesh *m = sh->kind == SHAPE_MESH ? sh->mesh : NULL;
+    if (!m || !m->tri_material)
+        return false;
+    for (int t = 0; t < m->ntris; t++) {
+        int32_t tm = m->tri_material[t];
+        if (tm < 0 || tm >= s->nmaterials)
+            return false;
+        *transmits = *transmits || s->materials[tm].transmit > 0.0f;
+    }
+    return true;
+}
+
 glint_rc scene_build(scene *s, glint_error *err)
 {
     for (int i = 0; i < s->ntextures; i++)
@@ -184,20 +242,9 @@ glint_rc scene_build(scene *s, glint_error *err)
         return err_nomem(err);
     for (int i = 0; i < s->nobjects; i++) {
         object *o = &s->objects[i];
-        const mesh *m = o->shape.kind == SHAPE_MESH ? o->shape.mesh : NULL;
-        if (o->material >= s->nmaterials || (o->material < 0 && !(m && m->tri_material)))
+        o->transmits = false;
+        if (!materials_ok(s, &o->shape, o->material, &o->transmits))
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
-        if (o->material >= 0) {
-            o->transmits = s->materials[o->material].transmit > 0.0f;
-        } else {
-            o->transmits = false;
-            for (int t = 0; t < m->ntris; t++) {
-                int32_t tm = m->tri_material[t];
-                if (tm < 0 || tm >= s->nmaterials)
-                    return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
-                o->transmits = o->transmits || s->materials[tm].transmit > 0.0f;
-            }
-        }
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
         aabb b = shape_bounds(&o->shape);
@@ -314,7 +361,7 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     shape_surface(&o->shape, &lr, &hit->h, out);
     if (o->material >= 0)
         out->color = v3s(1.0f);
-    out->p = ray_at(r, hit->h.t);
+    out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
 }

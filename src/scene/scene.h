@@ -11,7 +11,9 @@
 #include "glint.h"
 #include "accel/bvh4.h"
 #include "core/mat4.h"
+#include "geom/csg.h"
 #include "geom/mesh.h"
+#include "geom/polyhedron.h"
 #include "geom/shape.h"
 #include "io/image.h"
 #include "scene/camera.h"
@@ -21,7 +23,7 @@
 
 typedef struct object {
     shape shape;
-    int material;   /* -1: a mesh's own per-triangle materials */
+    int material;   /* -1: a mesh's own per-triangle materials, or a csg's per operand */
     int xform;      /* -1: the shape is in world space */
     bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
 } object;
@@ -42,6 +44,10 @@ struct glint_scene {
     int nlights, cap_lights;
     mesh **meshes;
     int nmeshes, cap_meshes;
+    polyhedron **polyhedra;
+    int npolyhedra, cap_polyhedra;
+    csg **csgs;
+    int ncsgs, cap_csgs;
 
     camera camera;
     vec3 background;
@@ -75,6 +81,10 @@ int scene_add_mesh(scene *s, mesh *m);
 bool scene_add_warnings(scene *s, const char *lines);
 /* The warnings so far, "" when none. */
 const char *scene_warnings(const scene *s);
+/* The same for a polyhedron (by polyhedron_init or _preset) and a csg (by
+ * csg_finish); objects place them with shape_polyhedron and shape_csg. */
+int scene_add_polyhedron(scene *s, polyhedron *p);
+int scene_add_csg(scene *s, csg *c);
 
 /* The scene-wide values a front end sets; each marks the scene unbuilt. */
 void scene_set_camera(scene *s, const camera *c);
@@ -85,6 +95,8 @@ void scene_set_ambient(scene *s, vec3 color);
  * object's material (indices as returned by the adds). */
 void scene_set_material_texture(scene *s, int mat, int tex);
 void scene_set_object_material(scene *s, int obj, int mat);
+/* The material of operand leaf of the scene's csg number c. */
+void scene_set_csg_material(scene *s, int c, int leaf, int mat);
 
 camera scene_camera(const scene *s);
 glint_settings scene_settings(const scene *s);
@@ -116,7 +128,7 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
 static inline const material *scene_hit_material(const scene *s, const scene_hit *hit)
 {
     const object *o = &s->objects[hit->object];
-    int m = o->material >= 0 ? o->material : o->shape.mesh->tri_material[hit->h.part];
+    int m = o->material >= 0 ? o->material : shape_hit_material(&o->shape, &hit->h);
     return &s->materials[m];
 }
 

@@ -1,14 +1,17 @@
 /* material: how a surface answers light, in the Whitted model.
  *
  *   local  = (ambient * scene ambient + sum over lights of diffuse * max(0, n.l)
- *             * light * shadow) * base * (1 - transmit, at least 0)
+ *             * light * shadow) * base * (1 - transmit)
  *   + sum over lights of specular * max(0, r.v)^shininess * light * shadow
- *   + reflect * (reflected ray) + transmit * tint * (transmitted ray)
+ *   + kr * (reflected ray) + kt * tint * (transmitted ray)
  *
- * Reflection adds on top of the local colour (as in POV-Ray); transmission
- * takes its share from it. base = color, times the texture when there is
- * one. transmit with ior == 1 is plain transparency: the ray goes on
- * undeviated. With ior != 1 the
+ * base = color, times the texture when there is one. Only transmission
+ * takes light from the local colour; reflection adds on top, as in POV-Ray.
+ * The highlight has the light's colour, not the surface's. Surfaces are
+ * two-sided: n faces the incoming ray. kr = reflect and kt = transmit,
+ * except that with ior != 1 Fresnel moves a share of kt to kr (all of it
+ * under total internal reflection), as below. transmit with ior == 1
+ * is plain transparency: the ray goes on undeviated. With ior != 1 the
  * transmitted ray refracts by Snell's law and the split between reflection
  * and transmission follows Fresnel (Schlick's approximation); under total
  * internal reflection all of it reflects. Shadow rays pass through any

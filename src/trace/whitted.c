@@ -35,6 +35,22 @@ vec3 whitted_shadow(trace_ctx *ctx, vec3 p, vec3 ng, vec3 to)
     return v3s(0.0f);
 }
 
+/* Adaptive depth control: whether a secondary ray with factor k, out of
+ * total for both of a surface's rays, is traced from a ray carrying share
+ * of the pixel; if so, ctx->weight becomes its own share. Shares are scaled
+ * so that the two never add up to more than the parent's, even for
+ * materials that gain energy (reflect + transmit above 1, a tint above 1):
+ * every level of the tree then holds at most 1 / bailout traced rays, and a
+ * sample costs at most max_depth / bailout secondary rays. */
+static bool adc_keep(trace_ctx *ctx, float share, float k, float total)
+{
+    float w = share * k / fmaxf(1.0f, total);
+    if (!(k > 0.0f) || w < ctx->bailout)
+        return false;
+    ctx->weight = w;
+    return true;
+}
+
 vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
 {
     const scene *s = ctx->scene;
@@ -99,17 +115,19 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
     vec3 c = v3_add(v3_scale(v3_mul(diffuse_light, base), w), specular_light);
 
     if (depth < ctx->max_depth) {
-        if (kr > 0.0f) {
+        float share = ctx->weight, gt = kt * v3_max_comp(m->tint);
+        if (adc_keep(ctx, share, kr, kr + gt)) {
             vec3 rd = v3_reflect(d, n);
             ray rr = ray_make(ray_offset(sf.p, ng, rd), rd, INFINITY);
             ctx->secondary_rays++;
             c = v3_madd(c, whitted_trace(ctx, &rr, depth + 1), kr);
         }
-        if (kt > 0.0f) {
+        if (kt > 0.0f && adc_keep(ctx, share, gt, kr + gt)) {
             ray tr = ray_make(ray_offset(sf.p, ng, tdir), tdir, INFINITY);
             ctx->secondary_rays++;
             c = v3_add(c, v3_scale(v3_mul(whitted_trace(ctx, &tr, depth + 1), m->tint), kt));
         }
+        ctx->weight = share;
     }
     return c;
 }

@@ -16,6 +16,11 @@ typedef struct trace_ctx {
     const float *decode; /* 256 entries: texture byte -> shading value */
     int max_depth;
     uint64_t secondary_rays, shadow_rays;
+    /* Adaptive depth control (Hall and Greenberg, "A Testbed for Realistic
+     * Image Synthesis", IEEE CG&A 1983): weight is the share of the pixel
+     * the ray being traced carries (1 for a primary ray); a secondary ray
+     * whose share would fall below bailout is not traced. */
+    float bailout, weight;
 } trace_ctx;
 
 /* Radiance arriving along r; depth counts the bounces so far (0 for a
