@@ -410,10 +410,11 @@ Test(cli, scene_from_standard_input_and_no_fifos, .timeout = 60)
 }
 
 /* Memory running out inside the mesh importer said "std::bad_alloc" and
- * exited 2, as if the file were bad: it is out of memory, exit 1. A
- * 200-byte PLY declaring two billion vertices, under a 400 MB address
- * space limit (not with AddressSanitizer, which needs terabytes of it). */
-Test(cli, out_of_memory_in_the_mesh_importer_exits_1)
+ * exited 2, as if the file were bad. A 200-byte PLY declaring two billion
+ * vertices is now refused from its header before anything is allocated
+ * (exit 2, naming the file), even under a 400 MB address space limit (not
+ * with AddressSanitizer, which needs terabytes of it). */
+Test(cli, two_billion_declared_vertices_are_refused_before_allocating)
 {
 #if defined(__SANITIZE_ADDRESS__)
     cr_skip_test("AddressSanitizer cannot run under an address space limit");
@@ -424,7 +425,8 @@ Test(cli, out_of_memory_in_the_mesh_importer_exits_1)
                     "property list uchar int vertex_indices\nend_header\n");
     put("huge.yaml", "objects: [{type: mesh, file: huge.ply}]\n");
     cr_expect_eq(run_sh("ulimit -v 400000 && \"$GLINT\" -q -r 8x8 huge.yaml", out, sizeof out),
-                 1);
-    cr_expect_str_eq(out, "glint: out of memory\n");
+                 2);
+    cr_expect_str_eq(out, "glint: huge.yaml:1:30: huge.ply: mesh is too large (2000000000 "
+                          "vertices, limit 100663296; GLINT_MESH_TRIANGLES raises it)\n");
 #endif
 }

@@ -409,7 +409,7 @@ Test(load_errors, unknown_keys_with_suggestions)
                  "scene.yaml:1:10: unknown key 'eey' in camera (did you mean 'eye'?)");
     expect_error("objects: [{type: cyl, base: [0, 0, 0]}]\n",
                  "scene.yaml:1:18: unknown object type 'cyl' (valid: sphere, plane, quad, box, "
-                 "cylinder, triangle, mesh)");
+                 "cylinder, triangle, mesh, cone, disk, torus, polyhedron, csg)");
 }
 
 Test(load_errors, wrong_types_and_lengths)
