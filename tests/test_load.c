@@ -184,17 +184,17 @@ Test(load, materials_textures_and_names_in_any_order)
     cr_assert_geq(tiles->texture, 0);
     const texture *t = &s->textures[tiles->texture];
     cr_expect_eq(t->kind, TEXTURE_CHECKER);
-    cr_expect_eq(t->scale_v, 3.0f);
-    cr_expect_eq(t->offset_u, 0.5f);
-    cr_expect_eq(t->odd.x, 0.5f);
+    cr_expect_eq(t->scale.y, 3.0f);
+    cr_expect_eq(t->offset.x, 0.5f);
+    cr_expect_eq(t->pattern.map.color[1].x, 0.5f);
     const material *inline_m = &s->materials[s->objects[1].material];
     cr_expect_eq(inline_m->color.y, 0.5f);
-    cr_expect_eq(s->textures[inline_m->texture].scale_u, 4.0f);
+    cr_expect_eq(s->textures[inline_m->texture].scale.x, 4.0f);
     cr_expect_eq(s->nimages, 1, "one image for two spellings of the same path");
     bool found = false;
     for (int i = 0; i < s->ntextures; i++)
-        if (s->textures[i].kind == TEXTURE_IMAGE && s->textures[i].wrap_u == WRAP_CLAMP) {
-            cr_expect_eq(s->textures[i].wrap_v, WRAP_REPEAT);
+        if (s->textures[i].kind == TEXTURE_IMAGE && s->textures[i].image.wrap_u == WRAP_CLAMP) {
+            cr_expect_eq(s->textures[i].image.wrap_v, WRAP_REPEAT);
             found = true;
         }
     cr_expect(found);
@@ -384,7 +384,8 @@ Test(load_errors, unknown_keys_with_suggestions)
                  "'objects'?)");
     expect_error("materials: {m: {colour_map: 1}}\n",
                  "scene.yaml:1:17: unknown key 'colour_map' in material (valid: color, "
-                 "texture, ambient, diffuse, specular, shininess, reflect, transmit, ior, tint)");
+                 "texture, ambient, diffuse, specular, shininess, reflect, transmit, ior, tint, "
+                 "fresnel, absorption, emission, bump)");
     expect_error("camera: {fov: 30, look-at: [0, 0, -1]}\n",
                  "scene.yaml:1:19: unknown key 'look-at' in camera (did you mean 'look_at'?)");
     expect_error("objects: [{type: box, min: [0, 0, 0], max: [1, 1, 1], radius: 1}]\n",
@@ -392,8 +393,11 @@ Test(load_errors, unknown_keys_with_suggestions)
                  "material, transform)");
     expect_error("objects: [{type: sphear, center: [0, 0, 0], radius: 1}]\n",
                  "scene.yaml:1:18: unknown object type 'sphear' (did you mean 'sphere'?)");
-    expect_error("lights: [{type: spot, position: [0, 0, 0]}]\n",
-                 "scene.yaml:1:17: unknown light type 'spot' (valid: point)");
+    expect_error("lights: [{type: spott, position: [0, 0, 0]}]\n",
+                 "scene.yaml:1:17: unknown light type 'spott' (did you mean 'spot'?)");
+    expect_error("lights: [{type: laser, position: [0, 0, 0]}]\n",
+                 "scene.yaml:1:17: unknown light type 'laser' (valid: point, directional, "
+                 "spot, area)");
     expect_error("image: {transfer: sRGB}\n",
                  "scene.yaml:1:19: unknown transfer 'sRGB' (did you mean 'srgb'?)");
     expect_error("textures: {t: {type: image, file: x.png, wrap: [repeat, mirror]}}\n",

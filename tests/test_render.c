@@ -209,7 +209,7 @@ static glint_scene *nested_spheres(glint_material m)
     cr_assert_eq(glint_scene_new(&s, &err), GLINT_OK, "%s", err.msg);
     glint_camera cam = {{0, 0, 20}, {0, 0, 0}, {0, 1, 0}, 40, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
     cr_assert_eq(glint_scene_set_camera(s, &cam, &err), GLINT_OK, "%s", err.msg);
-    glint_light l = {GLINT_LIGHT_POINT, {5, 10, 20}, {1, 1, 1}};
+    glint_light l = {.kind = GLINT_LIGHT_POINT, .position = {5, 10, 20}, .color = {1, 1, 1}};
     cr_assert_eq(glint_scene_add_light(s, &l, NULL, &err), GLINT_OK, "%s", err.msg);
     int mat;
     cr_assert_eq(glint_scene_add_material(s, &m, &mat, &err), GLINT_OK, "%s", err.msg);

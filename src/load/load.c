@@ -15,8 +15,9 @@
 
 /* ---- files ------------------------------------------------------------ */
 
-static const char *const top_keys[] = {"image",     "camera",  "ambient", "lights",
-                                       "textures",  "materials", "objects", "include", NULL};
+static const char *const top_keys[] = {"image",    "camera",    "ambient", "fog",
+                                       "lights",   "textures",  "materials", "objects",
+                                       "include",  NULL};
 
 
 static glint_rc load_text(loader *L, const char *text, size_t len, char *data, const char *name,
@@ -108,6 +109,8 @@ static glint_rc load_top(loader *L, uint32_t root)
             rc = load_color(L, v, "ambient", &c);
             if (rc == GLINT_OK && load_claim(L, SET_AMBIENT))
                 L->ambient = c;
+        } else if (strcmp(key, "fog") == 0) {
+            rc = load_fog(L, v);
         } else if (strcmp(key, "lights") == 0) {
             rc = load_list(L, v, "lights", load_light);
         } else if (strcmp(key, "textures") == 0) {
@@ -163,25 +166,40 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
 
 /* ---- after every file ------------------------------------------------- */
 
-static void set_texture(scene *s, const ref *r, int index)
+static glint_rc set_texture(loader *L, const ref *r, int index)
 {
-    scene_set_material_texture(s, r->index, index);
+    scene_set_material_texture(L->s, r->index, index);
+    return GLINT_OK;
 }
 
-static void set_material(scene *s, const ref *r, int index)
+/* A bump pattern is a function of a point in space: its gradient is taken
+ * there (texture.h). */
+static glint_rc set_bump(loader *L, const ref *r, int index)
 {
-    scene_set_object_material(s, r->index, index);
+    if (L->s->textures[index].space == SPACE_UV)
+        return load_fail_in(L, r->file, r->node,
+                            "a bump pattern must be in space object or world (its gradient "
+                            "is taken in space), not on (u, v)");
+    scene_set_material_bump(L->s, r->index, index);
+    return GLINT_OK;
 }
 
-static void set_csg_material(scene *s, const ref *r, int index)
+static glint_rc set_material(loader *L, const ref *r, int index)
 {
-    scene_set_csg_material(s, r->index, r->leaf, index);
+    scene_set_object_material(L->s, r->index, index);
+    return GLINT_OK;
 }
 
-/* Resolves the names materials give textures, or objects (and csg
- * operands) materials, through set. */
+static glint_rc set_csg_material(loader *L, const ref *r, int index)
+{
+    scene_set_csg_material(L->s, r->index, r->leaf, index);
+    return GLINT_OK;
+}
+
+/* Resolves the names materials give textures (and bump patterns), or
+ * objects (and csg operands) materials, through set. */
 static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what,
-                        void (*set)(scene *, const ref *, int))
+                        glint_rc (*set)(loader *, const ref *, int))
 {
     for (int i = 0; i < n; i++) {
         const ydoc *d = L->files[refs[i].file].doc;
@@ -189,7 +207,9 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
         const char *name = ydoc_text(d, nn);
         int at = names_find(table, name, nn->count);
         if (at >= 0) {
-            set(L->s, &refs[i], L->defs[at].index);
+            glint_rc rc = set(L, &refs[i], L->defs[at].index);
+            if (rc != GLINT_OK)
+                return rc;
             continue;
         }
         char buf[SHOWN], hint[SHOWN + 32] = "";
@@ -211,6 +231,8 @@ static glint_rc finish(loader *L)
 {
     glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture",
                           set_texture);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->bump_refs, L->nbump_refs, &L->texture_names, "texture", set_bump);
     if (rc == GLINT_OK)
         rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material",
                      set_material);
@@ -236,6 +258,7 @@ static glint_rc finish(loader *L)
     scene_set_camera(L->s, &L->camera);
     scene_set_background(L->s, L->background);
     scene_set_ambient(L->s, L->ambient);
+    scene_set_fog(L->s, &L->fog);
     return scene_build(L->s, L->err);
 }
 
@@ -256,6 +279,7 @@ static void loader_free(loader *L)
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);
+    free(L->bump_refs);
     free(L->csg_refs);
 }
 
@@ -280,6 +304,7 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
     L.camera = scene_camera(L.s);
     L.background = scene_background(L.s);
     L.ambient = scene_ambient(L.s);
+    L.fog = scene_fog(L.s);
     rc = load_text(&L, text, len, data, name, key, dir);
     if (rc == GLINT_OK)
         rc = finish(&L);

@@ -9,7 +9,7 @@
  *
  * One file per part of the format: keys.c (reading keys and values, with
  * the messages), paths.c (paths and files named in a scene), settings.c
- * (image and camera), lights.c, materials.c (textures and materials),
+ * (image, camera and fog), lights.c, textures.c, materials.c,
  * transform.c, objects.c (shapes, meshes, objects), load.c (files,
  * includes, the second pass). Each section builds the scene only through
  * scene_add_* and the scene's setters.
@@ -69,6 +69,7 @@ enum {
     SET_FOV = 1 << 9,
     SET_AMBIENT = 1 << 10,
     SET_ADC_BAILOUT = 1 << 11,
+    SET_FOG = 1 << 12,
 };
 
 typedef struct loader {
@@ -89,15 +90,17 @@ typedef struct loader {
     int ndefs, cap_defs;
     names images; /* resolved path -> index into the scene's images */
     names meshes; /* resolved path -> index into the scene's meshes */
-    ref *texture_refs, *material_refs, *csg_refs;
+    ref *texture_refs, *material_refs, *csg_refs, *bump_refs;
     int ntexture_refs, cap_texture_refs, nmaterial_refs, cap_material_refs;
     int ncsg_refs, cap_csg_refs;
+    int nbump_refs, cap_bump_refs;
     int default_material; /* -1 until an object needs it */
     unsigned set;
     /* Scene-wide values, handed to the scene once every file is read. */
     glint_settings settings;
     camera camera;
     vec3 background, ambient;
+    fog fog;
     int size_file, camera_file; /* where the image size and camera were set; -1: nowhere */
     uint32_t size_node, camera_node;
 } loader;
@@ -188,9 +191,12 @@ glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char
 glint_rc load_image_settings(loader *L, uint32_t map); /* settings.c: image: */
 glint_rc load_camera(loader *L, uint32_t map);         /* settings.c: camera: */
 glint_rc load_light(loader *L, uint32_t map);          /* lights.c: one item of lights: */
-/* materials.c: a texture or material mapping, added; *index gets it. */
+/* textures.c and materials.c: a texture or material mapping, added;
+ * *index gets it. */
 glint_rc load_texture(loader *L, uint32_t map, int *index);
 glint_rc load_material(loader *L, uint32_t map, int *index);
+/* settings.c: fog: at the top level. */
+glint_rc load_fog(loader *L, uint32_t map);
 /* materials.c: textures: or materials: at the top level. */
 glint_rc load_named(loader *L, uint32_t map, bool textures);
 /* transform.c: a list of steps; *index the scene's xform or -1 for none. */

@@ -211,8 +211,8 @@ static glint_rc load_steps(loader *L, uint32_t list, xform *acc, bool *any)
     return GLINT_OK;
 }
 
-/* A list of steps, first applied first; *index gets the scene's xform, or
- * -1 when there are no steps. */
+/* A list of steps, first applied first, composed into *out; *any says
+ * whether there was a step. */
 glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
 {
     *out = xform_identity();
@@ -222,6 +222,8 @@ glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
     return load_steps(L, list, out, any);
 }
 
+/* A list of steps, first applied first; *index gets the scene's xform, or
+ * -1 when there are no steps. */
 glint_rc load_transform(loader *L, uint32_t list, int *index)
 {
     *index = -1;

@@ -105,6 +105,7 @@ static void render_tile(job *j, trace_ctx *ctx, glint_rect r)
             vec3 sum = v3s(0.0f);
             for (int b = 0; b < n; b++)
                 for (int a = 0; a < n; a++) {
+                    trace_begin_sample(ctx, (uint32_t)x, (uint32_t)y, (uint32_t)(b * n + a));
                     ray ry = camera_ray(&j->frame, (float)x + ((float)a + 0.5f) * inv_n,
                                         (float)y + ((float)b + 0.5f) * inv_n);
                     sum = v3_add(sum, whitted_trace(ctx, &ry, 0));
@@ -121,8 +122,8 @@ static void render_tile(job *j, trace_ctx *ctx, glint_rect r)
 static void *worker(void *arg)
 {
     job *j = arg;
-    trace_ctx ctx = {j->scene, j->decode, j->settings->max_depth, 0, 0,
-                     (float)j->settings->adc_bailout, 1.0f};
+    trace_ctx ctx = {.scene = j->scene, .decode = j->decode, .max_depth = j->settings->max_depth,
+                     .bailout = (float)j->settings->adc_bailout, .weight = 1.0f};
     const glint_callbacks *cb = j->cb;
     for (;;) {
         if (atomic_load(&j->cancelled))

@@ -81,7 +81,7 @@ int scene_add_image(scene *s, image *img)
 
 int scene_add_object(scene *s, const shape *sh, int mat, int xf)
 {
-    object o = {*sh, mat, xf, false};
+    object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}};
     s->built = false;
     PUSH(s->objects, s->nobjects, s->cap_objects, o);
 }
@@ -109,6 +109,8 @@ void scene_set_background(scene *s, vec3 color) { s->background = color; }
 
 void scene_set_ambient(scene *s, vec3 color) { s->ambient = color; }
 
+void scene_set_fog(scene *s, const fog *f) { s->fog = *f; }
+
 void scene_set_material_texture(scene *s, int mat, int tex)
 {
     s->materials[mat].texture = tex;
@@ -118,6 +120,12 @@ void scene_set_material_texture(scene *s, int mat, int tex)
 void scene_set_object_material(scene *s, int obj, int mat)
 {
     s->objects[obj].material = mat;
+    s->built = false;
+}
+
+void scene_set_material_bump(scene *s, int mat, int tex)
+{
+    s->materials[mat].bump = tex;
     s->built = false;
 }
 
@@ -134,6 +142,8 @@ glint_settings scene_settings(const scene *s) { return s->settings; }
 vec3 scene_background(const scene *s) { return s->background; }
 
 vec3 scene_ambient(const scene *s) { return s->ambient; }
+
+fog scene_fog(const scene *s) { return s->fog; }
 
 int scene_object_count(const scene *s) { return s->nobjects; }
 
@@ -227,15 +237,43 @@ static bool materials_ok(const scene *s, const shape *sh, int mat, bool *transmi
     return true;
 }
 
-glint_rc scene_build(scene *s, glint_error *err)
+/* Textures' images and materials' textures exist; bump patterns are
+ * functions of a point in space (their gradient is taken there). */
+static glint_rc check_shading(const scene *s, glint_error *err)
 {
     for (int i = 0; i < s->ntextures; i++)
         if (s->textures[i].kind == TEXTURE_IMAGE &&
-            (s->textures[i].image < 0 || s->textures[i].image >= s->nimages))
+            (s->textures[i].image.image < 0 || s->textures[i].image.image >= s->nimages))
             return err_set(err, GLINT_ERR_INPUT, "texture %d refers to a missing image", i);
-    for (int i = 0; i < s->nmaterials; i++)
-        if (s->materials[i].texture >= s->ntextures)
+    for (int i = 0; i < s->nmaterials; i++) {
+        const material *m = &s->materials[i];
+        if (m->texture >= s->ntextures || m->bump >= s->ntextures)
             return err_set(err, GLINT_ERR_INPUT, "material %d refers to a missing texture", i);
+        if (m->bump >= 0 && s->textures[m->bump].space == SPACE_UV)
+            return err_set(err, GLINT_ERR_INPUT,
+                           "material %d's bump texture is on (u, v); bump patterns must be in "
+                           "object or world space", i);
+    }
+    return GLINT_OK;
+}
+
+/* Where object-space textures have their origin: the centre of the
+ * shape's bounds, or a plane's point (texture.h). */
+static vec3 texture_origin(const shape *sh)
+{
+    if (sh->kind == SHAPE_PLANE)
+        return sh->plane.point;
+    aabb b = shape_bounds(sh);
+    if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+        return v3s(0.0f);
+    return v3_scale(v3_add(b.lo, b.hi), 0.5f);
+}
+
+glint_rc scene_build(scene *s, glint_error *err)
+{
+    glint_rc rc = check_shading(s, err);
+    if (rc != GLINT_OK)
+        return rc;
     free(s->bounds);
     s->bounds = malloc(sizeof *s->bounds * (size_t)(s->nobjects ? s->nobjects : 1));
     if (!s->bounds)
@@ -249,8 +287,9 @@ glint_rc scene_build(scene *s, glint_error *err)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
         aabb b = shape_bounds(&o->shape);
         s->bounds[i] = o->xform >= 0 ? xform_bounds(&s->xforms[o->xform], b) : b;
+        o->origin = texture_origin(&o->shape);
     }
-    glint_rc rc = build_accel(s, err);
+    rc = build_accel(s, err);
     if (rc != GLINT_OK)
         return rc;
     s->any_transmit = false;
@@ -364,6 +403,20 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
+}
+
+void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no)
+{
+    const object *o = &s->objects[i];
+    if (o->xform < 0) {
+        *po = v3_sub(p, o->origin);
+        *no = n;
+        return;
+    }
+    const xform *x = &s->xforms[o->xform];
+    mat4 ft = mat4_transpose(&x->fwd);
+    *po = v3_sub(mat4_point(&x->inv, p), o->origin);
+    *no = mat4_vector(&ft, n);
 }
 
 bool scene_add_warnings(scene *s, const char *lines)

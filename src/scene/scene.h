@@ -17,6 +17,7 @@
 #include "geom/shape.h"
 #include "io/image.h"
 #include "scene/camera.h"
+#include "shade/fog.h"
 #include "shade/light.h"
 #include "shade/material.h"
 #include "shade/texture.h"
@@ -26,6 +27,7 @@ typedef struct object {
     int material;   /* -1: a mesh's own per-triangle materials, or a csg's per operand */
     int xform;      /* -1: the shape is in world space */
     bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
+    vec3 origin;    /* of object-space textures, in the shape's space (by scene_build) */
 } object;
 
 struct glint_scene {
@@ -52,6 +54,7 @@ struct glint_scene {
     camera camera;
     vec3 background;
     vec3 ambient; /* ambient light, scaled by each material's ambient */
+    fog fog;
     glint_settings settings;
     bvh4 bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
@@ -91,9 +94,11 @@ void scene_set_camera(scene *s, const camera *c);
 void scene_set_settings(scene *s, const glint_settings *st);
 void scene_set_background(scene *s, vec3 color);
 void scene_set_ambient(scene *s, vec3 color);
+void scene_set_fog(scene *s, const fog *f);
 /* Names resolved after their users were added: a material's texture and an
  * object's material (indices as returned by the adds). */
 void scene_set_material_texture(scene *s, int mat, int tex);
+void scene_set_material_bump(scene *s, int mat, int tex);
 void scene_set_object_material(scene *s, int obj, int mat);
 /* The material of operand leaf of the scene's csg number c. */
 void scene_set_csg_material(scene *s, int c, int leaf, int mat);
@@ -102,6 +107,7 @@ camera scene_camera(const scene *s);
 glint_settings scene_settings(const scene *s);
 vec3 scene_background(const scene *s);
 vec3 scene_ambient(const scene *s);
+fog scene_fog(const scene *s);
 int scene_object_count(const scene *s);
 int scene_material_count(const scene *s);
 int scene_texture_count(const scene *s);
@@ -123,6 +129,11 @@ bool scene_occluded_opaque(const scene *s, const ray *r);
 
 /* Surface at a hit, in world space, normals unit and outward. */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
+
+/* World point p and normal n of a surface of object i in the object's
+ * texture space: the shape's own coordinates measured from the object's
+ * origin (texture.h, step 1). The normal is not normalised. */
+void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no);
 
 /* The material at a hit. */
 static inline const material *scene_hit_material(const scene *s, const scene_hit *hit)
