@@ -37,7 +37,9 @@ struct cli {
     const char *scene_path;
     int width, height, samples, depth, threads; /* -1: not given */
     int transfer;
-    bool stats, quiet;
+    bool stats, quiet, resume;
+    const char *frames; /* --frames or --frame as given, or NULL: a single image */
+    bool one_frame;     /* it was --frame */
     glint_write_options write; /* format, quality, bits from the command line */
 };
 
@@ -162,6 +164,30 @@ static int opt_bits(struct cli *c, const char *arg)
     return -1;
 }
 
+/* --frames A:B and --frame N; the range is checked against the scene's
+ * frames once it is loaded. */
+static int take_frames(struct cli *c, const char *arg, bool one)
+{
+    if (c->frames)
+        return usage_error("--frames and --frame given more than once");
+    if (one && strchr(arg, ':'))
+        return usage_error("--frame: expected one frame number, got '%s'", arg);
+    c->frames = arg;
+    c->one_frame = one;
+    return -1;
+}
+
+static int opt_frames(struct cli *c, const char *arg) { return take_frames(c, arg, false); }
+
+static int opt_frame(struct cli *c, const char *arg) { return take_frames(c, arg, true); }
+
+static int opt_resume(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->resume = true;
+    return -1;
+}
+
 static int opt_stats(struct cli *c, const char *arg)
 {
     (void)arg;
@@ -207,7 +233,8 @@ static const option_row options[] = {
      "500x500); the horizontal field of view is kept"},
     {"spp", 's', "N", opt_spp,
      "samples per pixel, a perfect square from 1 to 1024 on a\n"
-     "regular grid, 4 = 2x2 (default: the scene's, else 1)"},
+     "grid, 4 = 2x2 (default: the scene's, else 1; the adaptive\n"
+     "sampler chooses its own)"},
     {"depth", 'd', "N", opt_depth,
      "reflection/refraction recursion limit, 0 to 64\n"
      "(default: the scene's, else 5)"},
@@ -215,7 +242,16 @@ static const option_row options[] = {
     {"transfer", 0, "T", opt_transfer,
      "none or srgb: how film values become pixels\n"
      "(default: the scene's, else none)"},
-    {"stats", 0, NULL, opt_stats, "print rays, time and Mrays/s to stderr"},
+    {"frames", 0, "A:B", opt_frames,
+     "render frames A to B of an animated scene; the output\n"
+     "name takes the number in a %d field (out-%04d.png),\n"
+     "or gets -%04d before its extension"},
+    {"frame", 0, "N", opt_frame, "render frame N only (named as with --frames)"},
+    {"resume", 0, NULL, opt_resume,
+     "skip frames (or an image) whose output file is already\n"
+     "a complete image of the right size"},
+    {"stats", 0, NULL, opt_stats,
+     "print rays, samples per pixel, time and Mrays/s to stderr"},
     {"quiet", 'q', NULL, opt_quiet, "no progress bar"},
     {"help", 'h', NULL, opt_help, "show this help"},
     {"version", 'V', NULL, opt_version, "show the version"},
@@ -310,7 +346,8 @@ static int option_error(int opt, char **argv)
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
-    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, {0}};
+    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, false, NULL,
+                      false, {0}};
     char shorts[2 * NOPTIONS + 2];
     struct option longs[NOPTIONS + 1];
     option_tables(shorts, longs);
@@ -386,36 +423,115 @@ static void on_progress(void *user, const glint_progress *p)
     progress_update(user, p->percent);
 }
 
-static glint_rc render(const glint_scene *scene, const glint_settings *s, bool quiet,
-                       glint_film *film, glint_stats *stats, glint_error *err)
+/* What a run adds up, for --stats. */
+typedef struct totals {
+    glint_stats stats;
+    int images;
+} totals;
+
+/* Renders the scene as it stands into path (unless --resume finds it
+ * complete) and adds to the totals. */
+static glint_rc render_to(const struct cli *c, glint_scene *scene, const glint_settings *s,
+                          const char *path, progress *bar, totals *t, glint_error *err)
 {
-    progress bar;
+    if (c->resume && glint_output_complete(path, s->width, s->height))
+        return GLINT_OK;
     glint_callbacks cb = {0};
-    bool show = !quiet && isatty(STDERR_FILENO);
-    if (show) {
-        progress_begin(&bar, stderr);
+    if (bar) {
         cb.progress = on_progress;
-        cb.user = &bar;
+        cb.user = bar;
     }
-    glint_rc rc = glint_render(scene, s, &cb, film, stats, err);
-    if (show)
-        progress_end(&bar);
+    glint_film film = {0};
+    glint_stats st = {0};
+    glint_rc rc = glint_render(scene, s, &cb, &film, &st, err);
+    glint_write_options w = c->write;
+    w.transfer = s->transfer;
+    if (rc == GLINT_OK)
+        rc = glint_film_write(&film, path, &w, err);
+    glint_film_free(&film);
+    t->stats.primary_rays += st.primary_rays;
+    t->stats.secondary_rays += st.secondary_rays;
+    t->stats.shadow_rays += st.shadow_rays;
+    t->stats.seconds += st.seconds;
+    t->images += rc == GLINT_OK;
     return rc;
 }
 
-static void print_stats(const glint_settings *s, const glint_stats *stats)
+/* Frames first..last, each at its time, to its own file. Frames --resume
+ * will skip are left out of the progress bar's count. */
+static glint_rc render_frames(const struct cli *c, glint_scene *scene, const glint_settings *s,
+                              int first, int last, progress *bar, totals *t, glint_error *err)
 {
-    uint64_t total = stats->primary_rays + stats->secondary_rays + stats->shadow_rays;
+    char path[4096];
+    int todo = 0, k = 0;
+    for (int f = first; f <= last; f++) {
+        glint_rc rc = glint_frame_path(c->output, f, path, sizeof path, err);
+        if (rc != GLINT_OK)
+            return rc;
+        todo += !(c->resume && glint_output_complete(path, s->width, s->height));
+    }
+    for (int f = first; f <= last; f++) {
+        glint_rc rc = glint_frame_path(c->output, f, path, sizeof path, err);
+        if (rc != GLINT_OK)
+            return rc;
+        if (c->resume && glint_output_complete(path, s->width, s->height))
+            continue;
+        if (bar)
+            progress_frame(bar, ++k, todo);
+        rc = glint_scene_set_frame(scene, f, err);
+        if (rc == GLINT_OK)
+            rc = render_to(c, scene, s, path, bar, t, err);
+        if (rc != GLINT_OK)
+            return rc;
+    }
+    return GLINT_OK;
+}
+
+static void print_stats(const glint_settings *s, const totals *t)
+{
+    const glint_stats *st = &t->stats;
+    uint64_t total = st->primary_rays + st->secondary_rays + st->shadow_rays;
     int threads = s->threads > 0 ? s->threads : glint_default_threads();
+    double pixels = (double)s->width * (double)s->height * (t->images > 0 ? t->images : 1);
+    char how[96];
+    if (s->sampler == GLINT_SAMPLER_ADAPTIVE)
+        snprintf(how, sizeof how, "adaptive sampling (threshold %g, max_depth %d)", s->threshold,
+                 s->adaptive_depth);
+    else
+        snprintf(how, sizeof how, "%d samples/pixel%s", s->samples,
+                 s->sampler == GLINT_SAMPLER_JITTER ? " (jittered)" : "");
     fprintf(stderr,
-            "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
+            "image:   %dx%d, %s, depth %d, %d thread%s%s\n"
             "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
+            "samples: %.2f per pixel on average\n"
             "time:    %.3f s\n"
             "speed:   %.2f Mrays/s\n",
-            s->width, s->height, s->samples, s->max_depth, threads, threads == 1 ? "" : "s",
-            (unsigned long long)total, (unsigned long long)stats->primary_rays,
-            (unsigned long long)stats->secondary_rays, (unsigned long long)stats->shadow_rays,
-            stats->seconds, stats->seconds > 0 ? (double)total / stats->seconds * 1e-6 : 0.0);
+            s->width, s->height, how, s->max_depth, threads, threads == 1 ? "" : "s",
+            t->images > 1 ? ", per frame" : "", (unsigned long long)total,
+            (unsigned long long)st->primary_rays, (unsigned long long)st->secondary_rays,
+            (unsigned long long)st->shadow_rays, (double)st->primary_rays / pixels, st->seconds,
+            st->seconds > 0 ? (double)total / st->seconds * 1e-6 : 0.0);
+    if (t->images > 1)
+        fprintf(stderr, "frames:  %d rendered\n", t->images);
+}
+
+/* The frames to render: *first and *last, or 0 and 0 for a single image. */
+static glint_rc frames_for(const struct cli *c, const glint_scene *scene, int *first, int *last,
+                           glint_error *err)
+{
+    *first = *last = 0;
+    if (!c->frames)
+        return GLINT_OK;
+    glint_animation anim;
+    glint_rc rc = glint_scene_animation(scene, &anim, err);
+    if (rc == GLINT_OK)
+        rc = glint_frames_parse(c->frames, anim.frames, first, last, err);
+    if (rc != GLINT_OK && rc != GLINT_ERR_NOMEM) {
+        char msg[900];
+        snprintf(msg, sizeof msg, "%.899s", err->msg);
+        snprintf(err->msg, sizeof err->msg, "--frame%s: %.900s", c->one_frame ? "" : "s", msg);
+    }
+    return rc;
 }
 
 /* Loads, renders and writes; returns the exit code. */
@@ -423,29 +539,38 @@ static int run(struct cli *c)
 {
     glint_error err = {0};
     glint_scene *scene = NULL;
-    glint_film film = {0};
-    glint_stats stats = {0};
     glint_settings s;
-    /* a bad output name fails now, not after the render */
-    glint_rc rc = glint_output_check(c->output, &c->write, &err);
+    totals t = {{0}, 0};
+    char first_name[4096];
+    int first = 0, last = 0;
+    /* a bad output name (for a sequence: the first frame's) fails now, not
+     * after the render */
+    glint_rc rc = c->frames ? glint_frame_path(c->output, 1, first_name, sizeof first_name, &err)
+                            : GLINT_OK;
+    if (rc == GLINT_OK)
+        rc = glint_output_check(c->frames ? first_name : c->output, &c->write, &err);
     if (rc == GLINT_OK)
         rc = c->scene_path ? glint_scene_load(c->scene_path, &scene, &err)
                            : glint_scene_builtin(&scene, &err);
     if (rc == GLINT_OK)
         rc = settings_for(scene, c, &s, &err);
+    if (rc == GLINT_OK)
+        rc = frames_for(c, scene, &first, &last, &err);
     if (rc == GLINT_OK) {
         warn_about(scene, c->scene_path);
-        rc = render(scene, &s, c->quiet, &film, &stats, &err);
-    }
-    if (rc == GLINT_OK) {
-        c->write.transfer = s.transfer;
-        rc = glint_film_write(&film, c->output, &c->write, &err);
+        progress bar;
+        bool show = !c->quiet && isatty(STDERR_FILENO);
+        if (show)
+            progress_begin(&bar, stderr);
+        rc = first > 0 ? render_frames(c, scene, &s, first, last, show ? &bar : NULL, &t, &err)
+                       : render_to(c, scene, &s, c->output, show ? &bar : NULL, &t, &err);
+        if (show)
+            progress_end(&bar);
     }
     if (rc == GLINT_OK && c->stats)
-        print_stats(&s, &stats);
+        print_stats(&s, &t);
     if (rc != GLINT_OK)
         fprintf(stderr, "glint: %s\n", err.msg);
-    glint_film_free(&film);
     glint_scene_free(scene);
     return glint_exit_code(rc);
 }
