@@ -181,24 +181,31 @@ $(GEN_SRC): $(BUILD)/tools/embed scenes/seed.yaml $(BUILD)/gen/flag.png $(BUILD)
 		textures/flag.png=$(BUILD)/gen/flag.png textures/globe.png=$(BUILD)/gen/globe.png
 
 # Coverage-guided fuzzing with libFuzzer (clang):
-# `make fuzz [TARGET=scene|texture] FUZZ_SECONDS=1800`. Target T is
-# fuzz/fuzz_T.c; its seeds and dictionary are FUZZ_ARGS_T. New inputs collect
-# in build/fuzz/corpus-T (build/fuzz/corpus for the scene loader); crashes
-# are written to build/fuzz/ as crash-* files.
+# `make fuzz [TARGET=scene|texture|mesh] FUZZ_SECONDS=1800`. Target T is
+# fuzz/fuzz_T.c; its seeds and dictionary are FUZZ_ARGS_T, extra libFuzzer
+# flags FUZZ_FLAGS_T. New inputs collect in build/fuzz/corpus-T
+# (build/fuzz/corpus for the scene loader); crashes are written to
+# build/fuzz/ as crash-* files. The mesh target runs with -fork=1 and keeps
+# going after a crash, timeout or OOM (assimp's own faults are what the
+# child process contains); each one still leaves its file.
 FUZZ_SECONDS ?= 60
 TARGET ?= scene
 FUZZ_CORPUS_scene   := corpus
 FUZZ_ARGS_scene     := -dict=../../fuzz/yaml.dict ../../scenes ../../scenes/parts
 FUZZ_PREP_texture   := fuzz-seeds-texture
 FUZZ_ARGS_texture   := -dict=../../fuzz/image.dict seeds-texture
+FUZZ_PREP_mesh      := fuzz-seeds-mesh
+FUZZ_ARGS_mesh      := seeds-mesh
+FUZZ_FLAGS_mesh     := -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1
+FUZZ_ENV_mesh       := LSAN_OPTIONS=suppressions=../../fuzz/mesh.lsan ASAN_OPTIONS=symbolize=0
 fuzz:
 	@scripts/install-deps fuzz
 	@test -f fuzz/fuzz_$(TARGET).c || { echo "make fuzz: no target fuzz/fuzz_$(TARGET).c" >&2; exit 2; }
 	@$(MAKE) --no-print-directory BUILD=build/fuzz SAN=fuzz CC=clang build/fuzz/fuzz_$(TARGET)
 	@$(MAKE) --no-print-directory $(FUZZ_PREP_$(TARGET))
 	@mkdir -p build/fuzz/$(or $(FUZZ_CORPUS_$(TARGET)),corpus-$(TARGET))
-	cd build/fuzz && ./fuzz_$(TARGET) -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
-		$(or $(FUZZ_CORPUS_$(TARGET)),corpus-$(TARGET)) $(FUZZ_ARGS_$(TARGET))
+	cd build/fuzz && $(FUZZ_ENV_$(TARGET)) ./fuzz_$(TARGET) -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
+		$(FUZZ_FLAGS_$(TARGET)) $(or $(FUZZ_CORPUS_$(TARGET)),corpus-$(TARGET)) $(FUZZ_ARGS_$(TARGET))
 
 $(BUILD)/fuzz_%: $(BUILD)/obj/fuzz/fuzz_%.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
@@ -209,6 +216,18 @@ $(BUILD)/fuzz_%: $(BUILD)/obj/fuzz/fuzz_%.o $(BUILD)/libglint.a
 fuzz-seeds-texture: build/tools/fuzzseeds
 	@mkdir -p build/fuzz/seeds-texture
 	build/tools/fuzzseeds build/fuzz/seeds-texture
+
+# Seeds for the mesh target: the test meshes in fuzz/seeds-mesh, each behind
+# the byte that names its format in fuzz/fuzz_mesh.c (its place in names[]).
+.PHONY: fuzz-seeds-mesh
+fuzz-seeds-mesh:
+	@mkdir -p build/fuzz/seeds-mesh
+	@for f in fuzz/seeds-mesh/*; do \
+		case "$$f" in *.ply) b=000;; *.obj) b=001;; *.off) b=002;; *.stl) b=003;; \
+		*.gltf) b=004;; *.glb) b=005;; *.dae) b=006;; *.3ds) b=007;; *.fbx) b=010;; \
+		*.x) b=011;; *.ac) b=012;; *.3mf) b=013;; *) continue;; esac; \
+		{ printf "\\$$b"; cat "$$f"; } > build/fuzz/seeds-mesh/$$(basename "$$f"); \
+	done
 
 build/tools/fuzzseeds: tools/fuzzseeds.c build/libglint.a
 	@mkdir -p $(dir $@)

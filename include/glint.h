@@ -127,6 +127,11 @@ GLINT_API glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
 GLINT_API glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 /* Frees the scene and everything in it; NULL is fine. */
 GLINT_API void glint_scene_free(glint_scene *scene);
+/* What the user should know about a scene that loaded: lines such as
+ * "model.ply: 12 of 5000 triangles dropped (12 of zero area)", each ending
+ * in a newline; "" when there are none (or scene is NULL). Valid until the
+ * scene is freed or changed. */
+GLINT_API const char *glint_scene_warnings(const glint_scene *scene);
 
 /* The settings a render uses when given none: the scene's own. */
 GLINT_API glint_rc glint_scene_settings(const glint_scene *scene, glint_settings *out,

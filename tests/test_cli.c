@@ -205,6 +205,28 @@ Test(cli, bad_scene_files_exit_2_naming_file_line_and_column)
     cr_expect(!exists("glint.png"), "bad input writes no image");
 }
 
+/* A model file that crashes the importer (assimp aborts on it) is one line
+ * naming the file and exit 2; dropped triangles are a warning line. */
+Test(cli, a_model_that_crashes_the_importer_exits_2_with_one_line)
+{
+    char out[4096], text[1024];
+    snprintf(text, sizeof text, "objects: [{type: mesh, file: %s/tests/mesh-regress/"
+             "abort-postprocess-1.ply}]\n", GLINT_SOURCE_DIR);
+    put("crash.yaml", text);
+    cr_expect_eq(run("-q -r 8x8 crash.yaml", out, sizeof out), 2);
+    char want[1024];
+    snprintf(want, sizeof want, "glint: crash.yaml:1:30: %s/tests/mesh-regress/"
+             "abort-postprocess-1.ply: the importer failed (truncated or corrupt file?)\n",
+             GLINT_SOURCE_DIR);
+    cr_expect_str_eq(out, want);
+    cr_expect(!exists("glint.png"), "bad input writes no image");
+    put("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+    put("zero.yaml", "lights: [{type: point, position: [0, 5, 5]}]\n"
+                     "objects: [{type: mesh, file: zero.obj}]\n");
+    cr_expect_eq(run("-q -r 8x8 zero.yaml -o z.ppm", out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "glint: warning: zero.obj: 1 of 2 triangles dropped (1 of zero area)\n");
+}
+
 Test(cli, options_override_the_scene_settings)
 {
     char out[4096];
@@ -493,10 +515,11 @@ Test(cli, scene_from_standard_input_and_no_fifos, .timeout = 60)
 }
 
 /* Memory running out inside the mesh importer said "std::bad_alloc" and
- * exited 2, as if the file were bad: it is out of memory, exit 1. A
- * 200-byte PLY declaring two billion vertices, under a 400 MB address
- * space limit (not with AddressSanitizer, which needs terabytes of it). */
-Test(cli, out_of_memory_in_the_mesh_importer_exits_1)
+ * exited 2, as if the file were bad. A 200-byte PLY declaring two billion
+ * vertices is now refused from its header before anything is allocated
+ * (exit 2, naming the file), even under a 400 MB address space limit (not
+ * with AddressSanitizer, which needs terabytes of it). */
+Test(cli, two_billion_declared_vertices_are_refused_before_allocating)
 {
 #if defined(__SANITIZE_ADDRESS__)
     cr_skip_test("AddressSanitizer cannot run under an address space limit");
@@ -507,7 +530,8 @@ Test(cli, out_of_memory_in_the_mesh_importer_exits_1)
                     "property list uchar int vertex_indices\nend_header\n");
     put("huge.yaml", "objects: [{type: mesh, file: huge.ply}]\n");
     cr_expect_eq(run_sh("ulimit -v 400000 && \"$GLINT\" -q -r 8x8 huge.yaml", out, sizeof out),
-                 1);
-    cr_expect_str_eq(out, "glint: out of memory\n");
+                 2);
+    cr_expect_str_eq(out, "glint: huge.yaml:1:30: huge.ply: mesh is too large (2000000000 "
+                          "vertices, limit 100663296; GLINT_MESH_TRIANGLES raises it)\n");
 #endif
 }

@@ -838,8 +838,8 @@ Test(load_errors, meshes)
     };
     expect_error("objects: [{type: mesh}]\n", "scene.yaml:1:11: mesh needs 'file'");
     expect_error("objects: [{type: mesh, file: m.obj, radius: 2}]\n",
-                 "scene.yaml:1:37: unknown key 'radius' in mesh (valid: type, file, material, "
-                 "transform)");
+                 "scene.yaml:1:37: unknown key 'radius' in mesh (valid: type, file, smooth_angle, "
+                 "material, transform)");
     expect_error_with("objects: [{type: mesh, file: nope.obj}]\n", files,
                       "scene.yaml:1:30: cannot read mesh 'nope.obj': No such file or directory");
     expect_error_with("objects: [{type: mesh, file: lines.obj}]\n", files,
@@ -847,10 +847,20 @@ Test(load_errors, meshes)
     /* assimp's validation spoke of its structures ("Mesh  contains no faces") */
     expect_error_with("objects: [{type: mesh, file: text.obj}]\n", files,
                       "scene.yaml:1:30: text.obj: mesh has no triangles");
-    /* A triangle near 1e38 was dropped without a word. */
-    expect_error_with("objects: [{type: mesh, file: huge.obj}]\n", files,
-                      "scene.yaml:1:30: huge.obj: triangle 2 is too large for single precision "
-                      "(its normal overflows); scale the model down");
+    /* A triangle near 1e38 was dropped without a word: now it is dropped
+     * with a warning that counts it. */
+    {
+        scene *hs = NULL;
+        glint_error herr = {0};
+        const char *htext = "objects: [{type: mesh, file: huge.obj}]\n";
+        cr_expect_eq(scene_load_text(htext, strlen(htext), "scene.yaml", NULL, mem_reader, files,
+                                     &hs, &herr),
+                     GLINT_OK, "%s", herr.msg);
+        if (hs)
+            cr_expect_str_eq(scene_warnings(hs), "huge.obj: 1 of 2 triangles dropped (1 too large "
+                                                 "for single precision (overflow))\n");
+        scene_free(hs);
+    }
 
     /* assimp's own reason follows; the start of the message is ours. */
     scene *s = NULL;

@@ -62,7 +62,7 @@ static mesh_file import_ok(const char *path)
 {
     mesh_file mf;
     glint_error err = {0};
-    cr_assert_eq(mesh_import(path, &mf, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(mesh_import(path, NULL, &mf, &err), GLINT_OK, "%s", err.msg);
     cr_assert_not_null(mf.mesh);
     cr_assert_geq(mf.nmaterials, 1);
     return mf;
@@ -316,7 +316,7 @@ static mesh_file import_polygons(const char *path)
 {
     mesh_file mf;
     glint_error err = {0};
-    glint_rc rc = mesh_import(path, &mf, &err);
+    glint_rc rc = mesh_import(path, NULL, &mf, &err);
     cr_assert_eq(rc, GLINT_OK, "%s", err.msg);
     return mf;
 }
@@ -447,7 +447,7 @@ Test(mesh_import, only_degenerate_triangles_is_an_error)
     const char *path = put("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", 0);
     mesh_file mf;
     glint_error err = {0};
-    cr_assert_eq(mesh_import(path, &mf, &err), GLINT_ERR_INPUT, "%s", err.msg);
+    cr_assert_eq(mesh_import(path, NULL, &mf, &err), GLINT_ERR_INPUT, "%s", err.msg);
     cr_assert(strncmp(err.msg, path, strlen(path)) == 0, "%s", err.msg);
     cr_assert_null(mf.mesh);
 }
@@ -456,7 +456,7 @@ static void expect_input_error(const char *path)
 {
     mesh_file mf;
     glint_error err = {0};
-    glint_rc rc = mesh_import(path, &mf, &err);
+    glint_rc rc = mesh_import(path, NULL, &mf, &err);
     cr_assert_eq(rc, GLINT_ERR_INPUT, "%s: rc %d (%s)", path, rc, err.msg);
     cr_assert_eq(err.code, GLINT_ERR_INPUT);
     size_t n = strlen(path);

@@ -115,8 +115,10 @@ static void bin_prims(const build *b, int lo, int hi, vec3 cmin, const float sca
         vec3 c = b->centers[p];
         aabb box = b->boxes[p];
         for (int a = 0; a < 3; a++) {
-            int k = (int)((v3_at(c, a) - v3_at(cmin, a)) * scale[a]);
-            k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
+            /* compared as a float first: with an extent near the smallest
+             * normal float, scale is infinite and so may be the product */
+            float f = (v3_at(c, a) - v3_at(cmin, a)) * scale[a];
+            int k = f >= (float)BINS ? BINS - 1 : f > 0.0f ? (int)f : 0;
             out->n[a][k]++;
             out->box[a][k] = aabb_union(out->box[a][k], box);
         }

@@ -410,10 +410,12 @@ glint_rc glint_scene_add_mesh(glint_scene *s, const char *path, int *index, glin
     if (!s || !path)
         return api_null(err, __func__, !s ? "scene" : "path");
     mesh_file mf = {0};
-    glint_rc rc = mesh_import(path, &mf, err);
+    glint_rc rc = mesh_import(path, NULL, &mf, err);
     int i = -1;
     if (rc == GLINT_OK)
         rc = mesh_file_add(s, &mf, &i, err);
+    if (rc == GLINT_OK && !scene_add_warnings(s, mf.warnings))
+        rc = err_nomem(err);
     mesh_file_free(&mf);
     if (rc == GLINT_OK && index)
         *index = i;

@@ -50,6 +50,8 @@ glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err)
 
 void glint_scene_free(glint_scene *s) { scene_free(s); }
 
+const char *glint_scene_warnings(const glint_scene *s) { return s ? scene_warnings(s) : ""; }
+
 glint_rc glint_scene_settings(const glint_scene *s, glint_settings *out, glint_error *err)
 {
     if (!s || !out)

@@ -393,10 +393,17 @@ static glint_rc settings_for(const glint_scene *scene, const struct cli *c, glin
     return glint_settings_check(s, err);
 }
 
-/* One line on stderr for a scene that will render but probably not as
- * meant: nothing in it, or nothing lighting it. */
+/* One line on stderr for each thing the scene's files left to say (dropped
+ * triangles, textures left out), and for a scene that will render but
+ * probably not as meant: nothing in it, or nothing lighting it. */
 static void warn_about(const glint_scene *scene, const char *path)
 {
+    for (const char *w = glint_scene_warnings(scene); *w;) {
+        const char *end = strchr(w, '\n');
+        int len = end ? (int)(end - w) : (int)strlen(w);
+        fprintf(stderr, "glint: warning: %.*s\n", len, w);
+        w += len + (end != NULL);
+    }
     glint_scene_counts n;
     if (glint_scene_count(scene, &n, NULL) != GLINT_OK)
         return;

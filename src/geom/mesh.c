@@ -128,6 +128,7 @@ void mesh_free(mesh *m)
     free(m->pos);
     free(m->nrm);
     free(m->uv);
+    free(m->col);
     free(m->tri);
     free(m->tri_material);
     free(m->blocks);
@@ -142,6 +143,8 @@ size_t mesh_bytes(const mesh *m)
         n += (size_t)m->nverts * sizeof(vec3);
     if (m->uv)
         n += (size_t)m->nverts * sizeof m->uv[0];
+    if (m->col)
+        n += (size_t)m->nverts * sizeof(vec3);
     if (m->tri_material)
         n += (size_t)m->ntris * sizeof(int32_t);
     n += bvhw_node_bytes(&m->bvh) + (size_t)m->bvh.nprims * sizeof(int32_t);
@@ -203,6 +206,9 @@ void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)
         if (v3_len2(n) > 0.0f)
             out->n = v3_norm(n);
     }
+    if (m->col)
+        out->color = v3_add(v3_add(v3_scale(m->col[t[0]], b0), v3_scale(m->col[t[1]], b1)),
+                            v3_scale(m->col[t[2]], b2));
     if (m->uv) {
         out->u = b0 * m->uv[t[0]][0] + b1 * m->uv[t[1]][0] + b2 * m->uv[t[2]][0];
         out->v = b0 * m->uv[t[0]][1] + b1 * m->uv[t[1]][1] + b2 * m->uv[t[2]][1];

@@ -18,6 +18,7 @@ typedef struct mesh {
     vec3 *pos;
     vec3 *nrm;        /* per vertex, unit; NULL: flat shading */
     float (*uv)[2];   /* per vertex; NULL: (u, v) are the barycentrics */
+    vec3 *col;        /* per vertex colour, multiplying the material's; or NULL */
     uint32_t (*tri)[3];
     int32_t *tri_material; /* per triangle scene material, or NULL */
     int nverts, ntris;

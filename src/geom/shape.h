@@ -149,6 +149,7 @@ typedef struct surface {
     vec3 ng;  /* unit outward geometric normal: differs from n only on meshes
                  with vertex normals; new rays are offset along it */
     float u, v;
+    vec3 color; /* multiplies the material's colour: a mesh's vertex colours, else 1 */
 } surface;
 
 /* Constructors validate nothing; loaders check ranges first. */

@@ -32,7 +32,7 @@ static const char *const *const object_keys[] = {
     (const char *const[]){"type", "base", "radius", "height", "capped", "material", "transform",
                           NULL},
     (const char *const[]){"type", "p0", "p1", "p2", "uv", "material", "transform", NULL},
-    (const char *const[]){"type", "file", "material", "transform", NULL},
+    (const char *const[]){"type", "file", "smooth_angle", "material", "transform", NULL},
     (const char *const[]){"type", "base", "radius", "top_radius", "height", "capped", "material",
                           "transform", NULL},
     (const char *const[]){"type", "center", "normal", "radius", "inner_radius", "material",
@@ -99,27 +99,35 @@ static glint_rc load_triangle(loader *L, uint32_t map, shape *out)
 }
 
 /* The mesh at a path written in the file, imported once per resolved path
- * however many objects place it. Files on disk go to assimp by path (so an
- * OBJ finds its .mtl); through another reader, from memory. The file's own
- * materials join the scene's, and its triangles index them there. */
-static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
+ * and smoothing angle however many objects place it. Files on disk go to
+ * assimp by path (so an OBJ finds its .mtl); through another reader, from
+ * memory. The file's own materials join the scene's, and its triangles
+ * index them there; its warnings join the scene's. */
+static glint_rc load_mesh_file(loader *L, uint32_t v, const mesh_options *opts, shape *out)
 {
     const char *written = ydoc_text(load_doc(L), load_node(L, v));
     char *resolved = path_join(L->files[L->cur].dir, written);
-    char *data = NULL;
+    char *data = NULL, *cache = NULL, key[64];
     mesh_file mf = {0};
     glint_rc rc = GLINT_OK;
     if (!resolved) {
         rc = err_nomem(L->err);
         goto out;
     }
-    int index = names_find(&L->meshes, resolved, strlen(resolved));
+    snprintf(key, sizeof key, "%a", (double)opts->smooth_angle);
+    cache = malloc(strlen(resolved) + strlen(key) + 2);
+    if (cache)
+        sprintf(cache, "%s\n%s", resolved, key);
+    int index = cache ? names_find(&L->meshes, cache, strlen(cache)) : -1;
     if (index >= 0) {
         *out = shape_mesh(scene_mesh(L->s, index));
         goto out;
     }
     glint_error merr = {0};
-    if (L->reader == scene_read_file) {
+    if (!cache) {
+        rc = err_nomem(L->err);
+        goto out;
+    } else if (L->reader == scene_read_file) {
         int probe;
         rc = load_open_regular(resolved, &probe, &merr);
         if (rc != GLINT_OK) {
@@ -127,13 +135,13 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
             goto out;
         }
         close(probe);
-        rc = mesh_import(resolved, &mf, &merr);
+        rc = mesh_import(resolved, opts, &mf, &merr);
     } else {
         size_t size;
         rc = load_named_file(L, v, written, resolved, "mesh", &data, &size);
         if (rc != GLINT_OK)
             goto out;
-        rc = mesh_import_memory(data, size, resolved, &mf, &merr);
+        rc = mesh_import_memory(data, size, resolved, opts, &mf, &merr);
     }
     if (rc == GLINT_ERR_NOMEM) {
         rc = err_nomem(L->err);
@@ -144,9 +152,11 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
         goto out;
     }
     rc = mesh_file_add(L->s, &mf, &index, L->err);
+    if (rc == GLINT_OK && !scene_add_warnings(L->s, mf.warnings))
+        rc = err_nomem(L->err);
     if (rc != GLINT_OK)
         goto out;
-    if (!names_put(&L->meshes, resolved, strlen(resolved), index)) {
+    if (!names_put(&L->meshes, cache, strlen(cache), index)) {
         rc = err_nomem(L->err);
         goto out;
     }
@@ -154,6 +164,7 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
 out:
     mesh_file_free(&mf);
     free(data);
+    free(cache);
     free(resolved);
     return rc;
 }
@@ -271,12 +282,19 @@ static glint_rc load_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
     }
     case SHAPE_TRIANGLE:
         return load_triangle(L, map, out);
-    case SHAPE_MESH:
-        rc = load_need(L, map, "file", "mesh", &v);
+    case SHAPE_MESH: {
+        mesh_options mo = {MESH_DEFAULT_SMOOTH_ANGLE};
+        if ((v = load_get(L, map, "smooth_angle")) != YDOC_NONE) {
+            rc = load_nonneg(L, v, "smooth_angle", &mo.smooth_angle);
+            if (rc == GLINT_OK && mo.smooth_angle > 180.0f)
+                rc = load_fail(L, v, "smooth_angle must be at most 180 degrees");
+        }
+        if (rc == GLINT_OK)
+            rc = load_need(L, map, "file", "mesh", &v);
         if (rc == GLINT_OK)
             rc = load_path_key(L, v, "file");
         if (rc == GLINT_OK)
-            rc = load_mesh_file(L, v, out);
+            rc = load_mesh_file(L, v, &mo, out);
         return rc;
     case SHAPE_CONE:
         return load_cone(L, map, out);
@@ -289,6 +307,7 @@ static glint_rc load_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
     case SHAPE_CSG: /* load_csg builds it whole */
     case SHAPE_COUNT:
         break;
+    }
     }
     return rc;
 }

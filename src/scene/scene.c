@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/array.h"
 #include "core/error.h"
@@ -33,6 +34,7 @@ void scene_free(scene *s)
         return;
     for (int i = 0; i < s->nimages; i++)
         image_free(&s->images[i]);
+    free(s->warnings);
     free(s->objects);
     free(s->bounds);
     bvhw_free(&s->bvh);
@@ -322,6 +324,7 @@ bool scene_occluded_opaque(const scene *s, const ray *r)
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)
 {
     const object *o = &s->objects[hit->object];
+    out->color = v3s(1.0f);
     if (o->xform < 0) {
         /* An untextured sphere needs no (u, v): its normal alone, as
          * shape_surface would compute it. */
@@ -331,6 +334,8 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
             return;
         }
         shape_surface(&o->shape, r, &hit->h, out);
+        if (o->material >= 0) /* a material given in the scene replaces the file's colours */
+            out->color = v3s(1.0f);
         return;
     }
     xform moved;
@@ -341,6 +346,8 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     }
     ray lr = scene_object_ray(s, o, r);
     shape_surface(&o->shape, &lr, &hit->h, out);
+    if (o->material >= 0)
+        out->color = v3s(1.0f);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
@@ -359,3 +366,18 @@ void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *n
     *po = v3_sub(mat4_point(&x->inv, p), o->origin);
     *no = mat4_vector(&ft, n);
 }
+
+bool scene_add_warnings(scene *s, const char *lines)
+{
+    size_t have = s->warnings ? strlen(s->warnings) : 0, n = strlen(lines);
+    if (n == 0)
+        return true;
+    char *w = realloc(s->warnings, have + n + 1);
+    if (!w)
+        return false;
+    memcpy(w + have, lines, n + 1);
+    s->warnings = w;
+    return true;
+}
+
+const char *scene_warnings(const scene *s) { return s->warnings ? s->warnings : ""; }

@@ -63,6 +63,7 @@ struct glint_scene {
     bvhw bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
     int nunbounded;
+    char *warnings; /* lines for the user from building the scene, or NULL */
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
 
@@ -87,6 +88,11 @@ int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
+/* Appends lines (each ending in '\n'; "" adds nothing) to the scene's
+ * warnings; false when out of memory. */
+bool scene_add_warnings(scene *s, const char *lines);
+/* The warnings so far, "" when none. */
+const char *scene_warnings(const scene *s);
 /* The same for a polyhedron (by polyhedron_init or _preset) and a csg (by
  * csg_finish); objects place them with shape_polyhedron and shape_csg. */
 int scene_add_polyhedron(scene *s, polyhedron *p);

@@ -41,7 +41,7 @@ void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_poi
     out->m = m;
     out->p = sf.p;
     out->d = v3_norm(r->d);
-    out->base = m->color;
+    out->base = v3_mul(m->color, sf.color); /* a mesh's vertex colours, else 1 */
     if (m->texture >= 0) {
         const texture *t = &s->textures[m->texture];
         texture_point tp = texture_at(s, hit, &sf, t->space);
