@@ -68,6 +68,7 @@ test:
 
 check: $(BUILD)/glint $(MPI_BIN) $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
 	scripts/check-layers
+	scripts/check-size
 	GLINT_BIN=$(BUILD)/glint GLINT_MPI_BIN=$(MPI_BIN) ASAN_OPTIONS=detect_leaks=1 \
 		UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/tests --jobs 2
 ifeq ($(SAN),0)
