@@ -294,13 +294,15 @@ static rayset primary_rays(aabb b, int w, int h)
     vec3 c = aabb_center(b), e = aabb_extent(b);
     float hfov = 40.0f, th = tanf(hfov * (float)(M_PI / 360.0)), tv = th * (float)h / (float)w;
     float dist = fmaxf(0.55f * e.x / th, 0.55f * e.y / tv) + 0.5f * e.z;
-    camera cam = {v3(c.x, c.y, c.z + dist), c, v3(0, 1, 0), hfov};
+    camera cam = {.eye = v3(c.x, c.y, c.z + dist), .target = c, .up = v3(0, 1, 0), .hfov = hfov,
+                  .projection = CAMERA_PERSPECTIVE};
     camera_frame f = camera_frame_make(&cam, w, h);
     rayset rs = rayset_new((size_t)w * (size_t)h);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t i = (size_t)y * (size_t)w + (size_t)x;
-            ray r = camera_ray(&f, (float)x + 0.5f, (float)y + 0.5f);
+            ray r;
+            camera_ray(&f, (float)x + 0.5f, (float)y + 0.5f, 0.5f, 0.5f, &r);
             rs.o[i] = r.o;
             rs.d[i] = v3_norm(r.d);
             rs.tmax[i] = INFINITY;
@@ -837,7 +839,7 @@ int main(int argc, char **argv)
 
     glint_error err = {0};
     mesh_file mf;
-    if (mesh_import(o.mesh, &mf, &err) != GLINT_OK) {
+    if (mesh_import(o.mesh, NULL, &mf, &err) != GLINT_OK) {
         fprintf(stderr, "raybench: %s\n", err.msg);
         return 1;
     }
