@@ -247,3 +247,31 @@ Test(anim, lights_and_materials_of_every_kind)
     expect_error("textures: {t: {type: checker, transform: [{rotate_z: {keys: [[0, 0]]}}]}}\n",
                  "scene.yaml:1:42: only an object's own transform may be keyed, not this one");
 }
+
+Test(anim, light_positions_and_directions)
+{
+    glint_scene *s = load_text(
+        "animation: {frames: 3, fps: 1}\n"
+        "lights:\n"
+        "  - {type: spot, position: {keys: [[0, [0, 5, 0]], [2, [4, 5, 0]]]},\n"
+        "     look_at: {keys: [[0, [0, 0, 0]], [2, [4, 0, 0]]]}}\n"
+        "  - {type: area, position: {keys: [[0, [0, 9, 0]], [2, [0, 9, 4]]]},\n"
+        "     edge_u: {keys: [[0, [2, 0, 0]], [2, [4, 0, 0]]]}, edge_v: [0, 0, 2]}\n"
+        "  - {type: directional, direction: {keys: [[0, [0, -1, 0]], [2, [2, 0, 0]]]}}\n"
+        "objects: [{type: sphere, center: [0, 0, 0], radius: 1}]\n");
+    glint_error err = {0};
+    cr_assert_eq(glint_scene_set_frame(s, 2, &err), GLINT_OK, "%s", err.msg); /* t = 1 */
+    ASSERT_V3_NEAR(s->lights[0].spot.position, 2, 5, 0, 1e-6);
+    ASSERT_V3_NEAR(s->lights[0].spot.axis, 0, -1, 0, 1e-6);
+    /* centre (0, 9, 2), edge_u (3, 0, 0): corner = centre - (3, 0, 2) / 2 */
+    ASSERT_V3_NEAR(s->lights[1].area.corner, -1.5, 9, 1, 1e-6);
+    ASSERT_V3_NEAR(s->lights[1].area.edge_u, 3, 0, 0, 1e-6);
+    /* halfway between (0, -1, 0) and (2, 0, 0), made unit */
+    ASSERT_V3_NEAR(s->lights[2].directional.direction, 1 / sqrt(1.25), -0.5 / sqrt(1.25), 0,
+                   1e-6);
+    cr_assert_eq(glint_scene_set_frame(s, 1, &err), GLINT_OK, "%s", err.msg); /* t = 0 */
+    ASSERT_V3_NEAR(s->lights[0].spot.axis, 0, -1, 0, 1e-6);
+    ASSERT_V3_NEAR(s->lights[1].area.corner, -1, 9, -1, 1e-6);
+    ASSERT_V3_NEAR(s->lights[2].directional.direction, 0, -1, 0, 1e-6);
+    glint_scene_free(s);
+}

@@ -56,13 +56,30 @@ static glint_rc read_angle(loader *L, uint32_t map, const char *key, float *out)
     return rc;
 }
 
+/* Where a light's value lives, in floats from the start of a light, for
+ * the animation channels that key it (light_refresh derives the rest). */
+#define LIGHT_OFFSET(field) ((int)(offsetof(light, field) / sizeof(float)))
+
+/* A required vector that may be keyed: its value at the start in *out. */
+static glint_rc keyed_vec3(loader *L, uint32_t map, const char *key, const char *what,
+                           load_value_fn read, int offset, vec3 *out)
+{
+    uint32_t v;
+    glint_rc rc = load_need(L, map, key, what, &v);
+    if (rc == GLINT_OK)
+        rc = load_anim_value(L, v, key, 3, read, &out->x, offset, -INFINITY, INFINITY);
+    return rc;
+}
+
 static glint_rc read_spot(loader *L, uint32_t map, vec3 color, light *out)
 {
     vec3 pos, at, att;
     float inner = 20.0f, outer = 30.0f;
-    glint_rc rc = load_need_vec3(L, map, "position", "spot light", &pos);
+    glint_rc rc = keyed_vec3(L, map, "position", "spot light", load_read_vec3,
+                             LIGHT_OFFSET(spot.position), &pos);
     if (rc == GLINT_OK)
-        rc = load_need_vec3(L, map, "look_at", "spot light", &at);
+        rc = keyed_vec3(L, map, "look_at", "spot light", load_read_vec3,
+                        LIGHT_OFFSET(spot.look_at), &at);
     if (rc == GLINT_OK && v3_is_zero(v3_sub(at, pos)))
         rc = load_fail(L, load_get(L, map, "look_at"), "look_at must differ from position");
     if (rc == GLINT_OK)
@@ -87,11 +104,15 @@ static glint_rc read_area(loader *L, uint32_t map, vec3 color, light *out)
     vec3 pos, eu, ev, att;
     int n = 4;
     uint32_t v;
-    glint_rc rc = load_need_vec3(L, map, "position", "area light", &pos);
-    if (rc == GLINT_OK && (rc = load_need(L, map, "edge_u", "area light", &v)) == GLINT_OK)
-        rc = load_nonzero_vec3(L, v, "edge_u", &eu);
-    if (rc == GLINT_OK && (rc = load_need(L, map, "edge_v", "area light", &v)) == GLINT_OK)
-        rc = load_nonzero_vec3(L, v, "edge_v", &ev);
+    glint_rc rc = keyed_vec3(L, map, "position", "area light", load_read_vec3,
+                             LIGHT_OFFSET(area.position), &pos);
+    if (rc == GLINT_OK)
+        rc = keyed_vec3(L, map, "edge_u", "area light", load_read_nonzero_vec3,
+                        LIGHT_OFFSET(area.edge_u), &eu);
+    if (rc == GLINT_OK)
+        rc = keyed_vec3(L, map, "edge_v", "area light", load_read_nonzero_vec3,
+                        LIGHT_OFFSET(area.edge_v), &ev);
+    v = load_get(L, map, "edge_v");
     if (rc == GLINT_OK && !(v3_len2(v3_cross(eu, ev)) > 0.0f))
         rc = load_fail(L, v, "edge_v must not be parallel to edge_u");
     if (rc == GLINT_OK && (v = load_get(L, map, "samples")) != YDOC_NONE)
@@ -107,25 +128,19 @@ static glint_rc read_area(loader *L, uint32_t map, vec3 color, light *out)
 static glint_rc read_light(loader *L, uint32_t map, light_kind kind, vec3 color, light *out)
 {
     vec3 a, att;
-    uint32_t v;
     glint_rc rc = GLINT_OK;
     switch (kind) {
     case LIGHT_POINT:
-        /* a point light's position may be keyed */
-        rc = load_need(L, map, "position", "point light", &v);
-        if (rc == GLINT_OK)
-            rc = load_anim_value(L, v, "position", 3, load_read_vec3, &a.x,
-                                 (int)(offsetof(light, point.position) / sizeof(float)),
-                                 -INFINITY, INFINITY);
+        rc = keyed_vec3(L, map, "position", "point light", load_read_vec3,
+                        LIGHT_OFFSET(point.position), &a);
         if (rc == GLINT_OK)
             rc = read_attenuation(L, map, &att);
         if (rc == GLINT_OK)
             *out = light_point(a, color, att);
         return rc;
     case LIGHT_DIRECTIONAL:
-        rc = load_need(L, map, "direction", "directional light", &v);
-        if (rc == GLINT_OK)
-            rc = load_nonzero_vec3(L, v, "direction", &a);
+        rc = keyed_vec3(L, map, "direction", "directional light", load_read_nonzero_vec3,
+                        LIGHT_OFFSET(directional.direction), &a);
         if (rc == GLINT_OK)
             *out = light_directional(a, color);
         return rc;

@@ -128,6 +128,8 @@ glint_rc scene_set_time(scene *s, float t, glint_error *err)
         else if (c->target == ANIM_MATERIAL && c->index < s->nmaterials)
             anim_apply_channel(a, c, (float *)&s->materials[c->index], t);
     }
+    for (int i = 0; i < s->nlights; i++)
+        light_refresh(&s->lights[i]);
     for (int m = 0; m < a->nmotions; m++) {
         int xf = a->motions[m].xform;
         if (xf < 0 || xf >= s->nxforms)

@@ -46,14 +46,15 @@ struct directional_light {
 };
 
 struct spot_light {
-    vec3 position;
-    vec3 axis; /* unit, from position towards look_at */
+    vec3 position, look_at;
+    vec3 axis; /* unit, from position towards look_at (light_refresh) */
     float cos_inner, cos_outer;
     vec3 attenuation;
 };
 
 struct area_light {
-    vec3 corner; /* position - edge_u / 2 - edge_v / 2 */
+    vec3 position; /* the centre */
+    vec3 corner;   /* position - edge_u / 2 - edge_v / 2 (light_refresh) */
     vec3 edge_u, edge_v;
     int n; /* the grid is n x n */
     vec3 attenuation;
@@ -77,6 +78,11 @@ light light_directional(vec3 direction, vec3 color);
 light light_spot(vec3 position, vec3 look_at, float inner_deg, float outer_deg, vec3 color,
                  vec3 attenuation);
 light light_area(vec3 position, vec3 edge_u, vec3 edge_v, int n, vec3 color, vec3 attenuation);
+/* Recomputes what a light derives from the values a scene may animate (a
+ * spot's axis, an area light's corner, a directional light's unit
+ * direction) once animation has changed them. A direction that has no
+ * length at that moment keeps the last one. */
+void light_refresh(light *l);
 
 /* What one sample of a light gives a point: the unit direction towards the
  * light, the distance to it (INFINITY for directional light: shadow rays
