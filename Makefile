@@ -276,7 +276,7 @@ $(BUILD)/bench/mpisim: bench/mpisim.c src/dist/sched.c src/dist/sched.h src/dist
 
 .PHONY: bench-mpi
 bench-mpi:
-	@scripts/install-deps bench
+	@scripts/install-deps test bench
 	@$(MAKE) --no-print-directory SAN=0 $(BUILD)/glint $(BUILD)/glint-mpi $(BUILD)/bench/mpisim \
 		scenes/textures/flag.png scenes/textures/globe.png
 	BUILD=$(BUILD) bench/mpi
