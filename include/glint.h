@@ -375,6 +375,61 @@ GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_sett
                                       const glint_callbacks *callbacks, glint_film *film,
                                       glint_stats *stats, glint_error *err);
 
+/* ---- resume files ----------------------------------------------------------
+ * An interrupted render kept on disk, to be finished later into the
+ * byte-identical image. The record is tile by tile (the grid of
+ * glint_tile_count): which tiles are final, and their pixels, with the
+ * settings and a fingerprint of the scene and settings so that a render of
+ * anything else refuses it. The format is described in src/render/resume.h;
+ * files are written atomically. */
+
+typedef struct glint_resume {
+    glint_settings settings; /* of the render (threads is kept but never compared) */
+    uint64_t fingerprint;    /* glint_fingerprint of the scene and settings */
+    int ntiles;              /* the image's tile count */
+    unsigned char *done;     /* ntiles flags: non-zero, tile i is final in film */
+    glint_film film;         /* image-sized; final tiles hold their pixels */
+    char *note;              /* the caller's bytes, kept verbatim (NUL-terminated; may be NULL) */
+    size_t note_len;
+} glint_resume;
+
+/* A 64-bit hash of everything in a built scene a pixel depends on (camera,
+ * shapes, transforms, materials, textures with their pixels, lights, meshes)
+ * and of the settings but the thread count. */
+GLINT_API glint_rc glint_fingerprint(const glint_scene *scene, const glint_settings *settings,
+                                     uint64_t *out, glint_error *err);
+
+/* A record with no tile final, for this scene and settings (NULL: the
+ * scene's). Free it with glint_resume_free. */
+GLINT_API glint_rc glint_resume_init(glint_resume *r, const glint_scene *scene,
+                                     const glint_settings *settings, glint_error *err);
+/* Frees what the record holds and empties it; NULL is fine. */
+GLINT_API void glint_resume_free(glint_resume *r);
+/* Replaces the note with a copy of len bytes (at most 1 MiB). */
+GLINT_API glint_rc glint_resume_set_note(glint_resume *r, const void *data, size_t len,
+                                         glint_error *err);
+/* Writes the record to path (atomically: the file is whole or not changed). */
+GLINT_API glint_rc glint_resume_write(const glint_resume *r, const char *path, glint_error *err);
+/* Reads a record written by glint_resume_write. A file that is not one, is
+ * cut short or damaged is GLINT_ERR_INPUT naming it. */
+GLINT_API glint_rc glint_resume_read(const char *path, glint_resume *out, glint_error *err);
+/* GLINT_OK when the record belongs to a render of this scene with these
+ * settings (NULL: the scene's); otherwise GLINT_ERR_INPUT naming the first
+ * difference (size, samples, depth, transfer, or the scene and camera). */
+GLINT_API glint_rc glint_resume_check(const glint_resume *r, const glint_scene *scene,
+                                      const glint_settings *settings, glint_error *err);
+/* Renders the tiles not yet final into r->film, marking each final as it
+ * is finished (before callbacks->tile_done sees it). Progress counts the
+ * whole image, tiles final before the call included. Checks the record
+ * first (glint_resume_check). On cancellation r holds exactly the tiles
+ * whose pixels are in its film, ready for glint_resume_write; when every
+ * tile is final, r->film is the image glint_render makes. */
+GLINT_API glint_rc glint_resume_render(const glint_scene *scene, const glint_settings *settings,
+                                       const glint_callbacks *callbacks, glint_resume *r,
+                                       glint_stats *stats, glint_error *err);
+/* Tiles final in the record. */
+GLINT_API int glint_resume_done(const glint_resume *r);
+
 /* Image file formats for glint_film_write. */
 typedef enum glint_format {
     GLINT_FORMAT_AUTO, /* from the file name's extension; PNG for "-" */
