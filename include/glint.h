@@ -375,6 +375,41 @@ GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_sett
                                       const glint_callbacks *callbacks, glint_film *film,
                                       glint_stats *stats, glint_error *err);
 
+/* ---- progressive rendering -------------------------------------------------
+ * An image rendered in passes that converge to exactly glint_render's film:
+ * a first pass of 1 sample per pixel, later passes adding the rest of each
+ * pixel's samples in the batch order. The accumulating film keeps, per
+ * pixel, the sum of the samples so far, counted per tile. */
+
+typedef struct glint_accum {
+    int width, height;
+    int ntiles;        /* the image's tile grid (glint_tile_count) */
+    int *tile_samples; /* per tile: samples per pixel summed so far */
+    float *sum;        /* width*height*3: per pixel, the sum of those samples */
+} glint_accum;
+
+/* An accumulating film of width x height with no sample in it. */
+GLINT_API glint_rc glint_accum_alloc(glint_accum *a, int width, int height, glint_error *err);
+/* Frees it and empties it; NULL is fine. */
+GLINT_API void glint_accum_free(glint_accum *a);
+/* Forgets every sample (after the camera or the scene changed). */
+GLINT_API void glint_accum_clear(glint_accum *a);
+
+/* Brings every tile of the accumulating film (of the settings' size) up to
+ * upto samples per pixel (1 to settings.samples), tracing only the samples
+ * each lacks. Tiles are handed out and reported as in glint_render
+ * (tile_done's film is NULL: resolve to see the pixels); a cancelled pass
+ * leaves every tile whole, either as it was or brought up to upto. */
+GLINT_API glint_rc glint_render_pass(const glint_scene *scene, const glint_settings *settings,
+                                     int upto, const glint_callbacks *callbacks, glint_accum *a,
+                                     glint_stats *stats, glint_error *err);
+/* Writes the mean of each tile's samples into film (image-sized, allocated
+ * by the caller); tiles with no sample are not touched. Once every tile has
+ * settings.samples, film is byte-identical to glint_render's. *min_samples
+ * (may be NULL) is the fewest samples per pixel of any tile. */
+GLINT_API glint_rc glint_accum_resolve(const glint_accum *a, glint_film *film, int *min_samples,
+                                       glint_error *err);
+
 /* ---- resume files ----------------------------------------------------------
  * An interrupted render kept on disk, to be finished later into the
  * byte-identical image. The record is tile by tile (the grid of

@@ -168,7 +168,7 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
     rc = glint_film_alloc(film, settings->width, settings->height, err);
     if (rc != GLINT_OK)
         return rc;
-    render_work w = {{0, 0, settings->width, settings->height}, NULL, 0, 0, 0};
+    render_work w = {.region = {0, 0, settings->width, settings->height}};
     rc = render_run(sc, settings, callbacks, &w, film, stats, err);
     if (rc != GLINT_OK)
         render_film_free(film);
@@ -190,7 +190,7 @@ glint_rc glint_render_region(const glint_scene *sc, const glint_settings *settin
     if (g->x0 < 0 || g->y0 < 0 || g->x1 > w || g->y1 > h || g->x0 >= g->x1 || g->y0 >= g->y1)
         return api_bad(err, fn, "region [%d, %d) x [%d, %d) is empty or not inside the %dx%d image",
                        g->x0, g->x1, g->y0, g->y1, w, h);
-    render_work work = {*g, NULL, 0, 0, 0};
+    render_work work = {.region = *g};
     if (film->width == g->x1 - g->x0 && film->height == g->y1 - g->y0) {
         work.film_x0 = g->x0;
         work.film_y0 = g->y0;
@@ -266,7 +266,7 @@ glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *setting
     rc = check_tiles(tiles, ntiles, render_tile_count(settings->width, settings->height), err);
     if (rc != GLINT_OK)
         return rc;
-    render_work work = {{0, 0, 0, 0}, tiles, ntiles, 0, 0};
+    render_work work = {.tiles = tiles, .ntiles = ntiles};
     if (ntiles == 0) {
         if (stats)
             *stats = (glint_stats){0};

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/image.h"
+#include "render/progressive.h"
 #include "scene/settings.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -72,9 +73,9 @@ static glint_rect item_rect(const job *j, int i)
 
 /* Counts the finished tile and tells the front end, in one critical
  * section so that the counts each callback sees only grow. */
-static void tile_finished(job *j, const trace_ctx *ctx, const trace_ctx *before, glint_rect r)
+static void tile_finished(job *j, const trace_ctx *ctx, const trace_ctx *before, glint_rect r,
+                          uint64_t samples)
 {
-    uint64_t samples = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(j->grid * j->grid);
     pthread_mutex_lock(&j->lock);
     j->samples_done += samples;
     j->secondary_rays += ctx->secondary_rays - before->secondary_rays;
@@ -92,30 +93,45 @@ static void tile_finished(job *j, const trace_ctx *ctx, const trace_ctx *before,
     pthread_mutex_unlock(&j->lock);
 }
 
-/* The N x N regular grid: sample (a, b) at ((a + 0.5) / N, (b + 0.5) / N)
- * of the pixel, so 2 x 2 gives the quarter points 0.25 and 0.75. */
-static void render_tile(job *j, trace_ctx *ctx, glint_rect r)
+/* The N x N regular grid: sample k = b * N + a at ((a + 0.5) / N,
+ * (b + 0.5) / N) of the pixel, so 2 x 2 gives the quarter points 0.25 and
+ * 0.75. Samples are added in the order of k, so a sum built in several
+ * passes (progressive.h) is the same float as one built at once. */
+vec3 render_samples(const camera_frame *f, int n, trace_ctx *ctx, int x, int y, int k0, int k1,
+                    vec3 sum)
+{
+    float inv_n = 1.0f / (float)n;
+    for (int k = k0; k < k1; k++) {
+        int a = k % n, b = k / n;
+        ray ry = camera_ray(f, (float)x + ((float)a + 0.5f) * inv_n,
+                            (float)y + ((float)b + 0.5f) * inv_n);
+        sum = v3_add(sum, whitted_trace(ctx, &ry, 0));
+    }
+    return sum;
+}
+
+static void render_tile(job *j, trace_ctx *ctx, int item, glint_rect r)
 {
     trace_ctx before = *ctx;
     int n = j->grid;
-    float inv_n = 1.0f / (float)n, inv_count = 1.0f / (float)(n * n);
     const render_work *w = j->work;
+    if (w->accum) {
+        uint64_t traced = progressive_tile(w->accum, item, w->upto, &j->frame, n, ctx, r);
+        tile_finished(j, ctx, &before, r, traced);
+        return;
+    }
+    float inv_count = 1.0f / (float)(n * n);
     for (int y = r.y0; y < r.y1; y++)
         for (int x = r.x0; x < r.x1; x++) {
-            vec3 sum = v3s(0.0f);
-            for (int b = 0; b < n; b++)
-                for (int a = 0; a < n; a++) {
-                    ray ry = camera_ray(&j->frame, (float)x + ((float)a + 0.5f) * inv_n,
-                                        (float)y + ((float)b + 0.5f) * inv_n);
-                    sum = v3_add(sum, whitted_trace(ctx, &ry, 0));
-                }
+            vec3 sum = render_samples(&j->frame, n, ctx, x, y, 0, n * n, v3s(0.0f));
             size_t at = (size_t)(y - w->film_y0) * (size_t)j->film->width + (size_t)(x - w->film_x0);
             float *px = j->film->rgb + at * 3;
             px[0] = sum.x * inv_count;
             px[1] = sum.y * inv_count;
             px[2] = sum.z * inv_count;
         }
-    tile_finished(j, ctx, &before, r);
+    tile_finished(j, ctx, &before, r,
+                  (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(n * n));
 }
 
 static void *worker(void *arg)
@@ -133,7 +149,7 @@ static void *worker(void *arg)
         int i = atomic_fetch_add(&j->next_item, 1);
         if (i >= j->items)
             break;
-        render_tile(j, &ctx, item_rect(j, i));
+        render_tile(j, &ctx, i, item_rect(j, i));
     }
     return NULL;
 }
@@ -157,7 +173,7 @@ static void job_plan(job *j)
         j->items = j->tiles_x * ((g->y1 - 1) / RENDER_TILE + 1 - j->ty0);
         pixels = (uint64_t)(g->x1 - g->x0) * (uint64_t)(g->y1 - g->y0);
     }
-    j->samples_total = pixels * spp;
+    j->samples_total = w->accum ? progressive_samples_left(w->accum, w->upto) : pixels * spp;
 }
 
 /* Runs the job on settings.threads threads, the calling one included. */

@@ -8,6 +8,8 @@
 #define GLINT_RENDER_RENDER_H
 
 #include "glint.h"
+#include "scene/camera.h"
+#include "trace/whitted.h"
 
 #define RENDER_TILE 16
 
@@ -21,7 +23,15 @@ typedef struct render_work {
     const int *tiles;
     int ntiles;
     int film_x0, film_y0;
+    glint_accum *accum; /* non-NULL: a progressive pass over the whole image
+                           (region, no list) adding samples up to upto into it */
+    int upto;
 } render_work;
+
+/* Adds the primary samples k0 <= k < k1 of pixel (x, y), of the n x n
+ * grid, to sum in the order of k. */
+vec3 render_samples(const camera_frame *f, int n, trace_ctx *ctx, int x, int y, int k0, int k1,
+                    vec3 sum);
 
 /* The tile grid of a width x height image. */
 int render_tile_count(int width, int height);

@@ -287,8 +287,8 @@ static glint_rc read_body(reader *rd, const char *path, glint_resume *r, glint_e
 
 glint_rc resume_read(const char *path, glint_resume *out, glint_error *err)
 {
-    unsigned char *data;
-    size_t len;
+    unsigned char *data = NULL;
+    size_t len = 0;
     glint_rc rc = read_all(path, &data, &len, err);
     if (rc != GLINT_OK)
         return rc;
@@ -387,7 +387,7 @@ glint_rc resume_render(const scene *sc, const glint_settings *s, const glint_cal
     relay rl = {cb, r, (s->width + RENDER_TILE - 1) / RENDER_TILE, before,
                 (uint64_t)s->width * (uint64_t)s->height * spp};
     glint_callbacks mine = {&rl, relay_tile, relay_progress, relay_cancelled};
-    render_work w = {{0, 0, 0, 0}, todo, n, 0, 0};
+    render_work w = {.tiles = todo, .ntiles = n};
     if (n > 0)
         rc = render_run(sc, s, &mine, &w, &r->film, stats, err);
     else if (stats)

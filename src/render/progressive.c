@@ -1,0 +1,86 @@
+#include "progressive.h"
+
+#include <stdlib.h>
+
+#include "core/error.h"
+#include "render/render.h"
+
+glint_rc progressive_alloc(glint_accum *a, int width, int height, glint_error *err)
+{
+    *a = (glint_accum){width, height, render_tile_count(width, height), NULL, NULL};
+    a->tile_samples = calloc((size_t)a->ntiles, sizeof *a->tile_samples);
+    a->sum = calloc((size_t)width * (size_t)height * 3, sizeof *a->sum);
+    if (!a->tile_samples || !a->sum) {
+        progressive_free(a);
+        return err_nomem(err);
+    }
+    return GLINT_OK;
+}
+
+void progressive_free(glint_accum *a)
+{
+    if (!a)
+        return;
+    free(a->tile_samples);
+    free(a->sum);
+    *a = (glint_accum){0};
+}
+
+static uint64_t tile_area(const glint_accum *a, int tile)
+{
+    glint_rect r = render_tile_rect(a->width, a->height, tile);
+    return (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+}
+
+uint64_t progressive_samples_left(const glint_accum *a, int upto)
+{
+    uint64_t n = 0;
+    for (int t = 0; t < a->ntiles; t++)
+        if (a->tile_samples[t] < upto)
+            n += tile_area(a, t) * (uint64_t)(upto - a->tile_samples[t]);
+    return n;
+}
+
+uint64_t progressive_tile(glint_accum *a, int tile, int upto, const camera_frame *f, int n,
+                          trace_ctx *ctx, glint_rect r)
+{
+    int k0 = a->tile_samples[tile];
+    if (k0 >= upto)
+        return 0;
+    for (int y = r.y0; y < r.y1; y++)
+        for (int x = r.x0; x < r.x1; x++) {
+            float *px = a->sum + ((size_t)y * (size_t)a->width + (size_t)x) * 3;
+            vec3 sum = render_samples(f, n, ctx, x, y, k0, upto, v3(px[0], px[1], px[2]));
+            px[0] = sum.x;
+            px[1] = sum.y;
+            px[2] = sum.z;
+        }
+    a->tile_samples[tile] = upto;
+    return (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(upto - k0);
+}
+
+void progressive_resolve(const glint_accum *a, glint_film *film)
+{
+    for (int t = 0; t < a->ntiles; t++) {
+        int m = a->tile_samples[t];
+        if (m == 0)
+            continue;
+        float inv = 1.0f / (float)m;
+        glint_rect r = render_tile_rect(a->width, a->height, t);
+        for (int y = r.y0; y < r.y1; y++)
+            for (int x = r.x0; x < r.x1; x++) {
+                size_t at = ((size_t)y * (size_t)a->width + (size_t)x) * 3;
+                for (int c = 0; c < 3; c++)
+                    film->rgb[at + (size_t)c] = a->sum[at + (size_t)c] * inv;
+            }
+    }
+}
+
+int progressive_min_samples(const glint_accum *a)
+{
+    int m = a->ntiles > 0 ? a->tile_samples[0] : 0;
+    for (int t = 1; t < a->ntiles; t++)
+        if (a->tile_samples[t] < m)
+            m = a->tile_samples[t];
+    return m;
+}

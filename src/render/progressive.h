@@ -1,0 +1,31 @@
+/* progressive: rendering an image in passes that converge to exactly the
+ * batch image. An accumulating film (glint_accum) keeps, per pixel, the sum
+ * of its first m primary samples, with m counted per tile; a pass brings
+ * every tile up to a target m, tracing only the samples it lacks, in the
+ * batch order (render_samples), so the sum is the same float the batch
+ * render builds. Resolving multiplies by 1/m as the batch render does: with
+ * m equal to the settings' samples the film is byte-identical to
+ * glint_render's. A cancelled pass leaves each tile either before or after
+ * the pass, never in between, so the next pass picks up from there. */
+#ifndef GLINT_RENDER_PROGRESSIVE_H
+#define GLINT_RENDER_PROGRESSIVE_H
+
+#include <stdint.h>
+#include "glint.h"
+#include "scene/camera.h"
+#include "trace/whitted.h"
+
+glint_rc progressive_alloc(glint_accum *a, int width, int height, glint_error *err);
+void progressive_free(glint_accum *a);
+/* Samples a pass up to upto per pixel would trace. */
+uint64_t progressive_samples_left(const glint_accum *a, int upto);
+/* Brings tile r (number tile) up to upto samples per pixel of the n x n
+ * grid; returns the samples traced. */
+uint64_t progressive_tile(glint_accum *a, int tile, int upto, const camera_frame *f, int n,
+                          trace_ctx *ctx, glint_rect r);
+/* film = sum / samples, per tile; tiles with no sample yet are left as they are. */
+void progressive_resolve(const glint_accum *a, glint_film *film);
+/* The fewest samples per pixel of any tile. */
+int progressive_min_samples(const glint_accum *a);
+
+#endif
