@@ -111,6 +111,17 @@ GLINT_API glint_rc glint_scene_settings(const glint_scene *scene, glint_settings
 GLINT_API glint_rc glint_scene_set_settings(glint_scene *scene, const glint_settings *s,
                                             glint_error *err);
 
+/* What a scene holds, for reports such as glint --stats. */
+typedef struct glint_scene_info {
+    int objects, lights, materials, textures, meshes;
+    uint64_t triangles;   /* placed: a mesh's triangles once per object placing it,
+                             and each triangle object */
+    double build_seconds; /* wall time of the scene's last build (bounds, BVH) */
+} glint_scene_info;
+
+GLINT_API glint_rc glint_scene_describe(const glint_scene *scene, glint_scene_info *out,
+                                        glint_error *err);
+
 /* ---- camera -------------------------------------------------------------- */
 
 typedef enum glint_projection {

@@ -11,7 +11,8 @@
 #include <unistd.h>
 
 #include "glint.h"
-#include "progress.h"
+#include "batch.h"
+#include "cli.h"
 
 static const char usage[] =
     "usage: glint [options] [SCENE.yaml]\n"
@@ -28,14 +29,25 @@ static const char usage[] =
     "  -d, --depth N          reflection/refraction recursion limit\n"
     "  -t, --threads N        render threads (default: all cores)\n"
     "      --transfer T       none (default) or srgb: how film values become pixels\n"
-    "      --stats            print rays, time and Mrays/s to stderr\n"
-    "  -q, --quiet            no progress bar\n"
+    "  -p, --preview          a live window with an interactive camera (H there lists\n"
+    "                         the keys); re-renders when the scene's files change\n"
+    "      --exit-when-done   with -p: close the window once the image is final\n"
+    "      --preview-bench    time the preview along a scripted camera path (fps)\n"
+    "      --resume           continue an interrupted render from OUTPUT.resume;\n"
+    "                         'glint --resume OUT.resume' reruns its command line\n"
+    "      --stats            print times, scene size, rays, Mrays/s and memory to stderr\n"
+    "      --progress         progress lines on stderr even when it is not a terminal\n"
+    "  -q, --quiet            no progress bar and no 'wrote' line\n"
     "  -h, --help             show this help\n"
     "  -V, --version          show the version\n"
     "\n"
-    "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input.\n";
+    "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input,\n"
+    "130/143 interrupted by Ctrl-C/SIGTERM (the render so far is kept in OUTPUT.resume).\n";
 
-enum { OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS };
+enum {
+    OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS, OPT_PROGRESS, OPT_RESUME,
+    OPT_EXIT_WHEN_DONE, OPT_PREVIEW_BENCH
+};
 
 static const struct option long_options[] = {
     {"output", required_argument, NULL, 'o'},
@@ -48,20 +60,17 @@ static const struct option long_options[] = {
     {"quality", required_argument, NULL, OPT_QUALITY},
     {"bits", required_argument, NULL, OPT_BITS},
     {"stats", no_argument, NULL, OPT_STATS},
+    {"progress", no_argument, NULL, OPT_PROGRESS},
+    {"resume", no_argument, NULL, OPT_RESUME},
+    {"preview", no_argument, NULL, 'p'},
+    {"exit-when-done", no_argument, NULL, OPT_EXIT_WHEN_DONE},
+    {"preview-bench", no_argument, NULL, OPT_PREVIEW_BENCH},
     {"quiet", no_argument, NULL, 'q'},
     {"help", no_argument, NULL, 'h'},
     {"version", no_argument, NULL, 'V'},
     {NULL, 0, NULL, 0},
 };
 
-struct cli {
-    const char *output;
-    const char *scene_path;
-    int width, height, samples, depth, threads; /* -1: not given */
-    int transfer;
-    bool stats, quiet;
-    glint_write_options write; /* format, quality, bits from the command line */
-};
 
 __attribute__((format(printf, 1, 2))) static int usage_error(const char *fmt, ...)
 {
@@ -114,10 +123,12 @@ static int flush_stdout(void)
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
-    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, {0}};
+    *c = (struct cli){.output = "glint.png", .width = -1, .height = -1, .samples = -1,
+                      .depth = -1, .threads = -1, .transfer = -1, .argc = argc, .argv = argv};
     opterr = 0;
+    optind = 0; /* parsing may run twice: again for a resume file's arguments */
     int opt;
-    while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:qhV", long_options, NULL)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:pqhV", long_options, NULL)) != -1) {
         switch (opt) {
         case 'o':
             c->output = optarg;
@@ -167,6 +178,21 @@ static int parse_args(int argc, char **argv, struct cli *c)
         case 'q':
             c->quiet = true;
             break;
+        case OPT_PROGRESS:
+            c->progress = true;
+            break;
+        case OPT_RESUME:
+            c->resume = true;
+            break;
+        case 'p':
+            c->preview = true;
+            break;
+        case OPT_EXIT_WHEN_DONE:
+            c->exit_when_done = true;
+            break;
+        case OPT_PREVIEW_BENCH:
+            c->preview_bench = true;
+            break;
         case 'h':
             fputs(usage, stdout);
             return flush_stdout();
@@ -191,92 +217,42 @@ static int parse_args(int argc, char **argv, struct cli *c)
     return -1;
 }
 
-static void on_progress(void *user, const glint_progress *p)
+static char **kept_argv;
+
+/* 'glint --resume OUT.resume': the command line the file keeps, with
+ * --resume, run from the folder it was run in. Returns -1 to go on. */
+static int resume_command(struct cli *c)
 {
-    progress_update(user, p->percent);
+    const char *p = c->scene_path;
+    size_t n = p ? strlen(p) : 0;
+    if (!c->resume || n < 7 || strcmp(p + n - 7, ".resume") != 0)
+        return -1;
+    glint_error err = {0};
+    int argc;
+    char **argv;
+    if (batch_resume_args(p, &argc, &argv, &err) != GLINT_OK) {
+        fprintf(stderr, "glint: %s\n", err.msg);
+        return glint_exit_code(err.code);
+    }
+    int code = parse_args(argc, argv, c);
+    c->resume = true;
+    if (code >= 0) {
+        free(argv);
+        return code;
+    }
+    kept_argv = argv; /* lives as long as the process: c points into it */
+    return -1;
 }
 
 int main(int argc, char **argv)
 {
     struct cli c;
     int code = parse_args(argc, argv, &c);
+    if (code < 0)
+        code = resume_command(&c);
     if (code >= 0)
         return code;
-
-    glint_error err = {0};
-    glint_scene *scene = NULL;
-    glint_film film = {0};
-    glint_stats stats = {0};
-    glint_rc rc;
-
-    /* a bad output name fails now, not after the render */
-    rc = glint_output_check(c.output, &c.write, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    rc = c.scene_path ? glint_scene_load(c.scene_path, &scene, &err)
-                      : glint_scene_builtin(&scene, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    glint_settings s;
-    rc = glint_scene_settings(scene, &s, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-    if (c.width > 0) {
-        s.width = c.width;
-        s.height = c.height;
-    }
-    if (c.samples > 0)
-        s.samples = c.samples;
-    if (c.depth >= 0)
-        s.max_depth = c.depth;
-    if (c.threads > 0)
-        s.threads = c.threads;
-    if (c.transfer >= 0)
-        s.transfer = (glint_transfer)c.transfer;
-    rc = glint_settings_check(&s, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    progress bar;
-    glint_callbacks cb = {0};
-    bool show = !c.quiet && isatty(STDERR_FILENO);
-    if (show) {
-        progress_begin(&bar, stderr);
-        cb.progress = on_progress;
-        cb.user = &bar;
-    }
-    rc = glint_render(scene, &s, &cb, &film, &stats, &err);
-    if (show)
-        progress_end(&bar);
-    if (rc != GLINT_OK)
-        goto fail;
-    c.write.transfer = s.transfer;
-    rc = glint_film_write(&film, c.output, &c.write, &err);
-    if (rc != GLINT_OK)
-        goto fail;
-
-    if (c.stats) {
-        uint64_t total = stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
-        int threads = s.threads > 0 ? s.threads : glint_default_threads();
-        fprintf(stderr,
-                "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
-                "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
-                "time:    %.3f s\n"
-                "speed:   %.2f Mrays/s\n",
-                s.width, s.height, s.samples, s.max_depth, threads, threads == 1 ? "" : "s",
-                (unsigned long long)total, (unsigned long long)stats.primary_rays,
-                (unsigned long long)stats.secondary_rays, (unsigned long long)stats.shadow_rays,
-                stats.seconds, stats.seconds > 0 ? (double)total / stats.seconds * 1e-6 : 0.0);
-    }
-    glint_film_free(&film);
-    glint_scene_free(scene);
-    return 0;
-
-fail:
-    fprintf(stderr, "glint: %s\n", err.msg);
-    glint_film_free(&film);
-    glint_scene_free(scene);
-    return glint_exit_code(rc);
+    if (c.preview || c.preview_bench)
+        return preview_main(&c);
+    return batch_main(&c);
 }

@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <time.h>
 
 #include "core/array.h"
 #include "core/error.h"
@@ -167,7 +168,7 @@ out:
     return rc;
 }
 
-glint_rc scene_build(scene *s, glint_error *err)
+static glint_rc build(scene *s, glint_error *err)
 {
     for (int i = 0; i < s->ntextures; i++)
         if (s->textures[i].kind == TEXTURE_IMAGE &&
@@ -310,4 +311,15 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     out->p = ray_at(r, hit->h.t);
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
+}
+
+/* Times the build for --stats (glint_scene_describe). */
+glint_rc scene_build(scene *s, glint_error *err)
+{
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    glint_rc rc = build(s, err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    s->build_seconds = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    return rc;
 }

@@ -52,6 +52,7 @@ struct glint_scene {
     int nunbounded;
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
+    double build_seconds; /* wall time of the last scene_build */
 };
 
 typedef struct glint_scene scene;

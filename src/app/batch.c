@@ -1,0 +1,248 @@
+/* The batch render: scene in, image file out, with the progress bar, the
+ * --stats report, and resume files. Every render goes through a resume
+ * record (glint_resume_render), so an interruption at any point can be kept
+ * and finished later into the same bytes. */
+#include "batch.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "progress.h"
+#include "signals.h"
+
+char *batch_resume_path(const char *output)
+{
+    if (strcmp(output, "-") == 0)
+        return NULL;
+    size_t n = strlen(output);
+    char *p = malloc(n + 8);
+    if (p)
+        snprintf(p, n + 8, "%s.resume", output);
+    return p;
+}
+
+/* The note: the working folder, then each argument, each NUL-terminated. */
+static glint_rc set_note(glint_resume *r, const struct cli *c, glint_error *err)
+{
+    char cwd[4096];
+    if (!getcwd(cwd, sizeof cwd))
+        cwd[0] = '\0';
+    size_t len = strlen(cwd) + 1;
+    for (int i = 0; i < c->argc; i++)
+        len += strlen(c->argv[i]) + 1;
+    char *note = malloc(len), *at = note;
+    if (!note) {
+        snprintf(err->msg, sizeof err->msg, "out of memory");
+        return err->code = GLINT_ERR_NOMEM;
+    }
+    at = stpcpy(at, cwd) + 1;
+    for (int i = 0; i < c->argc; i++)
+        at = stpcpy(at, c->argv[i]) + 1;
+    glint_rc rc = glint_resume_set_note(r, note, len, err);
+    free(note);
+    return rc;
+}
+
+glint_rc batch_resume_args(const char *path, int *argc, char ***argv, glint_error *err)
+{
+    glint_resume r;
+    glint_rc rc = glint_resume_read(path, &r, err);
+    if (rc != GLINT_OK)
+        return rc;
+    int n = 0;
+    for (size_t i = 0; i < r.note_len; i++)
+        n += r.note[i] == '\0';
+    if (n < 2 || r.note[r.note_len - 1] != '\0') {
+        glint_resume_free(&r);
+        snprintf(err->msg, sizeof err->msg, "%s: resume file keeps no command line", path);
+        return err->code = GLINT_ERR_INPUT;
+    }
+    /* pointers first, then the strings, in one block */
+    char **v = malloc((size_t)n * sizeof *v + r.note_len);
+    if (!v) {
+        glint_resume_free(&r);
+        snprintf(err->msg, sizeof err->msg, "out of memory");
+        return err->code = GLINT_ERR_NOMEM;
+    }
+    char *text = (char *)(v + n);
+    memcpy(text, r.note, r.note_len);
+    glint_resume_free(&r);
+    if (*text && chdir(text) != 0) {
+        snprintf(err->msg, sizeof err->msg, "%s: cannot return to the folder '%s': %s", path, text,
+                 strerror(errno));
+        free(v);
+        return err->code = GLINT_ERR_INPUT;
+    }
+    char *at = text + strlen(text) + 1;
+    for (int i = 0; i < n - 1; i++, at += strlen(at) + 1)
+        v[i] = at;
+    v[n - 1] = NULL;
+    *argc = n - 1;
+    *argv = v;
+    return GLINT_OK;
+}
+
+/* The record to render into: fresh, or read from rpath with --resume. */
+static glint_rc prepare(const struct cli *c, const glint_scene *scene, const glint_settings *s,
+                        const char *rpath, glint_resume *rec, bool *resumed, glint_error *err)
+{
+    *resumed = false;
+    if (c->resume && rpath && access(rpath, F_OK) == 0) {
+        glint_rc rc = glint_resume_read(rpath, rec, err);
+        if (rc != GLINT_OK)
+            return rc;
+        rc = glint_resume_check(rec, scene, s, err);
+        if (rc != GLINT_OK) {
+            char msg[sizeof err->msg];
+            snprintf(msg, sizeof msg, "%s", err->msg);
+            snprintf(err->msg, sizeof err->msg, "%.500s: %.500s", rpath, msg);
+            glint_resume_free(rec);
+            return rc;
+        }
+        *resumed = true;
+        return set_note(rec, c, err);
+    }
+    if (c->resume && !c->quiet)
+        fprintf(stderr, "glint: no resume file %s; rendering from the start\n",
+                rpath ? rpath : "for standard output");
+    glint_rc rc = glint_resume_init(rec, scene, s, err);
+    if (rc == GLINT_OK)
+        rc = set_note(rec, c, err);
+    return rc;
+}
+
+static void on_progress(void *user, const glint_progress *p) { progress_update(user, p); }
+
+static int on_cancel(void *user)
+{
+    (void)user;
+    return signals_caught() != 0;
+}
+
+/* Interrupted: keeps the finished tiles beside the output. */
+static int keep(const struct cli *c, const glint_resume *rec, const char *rpath)
+{
+    int code = signals_exit_code(signals_caught());
+    int done = glint_resume_done(rec);
+    if (!rpath) {
+        fprintf(stderr, "glint: interrupted; nothing kept (the output is standard output)\n");
+        return code;
+    }
+    glint_error err = {0};
+    if (glint_resume_write(rec, rpath, &err) != GLINT_OK) {
+        fprintf(stderr, "glint: interrupted; cannot keep the render: %s\n", err.msg);
+        return code;
+    }
+    (void)c;
+    fprintf(stderr, "glint: interrupted at %d%%; kept in %s (continue with: glint --resume %s)\n",
+            (int)(100.0 * done / rec->ntiles), rpath, rpath);
+    return code;
+}
+
+typedef struct times {
+    double load, render, write;
+} times;
+
+static void print_stats(const glint_scene *scene, const glint_settings *s, const glint_stats *st,
+                        const times *t)
+{
+    glint_scene_info info = {0};
+    glint_scene_describe(scene, &info, NULL);
+    uint64_t total = st->primary_rays + st->secondary_rays + st->shadow_rays;
+    int threads = s->threads > 0 ? s->threads : glint_default_threads();
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    fprintf(stderr,
+            "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
+            "scene:   %d objects, %llu triangles, %d lights, %d meshes\n"
+            "time:    load %.3f s (build %.3f s), render %.3f s, write %.3f s\n"
+            "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
+            "speed:   %.2f Mrays/s\n"
+            "memory:  %.1f MiB peak\n",
+            s->width, s->height, s->samples, s->max_depth, threads, threads == 1 ? "" : "s",
+            info.objects, (unsigned long long)info.triangles, info.lights, info.meshes, t->load,
+            info.build_seconds, t->render, t->write, (unsigned long long)total,
+            (unsigned long long)st->primary_rays, (unsigned long long)st->secondary_rays,
+            (unsigned long long)st->shadow_rays,
+            st->seconds > 0 ? (double)total / st->seconds * 1e-6 : 0.0,
+            (double)ru.ru_maxrss / 1024.0);
+}
+
+/* Writes the finished image, with its phase on the progress line. */
+static glint_rc write_image(const struct cli *c, const glint_settings *s, const glint_film *film,
+                            progress *bar, double *seconds, glint_error *err)
+{
+    double t0 = cli_now();
+    char what[600];
+    snprintf(what, sizeof what, "writing %s\xe2\x80\xa6", c->output);
+    progress_phase(bar, what);
+    glint_write_options w = c->write;
+    w.transfer = s->transfer;
+    glint_rc rc = glint_film_write(film, c->output, &w, err);
+    progress_clear(bar);
+    *seconds = cli_now() - t0;
+    return rc;
+}
+
+static int finish(glint_rc rc, const glint_error *err, glint_scene *scene, glint_resume *rec,
+                  char *rpath)
+{
+    if (rc != GLINT_OK)
+        fprintf(stderr, "glint: %s\n", err->msg);
+    glint_resume_free(rec);
+    glint_scene_free(scene);
+    free(rpath);
+    return glint_exit_code(rc);
+}
+
+int batch_main(const struct cli *c)
+{
+    glint_error err = {0};
+    glint_scene *scene = NULL;
+    glint_resume rec = {0};
+    glint_stats stats = {0};
+    glint_settings s;
+    times t = {0};
+    char *rpath = NULL;
+    bool resumed;
+    double t0 = cli_now();
+    glint_rc rc = glint_output_check(c->output, &c->write, &err);
+    if (rc == GLINT_OK)
+        rc = cli_load(c, &scene, &s, &t.load, &err);
+    if (rc == GLINT_OK && !(rpath = batch_resume_path(c->output)) && strcmp(c->output, "-") != 0)
+        rc = GLINT_ERR_NOMEM;
+    if (rc == GLINT_OK)
+        rc = prepare(c, scene, &s, rpath, &rec, &resumed, &err);
+    if (rc != GLINT_OK)
+        return finish(rc, &err, scene, &rec, rpath);
+
+    signals_install();
+    progress bar;
+    progress_begin(&bar, stderr, progress_choose(c->quiet, c->progress, stderr));
+    glint_callbacks cb = {&bar, NULL, on_progress, on_cancel};
+    rc = glint_resume_render(scene, &s, &cb, &rec, &stats, &err);
+    t.render = stats.seconds;
+    progress_end(&bar);
+    if (rc == GLINT_ERR_CANCELLED && signals_caught()) {
+        int code = keep(c, &rec, rpath);
+        finish(GLINT_OK, &err, scene, &rec, rpath);
+        return code;
+    }
+    if (rc == GLINT_OK)
+        rc = write_image(c, &s, &rec.film, &bar, &t.write, &err);
+    if (rc != GLINT_OK)
+        return finish(rc, &err, scene, &rec, rpath);
+    if (resumed)
+        unlink(rpath);
+    if (!c->quiet)
+        fprintf(stderr, "wrote %s (%dx%d, %.1f s)\n", c->output, s.width, s.height,
+                cli_now() - t0);
+    if (c->stats)
+        print_stats(scene, &s, &stats, &t);
+    return finish(GLINT_OK, &err, scene, &rec, rpath);
+}

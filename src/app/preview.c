@@ -1,0 +1,3 @@
+#include "cli.h"
+
+int preview_main(const struct cli *c) { return batch_main(c); }
