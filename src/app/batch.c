@@ -5,6 +5,7 @@
 #include "batch.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -116,7 +117,40 @@ static glint_rc prepare(const struct cli *c, const glint_scene *scene, const gli
     return rc;
 }
 
-static void on_progress(void *user, const glint_progress *p) { progress_update(user, p); }
+/* What the render's callbacks share. */
+typedef struct watch {
+    progress bar;
+    int tiles;              /* finished so far */
+    int hook_sig[2], hook_at[2]; /* test hook: raise sig once `at` tiles are done */
+} watch;
+
+static void on_progress(void *user, const glint_progress *p)
+{
+    progress_update(&((watch *)user)->bar, p);
+}
+
+/* GLINT_TEST_SIGNALS="SIG@N[,SIG@M]" raises signal SIG (a number) after
+ * the N-th finished tile: the tests interrupt renders at chosen points
+ * through the real handlers. */
+static void hook_parse(watch *w)
+{
+    const char *e = getenv("GLINT_TEST_SIGNALS");
+    for (int i = 0; i < 2; i++)
+        w->hook_sig[i] = 0;
+    if (e)
+        sscanf(e, "%d@%d,%d@%d", &w->hook_sig[0], &w->hook_at[0], &w->hook_sig[1],
+               &w->hook_at[1]);
+}
+
+static void on_tile(void *user, const glint_film *f, int x0, int y0, int x1, int y1)
+{
+    (void)f, (void)x0, (void)y0, (void)x1, (void)y1;
+    watch *w = user;
+    w->tiles++;
+    for (int i = 0; i < 2; i++)
+        if (w->hook_sig[i] && w->tiles == w->hook_at[i])
+            raise(w->hook_sig[i]);
+}
 
 static int on_cancel(void *user)
 {
@@ -222,19 +256,20 @@ int batch_main(const struct cli *c)
         return finish(rc, &err, scene, &rec, rpath);
 
     signals_install();
-    progress bar;
-    progress_begin(&bar, stderr, progress_choose(c->quiet, c->progress, stderr));
-    glint_callbacks cb = {&bar, NULL, on_progress, on_cancel};
+    watch w = {0};
+    hook_parse(&w);
+    progress_begin(&w.bar, stderr, progress_choose(c->quiet, c->progress, stderr));
+    glint_callbacks cb = {&w, on_tile, on_progress, on_cancel};
     rc = glint_resume_render(scene, &s, &cb, &rec, &stats, &err);
     t.render = stats.seconds;
-    progress_end(&bar);
+    progress_end(&w.bar);
     if (rc == GLINT_ERR_CANCELLED && signals_caught()) {
         int code = keep(c, &rec, rpath);
         finish(GLINT_OK, &err, scene, &rec, rpath);
         return code;
     }
     if (rc == GLINT_OK)
-        rc = write_image(c, &s, &rec.film, &bar, &t.write, &err);
+        rc = write_image(c, &s, &rec.film, &w.bar, &t.write, &err);
     if (rc != GLINT_OK)
         return finish(rc, &err, scene, &rec, rpath);
     if (resumed)
