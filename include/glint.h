@@ -122,6 +122,14 @@ typedef struct glint_scene_info {
 GLINT_API glint_rc glint_scene_describe(const glint_scene *scene, glint_scene_info *out,
                                         glint_error *err);
 
+/* The files on disk a loaded scene was read from: the scene file, the files
+ * it includes, texture images and meshes, each once, as the loader opened
+ * them (relative to the working folder when the scene's path was). A
+ * watcher re-loads when one changes. None for the built-in scene. */
+GLINT_API int glint_scene_source_count(const glint_scene *scene);
+/* Source i (0 <= i < count), owned by the scene; NULL when out of range. */
+GLINT_API const char *glint_scene_source(const glint_scene *scene, int i);
+
 /* ---- camera -------------------------------------------------------------- */
 
 typedef enum glint_projection {
@@ -414,12 +422,19 @@ GLINT_API void glint_accum_clear(glint_accum *a);
 GLINT_API glint_rc glint_render_pass(const glint_scene *scene, const glint_settings *settings,
                                      int upto, const glint_callbacks *callbacks, glint_accum *a,
                                      glint_stats *stats, glint_error *err);
-/* Writes the mean of each tile's samples into film (image-sized, allocated
- * by the caller); tiles with no sample are not touched. Once every tile has
+/* Writes the mean of each pixel's samples into film (image-sized,
+ * allocated by the caller), for the pixels of rect (NULL: all); pixels of
+ * tiles with no sample are not touched. Once every tile has
  * settings.samples, film is byte-identical to glint_render's. *min_samples
  * (may be NULL) is the fewest samples per pixel of any tile. */
-GLINT_API glint_rc glint_accum_resolve(const glint_accum *a, glint_film *film, int *min_samples,
-                                       glint_error *err);
+GLINT_API glint_rc glint_accum_resolve(const glint_accum *a, const glint_rect *rect,
+                                       glint_film *film, int *min_samples, glint_error *err);
+
+/* The 8-bit RGB pixels glint_film_write puts in an 8-bit file, for the
+ * pixels of rect (NULL: all): dst holds film.width * film.height * 3 bytes,
+ * row 0 at the top, and only rect's are written. For showing a film. */
+GLINT_API glint_rc glint_film_quantize(const glint_film *film, const glint_rect *rect,
+                                       glint_transfer transfer, uint8_t *dst, glint_error *err);
 
 /* ---- resume files ----------------------------------------------------------
  * An interrupted render kept on disk, to be finished later into the

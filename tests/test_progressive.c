@@ -59,7 +59,7 @@ static void passes_match_batch(int samples, const int *passes, int npasses, int 
         glint_stats stats;
         OK(glint_render_pass(s, &st, passes[i], NULL, &a, &stats, &err));
         int least;
-        OK(glint_accum_resolve(&a, &film, &least, &err));
+        OK(glint_accum_resolve(&a, NULL, &film, &least, &err));
         cr_expect_eq(least, passes[i]);
     }
     size_t n = (size_t)st.width * (size_t)st.height * 3 * sizeof(float);

@@ -19,3 +19,10 @@ glint_rc glint_scene_describe(const glint_scene *s, glint_scene_info *out, glint
     }
     return GLINT_OK;
 }
+
+int glint_scene_source_count(const glint_scene *s) { return s ? s->nsources : 0; }
+
+const char *glint_scene_source(const glint_scene *s, int i)
+{
+    return s && i >= 0 && i < s->nsources ? s->sources[i] : NULL;
+}

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "api/check.h"
+#include "io/image.h"
 #include "render/progressive.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -64,8 +65,20 @@ glint_rc glint_render_pass(const glint_scene *sc, const glint_settings *settings
     return render_run(sc, settings, cb, &w, &none, stats, err);
 }
 
-glint_rc glint_accum_resolve(const glint_accum *a, glint_film *film, int *min_samples,
-                             glint_error *err)
+/* rect, or the whole image for NULL; GLINT_ERR_INPUT when not inside it. */
+static glint_rc whole_or(const glint_rect *rect, int w, int h, glint_rect *out, const char *fn,
+                         glint_error *err)
+{
+    *out = rect ? *rect : (glint_rect){0, 0, w, h};
+    if (out->x0 < 0 || out->y0 < 0 || out->x1 > w || out->y1 > h || out->x0 >= out->x1 ||
+        out->y0 >= out->y1)
+        return api_bad(err, fn, "rect [%d, %d) x [%d, %d) is empty or not inside the %dx%d image",
+                       out->x0, out->x1, out->y0, out->y1, w, h);
+    return GLINT_OK;
+}
+
+glint_rc glint_accum_resolve(const glint_accum *a, const glint_rect *rect, glint_film *film,
+                             int *min_samples, glint_error *err)
 {
     if (!a || !film || !film->rgb)
         return api_null(err, __func__, !a ? "a" : !film ? "film" : "film->rgb");
@@ -74,8 +87,31 @@ glint_rc glint_accum_resolve(const glint_accum *a, glint_film *film, int *min_sa
     if (film->width != a->width || film->height != a->height)
         return api_bad(err, __func__, "film is %dx%d; it must be %dx%d", film->width,
                        film->height, a->width, a->height);
-    progressive_resolve(a, film);
+    glint_rect g;
+    glint_rc rc = whole_or(rect, a->width, a->height, &g, __func__, err);
+    if (rc != GLINT_OK)
+        return rc;
+    progressive_resolve(a, g, film);
     if (min_samples)
         *min_samples = progressive_min_samples(a);
+    return GLINT_OK;
+}
+
+glint_rc glint_film_quantize(const glint_film *film, const glint_rect *rect,
+                             glint_transfer transfer, uint8_t *dst, glint_error *err)
+{
+    if (!film || !film->rgb || !dst)
+        return api_null(err, __func__, !film ? "film" : !dst ? "dst" : "film->rgb");
+    if ((unsigned)transfer > GLINT_TRANSFER_SRGB)
+        return api_bad(err, __func__, "transfer must be none or srgb (got %d)", (int)transfer);
+    glint_rect g;
+    glint_rc rc = whole_or(rect, film->width, film->height, &g, __func__, err);
+    if (rc != GLINT_OK)
+        return rc;
+    size_t n = (size_t)(g.x1 - g.x0) * 3;
+    for (int y = g.y0; y < g.y1; y++) {
+        size_t at = ((size_t)y * (size_t)film->width + (size_t)g.x0) * 3;
+        image_quantize(film->rgb + at, n, transfer, dst + at);
+    }
     return GLINT_OK;
 }

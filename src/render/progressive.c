@@ -59,7 +59,7 @@ uint64_t progressive_tile(glint_accum *a, int tile, int upto, const camera_frame
     return (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(upto - k0);
 }
 
-void progressive_resolve(const glint_accum *a, glint_film *film)
+void progressive_resolve(const glint_accum *a, glint_rect g, glint_film *film)
 {
     for (int t = 0; t < a->ntiles; t++) {
         int m = a->tile_samples[t];
@@ -67,8 +67,12 @@ void progressive_resolve(const glint_accum *a, glint_film *film)
             continue;
         float inv = 1.0f / (float)m;
         glint_rect r = render_tile_rect(a->width, a->height, t);
-        for (int y = r.y0; y < r.y1; y++)
-            for (int x = r.x0; x < r.x1; x++) {
+        if (r.x1 <= g.x0 || r.x0 >= g.x1 || r.y1 <= g.y0 || r.y0 >= g.y1)
+            continue;
+        int x0 = r.x0 > g.x0 ? r.x0 : g.x0, x1 = r.x1 < g.x1 ? r.x1 : g.x1;
+        int y0 = r.y0 > g.y0 ? r.y0 : g.y0, y1 = r.y1 < g.y1 ? r.y1 : g.y1;
+        for (int y = y0; y < y1; y++)
+            for (int x = x0; x < x1; x++) {
                 size_t at = ((size_t)y * (size_t)a->width + (size_t)x) * 3;
                 for (int c = 0; c < 3; c++)
                     film->rgb[at + (size_t)c] = a->sum[at + (size_t)c] * inv;

@@ -23,8 +23,9 @@ uint64_t progressive_samples_left(const glint_accum *a, int upto);
  * grid; returns the samples traced. */
 uint64_t progressive_tile(glint_accum *a, int tile, int upto, const camera_frame *f, int n,
                           trace_ctx *ctx, glint_rect r);
-/* film = sum / samples, per tile; tiles with no sample yet are left as they are. */
-void progressive_resolve(const glint_accum *a, glint_film *film);
+/* film = sum / samples over rect, per tile; tiles with no sample yet are
+ * left as they are. */
+void progressive_resolve(const glint_accum *a, glint_rect rect, glint_film *film);
 /* The fewest samples per pixel of any tile. */
 int progressive_min_samples(const glint_accum *a);
 

@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "core/array.h"
@@ -40,6 +41,9 @@ void scene_free(scene *s)
         free(s->meshes[i]);
     }
     free(s->meshes);
+    for (int i = 0; i < s->nsources; i++)
+        free(s->sources[i]);
+    free(s->sources);
     free(s);
 }
 
@@ -55,6 +59,22 @@ int scene_add_material(scene *s, const material *m) { PUSH(s->materials, s->nmat
 int scene_add_texture(scene *s, const texture *t) { PUSH(s->textures, s->ntextures, s->cap_textures, *t); }
 int scene_add_light(scene *s, const light *l) { PUSH(s->lights, s->nlights, s->cap_lights, *l); }
 int scene_add_xform(scene *s, const xform *x) { PUSH(s->xforms, s->nxforms, s->cap_xforms, *x); }
+
+int scene_add_source(scene *s, const char *path)
+{
+    for (int i = 0; i < s->nsources; i++)
+        if (strcmp(s->sources[i], path) == 0)
+            return i;
+    char *copy = strdup(path);
+    if (!copy)
+        return -1;
+    int i = array_push((void **)&s->sources, &s->nsources, &s->cap_sources, sizeof *s->sources);
+    if (i < 0)
+        free(copy);
+    else
+        s->sources[i] = copy;
+    return i;
+}
 
 int scene_add_image(scene *s, image *img)
 {

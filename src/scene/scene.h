@@ -53,6 +53,8 @@ struct glint_scene {
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
     double build_seconds; /* wall time of the last scene_build */
+    char **sources;       /* files the scene was read from, each once (front ends add them) */
+    int nsources, cap_sources;
 };
 
 typedef struct glint_scene scene;
@@ -90,6 +92,10 @@ int scene_material_count(const scene *s);
 int scene_texture_count(const scene *s);
 int scene_mesh_count(const scene *s);
 const struct mesh *scene_mesh(const scene *s, int index);
+
+/* Records a file the scene was read from (a scene file, an include, a
+ * texture, a mesh), once however often it is added; -1 when out of memory. */
+int scene_add_source(scene *s, const char *path);
 
 /* Checks indices and computes derived data; call after the last add. */
 glint_rc scene_build(scene *s, glint_error *err);
