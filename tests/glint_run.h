@@ -14,7 +14,7 @@
 
 /* Runs `env glint args` (shell fragments; env may be "") in dir; returns
  * the exit code and fills out with stdout and stderr. */
-static int glint_run(const char *env, const char *args, char *out, size_t outlen)
+static inline int glint_run(const char *env, const char *args, char *out, size_t outlen)
 {
     const char *bin = getenv("GLINT_BIN");
     cr_assert_not_null(bin, "GLINT_BIN must name the glint binary");
@@ -33,7 +33,7 @@ static int glint_run(const char *env, const char *args, char *out, size_t outlen
     return WEXITSTATUS(status);
 }
 
-static bool dir_has(const char *name)
+static inline bool dir_has(const char *name)
 {
     char path[512];
     struct stat st;
@@ -42,7 +42,7 @@ static bool dir_has(const char *name)
 }
 
 /* The whole content of a file in dir; *len its size. Free with free(). */
-static unsigned char *dir_read(const char *name, size_t *len)
+static inline unsigned char *dir_read(const char *name, size_t *len)
 {
     char path[512];
     snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -58,7 +58,7 @@ static unsigned char *dir_read(const char *name, size_t *len)
     return data;
 }
 
-static bool dir_same(const char *a, const char *b)
+static inline bool dir_same(const char *a, const char *b)
 {
     size_t na, nb;
     unsigned char *da = dir_read(a, &na), *db = dir_read(b, &nb);
@@ -68,7 +68,7 @@ static bool dir_same(const char *a, const char *b)
     return same;
 }
 
-static void dir_put(const char *name, const char *text)
+static inline void dir_put(const char *name, const char *text)
 {
     char path[512];
     snprintf(path, sizeof path, "%s/%s", dir, name);
