@@ -114,6 +114,61 @@ Test(preview, scripted_orbit_changes_the_picture_and_closes_cleanly)
     image_free(&before);
 }
 
+/* The window's pixels in a screenshot, as an image of their own. */
+static image crop(const image *screen)
+{
+    int x0, y0, w, h;
+    geometry(&x0, &y0, &w, &h);
+    image out = {w, h, malloc((size_t)w * (size_t)h * 3), NULL};
+    for (int y = 0; y < h; y++)
+        memcpy(out.rgb + (size_t)y * (size_t)w * 3,
+               screen->rgb + ((size_t)(y0 + y) * (size_t)screen->width + (size_t)x0) * 3,
+               (size_t)w * 3);
+    return out;
+}
+
+Test(preview, reloads_when_an_included_file_changes_and_keeps_the_image_on_errors)
+{
+    dir_put("scene.yaml", "image: {width: 96, height: 64}\n"
+                          "camera: {eye: [0, 1, 6], look_at: [0, 0.5, 0], fov: 50}\n"
+                          "include: parts.yaml\n"
+                          "lights: [{type: point, position: [4, 6, 5]}]\n");
+    dir_put("parts.yaml", "objects: [{type: sphere, center: [0, 0.5, 0], radius: 1, "
+                          "material: {color: [0.9, 0.1, 0.1]}}]\n");
+    dir_put("blue.yaml", "objects: [{type: sphere, center: [0, 0.5, 0], radius: 1, "
+                         "material: {color: [0.1, 0.1, 0.9]}}]\n");
+    dir_put("wrong.yaml", "objects: [{type: sphere, center: [0, 0.5, 0], radius: -1}]\n");
+    const char *args = "EDIT1='cp blue.yaml parts.yaml' EDIT2='cp wrong.yaml parts.yaml'";
+    const char *bin = getenv("GLINT_BIN");
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "%s '%s/tests/xvfb-preview.sh' watch '%s' '%s%s%s' scene.yaml -o w.png",
+             args, GLINT_SOURCE_DIR, dir, bin[0] == '/' ? "" : GLINT_SOURCE_DIR,
+             bin[0] == '/' ? "" : "/", bin);
+    cr_assert_eq(system(cmd), 0, "%s", cmd);
+    cr_expect_eq(exit_code(), 0);
+    image s1 = load("screen1.ppm"), s2 = load("screen2.ppm"), s3 = load("screen3.ppm");
+    image red = crop(&s1), blue = crop(&s2);
+    int w = red.width, h = red.height;
+    cr_expect_gt(window_differs(&s2, &red), w * h / 20, "the colour change shows");
+    cr_expect_eq(window_differs(&s3, &blue), 0, "a scene with errors keeps the last image");
+    /* the centre pixel went from red to blue */
+    const unsigned char *c1 = red.rgb + ((size_t)(h / 2) * (size_t)w + (size_t)(w / 2)) * 3;
+    const unsigned char *c2 = blue.rgb + ((size_t)(h / 2) * (size_t)w + (size_t)(w / 2)) * 3;
+    cr_expect(c1[0] > c1[2] && c2[2] > c2[0], "centre %d,%d,%d then %d,%d,%d", c1[0], c1[1], c1[2],
+              c2[0], c2[1], c2[2]);
+    size_t n;
+    char *log = (char *)dir_read("log", &n);
+    cr_expect(strstr(log, "glint: reloaded scene.yaml\n"), "%s", log);
+    cr_expect(strstr(log, "glint: parts.yaml:1:"), "the error names the file: %s", log);
+    cr_expect(strstr(log, "radius must be > 0"), "%s", log);
+    free(log);
+    image_free(&s1);
+    image_free(&s2);
+    image_free(&s3);
+    image_free(&red);
+    image_free(&blue);
+}
+
 Test(preview, without_a_display_renders_to_the_file)
 {
     char out[4096];

@@ -3,6 +3,9 @@
 # Usage: tests/xvfb-preview.sh MODE DIR GLINT [glint options...]
 #   final  glint -p --exit-when-done: screenshot of the final image, then close
 #   orbit  glint -p: screenshot, a left-drag orbit, screenshot, P, Esc
+#   watch  glint -p: screenshot, runs $EDIT1 (a change to the scene's files),
+#          screenshot of the reloaded scene, runs $EDIT2 (a mistake), waits
+#          for the error line, screenshot, Esc
 # Leaves in DIR: log (glint's stderr), out (its stdout), code (its exit
 # status), geometry (window X Y W H), screen1.ppm [screen2.ppm].
 set -u
@@ -28,6 +31,7 @@ wait_log() {
 }
 
 shot() {
+    sleep 0.2
     xwd -root -silent | xwdtopnm > "$1" 2> /dev/null
 }
 
@@ -65,6 +69,23 @@ orbit)
     shot screen2.ppm
     xdotool key p
     sleep 0.3
+    xdotool key Escape
+    ;;
+watch)
+    GLINT_TEST_REPORT=1 "$glint" -p "$@" > out 2> log &
+    pid=$!
+    wait_log 1 'preview: final image'
+    geometry
+    shot screen1.ppm
+    sleep 1.1 # a new modification time even on coarse clocks
+    sh -c "$EDIT1"
+    wait_log 2 'preview: final image'
+    shot screen2.ppm
+    sleep 1.1
+    sh -c "$EDIT2"
+    wait_log 1 'glint: .*yaml:'
+    sleep 0.5
+    shot screen3.ppm
     xdotool key Escape
     ;;
 esac

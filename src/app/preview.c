@@ -27,6 +27,7 @@ typedef struct window {
     SDL_Texture *tex;
     int shown_w, shown_h;  /* window size in screen pixels */
     double last_title, last_watch, reload_at;
+    unsigned reported;     /* the last final image reported (GLINT_TEST_REPORT) */
     bool left, right;      /* mouse buttons held */
 } window;
 
@@ -194,6 +195,9 @@ static void draw(preview *p, window *w)
         SDL_UpdateTexture(w->tex, NULL, p->pixels, p->width * 3);
         p->dirty = false;
     }
+    bool final = p->final;
+    unsigned final_gen = p->final_gen;
+    int spp = p->spp;
     char title[160];
     if (t - w->last_title > 0.5 || dirty) {
         int total = p->settings.samples;
@@ -215,6 +219,11 @@ static void draw(preview *p, window *w)
         SDL_RenderClear(w->ren);
         SDL_RenderCopy(w->ren, w->tex, NULL, NULL);
         SDL_RenderPresent(w->ren);
+    }
+    /* the final image is on the screen now: the tests take their shot */
+    if (final && p->report && final_gen != w->reported) {
+        w->reported = final_gen;
+        fprintf(stderr, "preview: final image %u, %d samples per pixel\n", final_gen, spp);
     }
 }
 

@@ -157,8 +157,6 @@ static void render_once(preview *p, glint_accum *a, glint_film *film)
         p->final = rc == GLINT_OK && !moving;
         if (p->final)
             p->final_gen = gen;
-        if (p->final && p->report)
-            fprintf(stderr, "preview: final image %u, %d samples per pixel\n", gen, p->spp);
     }
 }
 
