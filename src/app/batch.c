@@ -158,11 +158,22 @@ static int on_cancel(void *user)
     return signals_caught() != 0;
 }
 
+/* Percent of the image's pixels in final tiles. */
+static double record_percent(const glint_resume *r)
+{
+    uint64_t done = 0;
+    for (int i = 0; i < r->ntiles; i++) {
+        glint_rect t;
+        if (r->done[i] && glint_tile_rect(&r->settings, i, &t, NULL) == GLINT_OK)
+            done += (uint64_t)(t.x1 - t.x0) * (uint64_t)(t.y1 - t.y0);
+    }
+    return 100.0 * (double)done / ((double)r->settings.width * (double)r->settings.height);
+}
+
 /* Interrupted: keeps the finished tiles beside the output. */
 static int keep(const struct cli *c, const glint_resume *rec, const char *rpath)
 {
     int code = signals_exit_code(signals_caught());
-    int done = glint_resume_done(rec);
     if (!rpath) {
         fprintf(stderr, "glint: interrupted; nothing kept (the output is standard output)\n");
         return code;
@@ -174,7 +185,7 @@ static int keep(const struct cli *c, const glint_resume *rec, const char *rpath)
     }
     (void)c;
     fprintf(stderr, "glint: interrupted at %d%%; kept in %s (continue with: glint --resume %s)\n",
-            (int)(100.0 * done / rec->ntiles), rpath, rpath);
+            (int)record_percent(rec), rpath, rpath);
     return code;
 }
 
@@ -259,6 +270,7 @@ int batch_main(const struct cli *c)
     watch w = {0};
     hook_parse(&w);
     progress_begin(&w.bar, stderr, progress_choose(c->quiet, c->progress, stderr));
+    w.bar.base = record_percent(&rec);
     glint_callbacks cb = {&w, on_tile, on_progress, on_cancel};
     rc = glint_resume_render(scene, &s, &cb, &rec, &stats, &err);
     t.render = stats.seconds;

@@ -19,7 +19,7 @@ progress_mode progress_choose(bool quiet, bool forced, FILE *out)
 
 void progress_begin(progress *p, FILE *out, progress_mode mode)
 {
-    *p = (progress){out, mode, 0, 0, cli_now(), 0.0, -1, false};
+    *p = (progress){out, mode, 0, 0, cli_now(), 0.0, -1, 0.0, false};
 }
 
 void progress_duration(double s, char *buf, size_t size)
@@ -37,10 +37,11 @@ static void describe(const progress *p, const glint_progress *g, char *buf, size
 {
     char elapsed[32], left[48] = "";
     progress_duration(g->seconds, elapsed, sizeof elapsed);
-    if (g->percent >= PROGRESS_ETA_AFTER && g->percent < 100.0) {
+    /* the rate of this run: a resumed render starts part way */
+    double run = g->percent - p->base;
+    if (run >= PROGRESS_ETA_AFTER && g->percent < 100.0) {
         char d[32];
-        double done = g->percent / 100.0;
-        progress_duration(g->seconds * (1.0 - done) / done, d, sizeof d);
+        progress_duration(g->seconds * (100.0 - g->percent) / run, d, sizeof d);
         snprintf(left, sizeof left, ", %s left", d);
     }
     double mrays = g->seconds > 0 ? (double)g->rays / g->seconds * 1e-6 : 0.0;

@@ -29,6 +29,7 @@ typedef struct progress {
     int frame, frames; /* frames > 1: "frame k of N" */
     double start, last_draw;
     int last_percent;
+    double base; /* percent done before this run (a resumed render); set by the caller */
     bool open; /* a bar line is drawn without its newline */
 } progress;
 
