@@ -41,7 +41,8 @@ static inline bool dir_has(const char *name)
     return stat(path, &st) == 0;
 }
 
-/* The whole content of a file in dir; *len its size. Free with free(). */
+/* The whole content of a file in dir, with a NUL after it; *len its size.
+ * Free with free(). */
 static inline unsigned char *dir_read(const char *name, size_t *len)
 {
     char path[512];
@@ -54,6 +55,7 @@ static inline unsigned char *dir_read(const char *name, size_t *len)
     unsigned char *data = malloc((size_t)n + 1);
     cr_assert_eq(fread(data, 1, (size_t)n, f), (size_t)n);
     fclose(f);
+    data[n] = '\0'; /* text files read as strings */
     *len = (size_t)n;
     return data;
 }

@@ -267,7 +267,7 @@ static bool window_open(preview *p, window *w)
     w->win = SDL_CreateWindow("glint", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w->shown_w,
                               w->shown_h, SDL_WINDOW_RESIZABLE);
     if (w->win)
-        w->ren = SDL_CreateRenderer(w->win, -1, 0);
+        w->ren = SDL_CreateRenderer(w->win, -1, SDL_RENDERER_SOFTWARE);
     if (w->ren)
         w->tex = SDL_CreateTexture(w->ren, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
                                    p->width, p->height);
