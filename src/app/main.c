@@ -120,6 +120,22 @@ static int flush_stdout(void)
     return 0;
 }
 
+/* The options without a value; false for any other. */
+static bool set_flag(struct cli *c, int opt)
+{
+    bool *flag = opt == OPT_STATS            ? &c->stats
+                 : opt == 'q'                ? &c->quiet
+                 : opt == OPT_PROGRESS       ? &c->progress
+                 : opt == OPT_RESUME         ? &c->resume
+                 : opt == 'p'                ? &c->preview
+                 : opt == OPT_EXIT_WHEN_DONE ? &c->exit_when_done
+                 : opt == OPT_PREVIEW_BENCH  ? &c->preview_bench
+                                             : NULL;
+    if (flag)
+        *flag = true;
+    return flag != NULL;
+}
+
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
@@ -129,6 +145,8 @@ static int parse_args(int argc, char **argv, struct cli *c)
     optind = 0; /* parsing may run twice: again for a resume file's arguments */
     int opt;
     while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:pqhV", long_options, NULL)) != -1) {
+        if (set_flag(c, opt))
+            continue;
         switch (opt) {
         case 'o':
             c->output = optarg;
@@ -171,27 +189,6 @@ static int parse_args(int argc, char **argv, struct cli *c)
         case OPT_BITS:
             if (!parse_int(optarg, 8, 32, &c->write.bits))
                 return usage_error("--bits: expected 8, 16 or 32, got '%s'", optarg);
-            break;
-        case OPT_STATS:
-            c->stats = true;
-            break;
-        case 'q':
-            c->quiet = true;
-            break;
-        case OPT_PROGRESS:
-            c->progress = true;
-            break;
-        case OPT_RESUME:
-            c->resume = true;
-            break;
-        case 'p':
-            c->preview = true;
-            break;
-        case OPT_EXIT_WHEN_DONE:
-            c->exit_when_done = true;
-            break;
-        case OPT_PREVIEW_BENCH:
-            c->preview_bench = true;
             break;
         case 'h':
             fputs(usage, stdout);
