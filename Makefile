@@ -124,8 +124,11 @@ $(APP_OBJ): CPPFLAGS += $(SDL_CFLAGS)
 $(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(SDL_LIBS)
 
+# The library's allocations pass through tests/test_alloc.c, which makes
+# each fail in turn.
+TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
 $(BUILD)/tests: $(TEST_OBJ) $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
 

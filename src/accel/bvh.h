@@ -7,8 +7,9 @@
  * The build is the binned surface-area-heuristic build of Wald, "On fast
  * Construction of SAH-based Bounding Volume Hierarchies" (IEEE RT 2007),
  * with 32 bins on each of the three axes.
- * Traversal lives with the primitives it tests (scene.c for objects), using
- * bvh_node_hit and the stack depth bound below. */
+ * Rays never traverse this binary tree: bvh4_from_bvh (bvh4.h) collapses
+ * it into the four-wide hierarchy they do traverse, with stacks sized by
+ * the depth bound below. */
 #ifndef GLINT_ACCEL_BVH_H
 #define GLINT_ACCEL_BVH_H
 

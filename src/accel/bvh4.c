@@ -90,8 +90,10 @@ glint_rc bvh4_from_bvh(bvh4 *out, bvh *b, glint_error *err)
     }
     collapse c = {b, NULL, 0, b->nnodes / 2 + 2};
     c.nodes = aligned_alloc(64, sizeof *c.nodes * (size_t)c.cap);
-    if (!c.nodes)
+    if (!c.nodes) {
+        bvh_free(b);
         return err_nomem(err);
+    }
     if (b->nodes[0].count) {
         /* A single leaf: one node with one lane. */
         bvh4_node *n = &c.nodes[0];
@@ -105,6 +107,7 @@ glint_rc bvh4_from_bvh(bvh4 *out, bvh *b, glint_error *err)
         c.nnodes = 1;
     } else if (collapse_node(&c, 0) < 0) {
         free(c.nodes);
+        bvh_free(b);
         return err_nomem(err);
     }
     out->nodes = c.nodes;

@@ -40,7 +40,8 @@ typedef struct bvh4 {
     aabb bounds;
 } bvh4;
 
-/* Collapses b into out, taking over b's primitive array (b is freed). */
+/* Collapses b into out, taking over b's primitive array. b is freed in
+ * every case, failure included. */
 glint_rc bvh4_from_bvh(bvh4 *out, bvh *b, glint_error *err);
 void bvh4_free(bvh4 *b);
 

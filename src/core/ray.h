@@ -6,10 +6,13 @@
  * starts at the hit point pushed along the geometric normal, to the side the
  * ray departs into, by ray_epsilon(p) — a distance relative to the point's
  * magnitude so that float rounding in the hit point cannot put the origin
- * back behind the surface. tmin is then 0. */
+ * back behind the surface. tmin is then 0. A shadow ray that walks on
+ * through a transmitting surface it crossed keeps its origin and moves tmin
+ * past the crossing by the same ray_epsilon distance along the ray. */
 #ifndef GLINT_CORE_RAY_H
 #define GLINT_CORE_RAY_H
 
+#include <stdbool.h>
 #include "vec3.h"
 
 typedef struct ray {
@@ -20,6 +23,9 @@ typedef struct ray {
 #define RAY_EPS_REL 1e-4f
 
 static inline vec3 ray_at(const ray *r, float t) { return v3_madd(r->o, r->d, t); }
+
+/* Whether t lies in the ray's open interval (tmin, tmax); false for NaN. */
+static inline bool ray_in_range(const ray *r, float t) { return t > r->tmin && t < r->tmax; }
 
 static inline float ray_epsilon(vec3 p) { return RAY_EPS_REL * (1.0f + v3_max_abs(p)); }
 

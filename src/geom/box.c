@@ -40,12 +40,12 @@ bool box_intersect(const struct box *s, const ray *r, shape_hit *hit)
         if (tnear > tfar)
             return false;
     }
-    if (tnear > r->tmin && tnear < r->tmax) {
+    if (ray_in_range(r, tnear)) {
         hit->t = tnear;
         hit->part = near_face;
         return true;
     }
-    if (tfar > r->tmin && tfar < r->tmax) {
+    if (ray_in_range(r, tfar)) {
         hit->t = tfar;
         hit->part = far_face;
         return true;

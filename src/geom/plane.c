@@ -8,7 +8,7 @@ bool plane_intersect(const struct plane *s, const ray *r, shape_hit *hit)
     if (dn == 0.0f)
         return false; /* parallel: no hit, or the ray lies in the plane */
     float t = v3_dot(v3_sub(s->point, r->o), s->normal) / dn;
-    if (!(t > r->tmin && t < r->tmax))
+    if (!ray_in_range(r, t))
         return false;
     hit->t = t;
     hit->part = 0;

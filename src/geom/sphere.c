@@ -30,9 +30,9 @@ bool sphere_intersect(const struct sphere *s, const ray *r, shape_hit *hit)
         t1 = t;
     }
     float t = t0;
-    if (!(t > r->tmin && t < r->tmax)) {
+    if (!ray_in_range(r, t)) {
         t = t1;
-        if (!(t > r->tmin && t < r->tmax))
+        if (!ray_in_range(r, t))
             return false;
     }
     hit->t = t;
