@@ -109,11 +109,17 @@ Test(interrupt, a_second_signal_exits_at_once)
 Test(interrupt, kill_from_outside_keeps_a_resume_file)
 {
     char out[4096];
-    /* a render of minutes, stopped after a moment */
-    int code = glint_run("", "-t 2 -r 1000x1000 -s 256 -o big.png 2>&1 & pid=$!; sleep 0.5; "
-                             "kill -INT $pid; wait $pid; exit $?; :",
+    /* a render of minutes, stopped by SIGTERM once its first progress line
+     * shows it rendering (a shell's background job ignores SIGINT); killed
+     * outright should it ever miss the signal (glint_run puts "cd DIR &&"
+     * first: the "true;" ends that list so that only glint runs in the
+     * background) */
+    int code = glint_run("true; timeout -s KILL 120",
+                         "--progress -t 2 -r 1000x1000 -s 256 -o big.png 2> log & pid=$!; "
+                         "i=0; while ! grep -q Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
+                         "i=$((i+1)); done; kill -TERM $pid; wait $pid; c=$?; cat log; exit $c; :",
                          out, sizeof out);
-    cr_expect_eq(code, 130, "%s", out);
+    cr_expect_eq(code, 143, "%s", out);
     cr_expect(strstr(out, "kept in big.png.resume"), "%s", out);
     char path[512];
     snprintf(path, sizeof path, "%s/big.png.resume", dir);
