@@ -84,6 +84,11 @@ typedef struct glint_settings {
     int max_depth;         /* reflection/refraction recursion limit, 0 to 64 */
     int threads;           /* 0: one per core; at most 1024 */
     glint_transfer transfer;
+    /* Adaptive depth control (Hall and Greenberg 1983): a reflected or
+     * transmitted ray whose share of the pixel falls below this is not
+     * traced. 0 to 1; 0 never prunes (the tree of rays then grows as
+     * 2^depth through glass). A scene's default is 1/255. */
+    double adc_bailout;
 } glint_settings;
 
 /* Checks settings for a render: sizes, sample counts, memory limits. */
@@ -99,7 +104,10 @@ typedef struct glint_scene glint_scene;
 /* The assignment's nine-object scene, built. */
 GLINT_API glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
 /* A scene file (YAML, docs/scene-format.md), built; paths in it are
- * relative to its folder. Errors name the file, line and column. */
+ * relative to its folder. Errors name the file, line and column. The scene
+ * and the files it names must be regular files (a FIFO, a device or a
+ * folder is refused before anything is read); "-" and "/dev/stdin" read
+ * standard input to its end, with paths relative to the current folder. */
 GLINT_API glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 /* Frees the scene and everything in it; NULL is fine. */
 GLINT_API void glint_scene_free(glint_scene *scene);
@@ -129,6 +137,15 @@ GLINT_API glint_rc glint_scene_describe(const glint_scene *scene, glint_scene_in
 GLINT_API int glint_scene_source_count(const glint_scene *scene);
 /* Source i (0 <= i < count), owned by the scene; NULL when out of range. */
 GLINT_API const char *glint_scene_source(const glint_scene *scene, int i);
+
+/* What a scene holds, so that a front end can say when something is
+ * missing (no lights: only the ambient term shows; no objects: only the
+ * background). Meshes count the files, objects their instances. */
+typedef struct glint_scene_counts {
+    int objects, lights, materials, textures, meshes;
+} glint_scene_counts;
+GLINT_API glint_rc glint_scene_count(const glint_scene *scene, glint_scene_counts *out,
+                                     glint_error *err);
 
 /* ---- camera -------------------------------------------------------------- */
 
@@ -214,24 +231,50 @@ typedef struct glint_material {
     double tint[3];     /* filters transmitted light and shadows, components >= 0 */
     int texture;        /* -1: none; else an index from glint_scene_add_texture,
                            whose colour multiplies color */
+    double absorption[3]; /* per unit length inside (Beer-Lambert), components >= 0 */
+    double emission[3];   /* light of its own, added unlit; components >= 0 */
+    int fresnel_off;      /* nonzero: reflect and transmit as given at any angle (the
+                             scene format's fresnel: false) */
 } glint_material;
 
 /* Matte white: colour 1, ambient 1, diffuse 1, specular 0, shininess 50,
- * reflect 0, transmit 0, ior 1, tint 1, no texture (the scene format's
- * defaults). */
+ * reflect 0, transmit 0, ior 1, tint 1, no texture, no absorption or
+ * emission, Fresnel on (the scene format's defaults). */
 GLINT_API glint_material glint_material_default(void);
 GLINT_API glint_rc glint_scene_add_material(glint_scene *scene, const glint_material *m,
                                             int *index, glint_error *err);
 
+/* The lights of the scene format (docs/scene-format.md), with the fields
+ * each kind reads. */
 typedef enum glint_light_kind {
-    GLINT_LIGHT_POINT, /* position, colour; no falloff with distance */
+    GLINT_LIGHT_POINT,       /* position, color, attenuation */
+    GLINT_LIGHT_DIRECTIONAL, /* direction, color */
+    GLINT_LIGHT_SPOT,        /* position, look_at, inner_angle, outer_angle, color,
+                                attenuation */
+    GLINT_LIGHT_AREA,        /* position (the centre), edge_u, edge_v, samples, color,
+                                attenuation */
 } glint_light_kind;
 
 typedef struct glint_light {
     glint_light_kind kind;
     double position[3];
     double color[3]; /* carries the intensity; components >= 0, may exceed 1 */
+    /* c, l, q: intensity / (c + l d + q d^2) at distance d; each >= 0.
+     * {1, 0, 0} (and all zero, so that a light set up without it keeps its
+     * meaning) is no falloff. */
+    double attenuation[3];
+    double direction[3];  /* DIRECTIONAL: the way the light travels, not zero */
+    double look_at[3];    /* SPOT: the cone's axis runs from position to here */
+    double inner_angle;   /* SPOT: degrees of full intensity, 0 to < 180 */
+    double outer_angle;   /* SPOT: degrees where it reaches zero, > inner, < 180 */
+    double edge_u[3], edge_v[3]; /* AREA: the rectangle's edges, not zero or parallel */
+    int samples;          /* AREA: N for N x N samples, 1 to 64 */
 } glint_light;
+
+/* The scene format's defaults for a kind: colour 1, no falloff, spot
+ * angles 20 and 30, 4 x 4 area samples; positions, directions and edges
+ * zero. */
+GLINT_API glint_light glint_light_default(glint_light_kind kind);
 
 GLINT_API glint_rc glint_scene_add_light(glint_scene *scene, const glint_light *l, int *index,
                                          glint_error *err);

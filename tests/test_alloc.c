@@ -75,6 +75,11 @@ Test(alloc, scene_of_shapes_and_textures)
     fail_each_allocation(GLINT_SOURCE_DIR "/scenes/shapes.yaml");
 }
 
+Test(alloc, csg_trees_and_polyhedra)
+{
+    fail_each_allocation(GLINT_SOURCE_DIR "/scenes/csg.yaml");
+}
+
 Test(alloc, meshes_and_both_hierarchies)
 {
     fail_each_allocation(GLINT_SOURCE_DIR "/scenes/bunny.yaml");

@@ -22,10 +22,16 @@ static const char scene_yaml[] =
     "lights:\n"
     "  - {type: point, position: [5, 8, 6], color: [1, 0.9, 0.8]}\n"
     "  - {type: point, position: [-6, 4, 3], color: 0.4}\n"
+    "  - {type: spot, position: [4, 6, -2], look_at: [0, 0, 0], inner_angle: 10, outer_angle: 35,\n"
+    "     color: 0.3, attenuation: [1, 0.01, 0.001]}\n"
+    "  - {type: area, position: [0, 6, 2], edge_u: [1, 0, 0], edge_v: [0, 0.5, 1], samples: 2,\n"
+    "     color: 0.3}\n"
+    "  - {type: directional, direction: [1, -1, -1], color: 0.1}\n"
     "materials:\n"
     "  mirror: {color: [0.2, 0.3, 0.9], specular: 1, shininess: 80, reflect: 0.75}\n"
-    "  glass: {specular: 1, shininess: 200, transmit: 0.9, ior: 1.5}\n"
-    "  clear: {color: [0.9, 0.3, 0.2], transmit: 0.5, tint: [1, 0.5, 0.25]}\n"
+    "  glass: {specular: 1, shininess: 200, transmit: 0.9, ior: 1.5, absorption: [0.1, 0.2, 0.3],\n"
+    "          fresnel: false}\n"
+    "  clear: {color: [0.9, 0.3, 0.2], transmit: 0.5, tint: [1, 0.5, 0.25], emission: [0.05, 0, 0]}\n"
     "  matte: {color: [0.5, 0.75, 0.25], ambient: 0.5, diffuse: 0.75}\n"
     "  floor: {texture: {type: checker, even: [0.9, 0.9, 0.8], odd: [0.1, 0.2, 0.3], scale: [0.5, 0.25],\n"
     "          offset: [0.5, 0]}}\n"
@@ -74,26 +80,42 @@ static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255};
     OK(glint_scene_set_settings(s, &st, &err));
     glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
     OK(glint_scene_set_camera(s, &cam, &err));
     OK(glint_scene_set_background(s, (double[3]){0.1, 0.2, 0.3}, &err));
     OK(glint_scene_set_ambient(s, (double[3]){0.25, 0.2, 0.2}, &err));
-    glint_light l1 = {GLINT_LIGHT_POINT, {5, 8, 6}, {1, 0.9, 0.8}};
-    glint_light l2 = {GLINT_LIGHT_POINT, {-6, 4, 3}, {0.4, 0.4, 0.4}};
+    glint_light l1 = {.kind = GLINT_LIGHT_POINT, .position = {5, 8, 6}, .color = {1, 0.9, 0.8}};
+    glint_light l2 = {.kind = GLINT_LIGHT_POINT, .position = {-6, 4, 3}, .color = {0.4, 0.4, 0.4}};
     OK(glint_scene_add_light(s, &l1, NULL, &err));
     OK(glint_scene_add_light(s, &l2, NULL, &err));
+    glint_light spot = {.kind = GLINT_LIGHT_SPOT, .position = {4, 6, -2}, .look_at = {0, 0, 0},
+                         .inner_angle = 10, .outer_angle = 35, .color = {0.3, 0.3, 0.3},
+                         .attenuation = {1, 0.01, 0.001}};
+    OK(glint_scene_add_light(s, &spot, NULL, &err));
+    glint_light area = glint_light_default(GLINT_LIGHT_AREA);
+    area.position[1] = 6, area.position[2] = 2, area.samples = 2;
+    area.edge_u[0] = 1, area.edge_v[1] = 0.5, area.edge_v[2] = 1;
+    area.color[0] = area.color[1] = area.color[2] = 0.3;
+    OK(glint_scene_add_light(s, &area, NULL, &err));
+    glint_light sun = glint_light_default(GLINT_LIGHT_DIRECTIONAL);
+    sun.direction[0] = 1, sun.direction[1] = -1, sun.direction[2] = -1;
+    sun.color[0] = sun.color[1] = sun.color[2] = 0.1;
+    OK(glint_scene_add_light(s, &sun, NULL, &err));
 
     glint_material m = glint_material_default();
-    m = (glint_material){{0.2, 0.3, 0.9}, 1, 1, 1, 80, 0.75, 0, 1, {1, 1, 1}, -1};
+    m = (glint_material){.color = {0.2, 0.3, 0.9}, .ambient = 1, .diffuse = 1, .specular = 1,
+                         .shininess = 80, .reflect = 0.75, .transmit = 0, .ior = 1,
+                         .tint = {1, 1, 1}, .texture = -1};
     int mirror = material(s, m);
     m = glint_material_default();
     m.specular = 1, m.shininess = 200, m.transmit = 0.9, m.ior = 1.5;
+    m.absorption[0] = 0.1, m.absorption[1] = 0.2, m.absorption[2] = 0.3, m.fresnel_off = 1;
     int glass = material(s, m);
     m = glint_material_default();
     m.color[0] = 0.9, m.color[1] = 0.3, m.color[2] = 0.2, m.transmit = 0.5;
-    m.tint[1] = 0.5, m.tint[2] = 0.25;
+    m.tint[1] = 0.5, m.tint[2] = 0.25, m.emission[0] = 0.05;
     int clear = material(s, m);
     m = glint_material_default();
     m.color[0] = 0.5, m.color[1] = 0.75, m.color[2] = 0.25, m.ambient = 0.5, m.diffuse = 0.75;
@@ -425,7 +447,7 @@ Test(api, null_arguments_are_refused)
     glint_rect r = {0, 0, 16, 16};
     int n, tiles[1] = {0};
     glint_material m = glint_material_default();
-    glint_light l = {GLINT_LIGHT_POINT, {0, 0, 0}, {1, 1, 1}};
+    glint_light l = {.kind = GLINT_LIGHT_POINT, .position = {0, 0, 0}, .color = {1, 1, 1}};
     glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}}, 0, NULL, 0};
     double rgb[3] = {0, 0, 0};
     REFUSED(glint_scene_load(NULL, &s, &err), "path is NULL");
@@ -434,6 +456,9 @@ Test(api, null_arguments_are_refused)
     REFUSED(glint_scene_new(NULL, &err), "out is NULL");
     REFUSED(glint_scene_settings(NULL, &st, &err), "scene is NULL");
     REFUSED(glint_scene_settings(s, NULL, &err), "out is NULL");
+    glint_scene_counts counts;
+    REFUSED(glint_scene_count(NULL, &counts, &err), "scene is NULL");
+    REFUSED(glint_scene_count(s, NULL, &err), "out is NULL");
     REFUSED(glint_scene_set_settings(NULL, &st, &err), "scene is NULL");
     REFUSED(glint_scene_set_settings(s, NULL, &err), "settings is NULL");
     REFUSED(glint_settings_check(NULL, &err), "settings is NULL");
@@ -528,8 +553,22 @@ Test(api, values_out_of_range_are_refused)
     REFUSED(glint_scene_add_texture(s, NULL, NULL, &err), "texture is NULL");
     REFUSED(glint_scene_add_mesh(s, NULL, NULL, &err), "path is NULL");
     REFUSED(glint_scene_add_mesh(s, "/nonexistent/m.obj", NULL, &err), "m.obj");
-    glint_light l = {(glint_light_kind)3, {0, 0, 0}, {1, 1, 1}};
+    glint_light l = {.kind = (glint_light_kind)4, .position = {0, 0, 0}, .color = {1, 1, 1}};
     REFUSED(glint_scene_add_light(s, &l, NULL, &err), "kind");
+    l = glint_light_default(GLINT_LIGHT_SPOT);
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "look_at must differ");
+    l.look_at[1] = -1, l.outer_angle = 10;
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "inner_angle < outer_angle");
+    l = glint_light_default(GLINT_LIGHT_AREA);
+    l.edge_u[0] = 1, l.edge_v[0] = 2;
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "parallel");
+    l.edge_v[0] = 0, l.edge_v[2] = 1, l.samples = 65;
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "samples");
+    l = glint_light_default(GLINT_LIGHT_DIRECTIONAL);
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "direction");
+    l = glint_light_default(GLINT_LIGHT_POINT);
+    l.attenuation[1] = -1;
+    REFUSED(glint_scene_add_light(s, &l, NULL, &err), "attenuation");
     REFUSED(glint_scene_set_background(s, (double[3]){0, INFINITY, 0}, &err), "finite");
     glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}}, 0, NULL, 0};
     REFUSED(glint_scene_add_object(s, &o, NULL, &err), "material 0 was not added");
@@ -568,5 +607,29 @@ Test(api, values_out_of_range_are_refused)
     OK(glint_scene_build(s, &err));
     OK(glint_render(s, NULL, NULL, &film, NULL, &err));
     glint_film_free(&film);
+    glint_scene_free(s);
+}
+
+/* What a scene holds, for front ends that warn about a scene without
+ * lights or objects. */
+Test(api, scene_counts)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    glint_scene_counts n;
+    OK(glint_scene_count(s, &n, &err));
+    cr_expect(n.objects == 0 && n.lights == 0 && n.textures == 0 && n.meshes == 0);
+    glint_light l = {.kind = GLINT_LIGHT_POINT, .position = {0, 5, 0}, .color = {1, 1, 1}};
+    OK(glint_scene_add_light(s, &l, NULL, &err));
+    glint_material m = glint_material_default();
+    int mat;
+    OK(glint_scene_add_material(s, &m, &mat, &err));
+    glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, -5}, 1}}, mat, NULL, 0};
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_count(s, &n, &err));
+    cr_expect_eq(n.objects, 2);
+    cr_expect_eq(n.lights, 1);
+    cr_expect_geq(n.materials, 1);
     glint_scene_free(s);
 }

@@ -61,8 +61,27 @@ Test(cli, help_and_version)
 {
     char out[4096];
     cr_expect_eq(run("--help", out, sizeof out), 0);
-    cr_expect(strstr(out, "usage: glint [options] [SCENE.yaml]"), "%s", out);
+    cr_expect(strstr(out, "usage: glint [options] [SCENE.yaml | -]\n"), "%s", out);
     cr_expect(strstr(out, "--resolution WxH"));
+    /* defaults and ranges, where the scene format is documented, what -r
+     * keeps, and the exit status rule */
+    static const char *const says[] = {
+        "samples per pixel, a perfect square from 1 to 1024",
+        "(default: the scene's, else 1)",
+        "recursion limit, 0 to 64",
+        "render threads, 0 to 1024 (default 0: one per core)",
+        "docs/scene-format.md",
+        "the horizontal field of view is kept",
+        "'-': the scene from standard input",
+        "Exit status: 0 success; 1 the render or the output failed",
+        "2 bad usage or bad input: an option, the scene or a file it\nnames, an unreadable one "
+        "included.",
+    };
+    for (size_t i = 0; i < sizeof says / sizeof *says; i++)
+        cr_expect(strstr(out, says[i]), "--help lacks '%s'", says[i]);
+    for (const char *p = out; *p; p++)
+        cr_expect((*p >= ' ' && *p < 127) || *p == '\n', "--help prints byte 0x%02x",
+                  (unsigned char)*p);
     cr_expect_eq(run("-V", out, sizeof out), 0);
     cr_expect_str_eq(out, "glint " GLINT_VERSION "\n");
 }
@@ -113,7 +132,15 @@ Test(cli, bad_options_exit_2_with_one_line)
         {"-r 100", "glint: -r: expected WIDTHxHEIGHT such as 800x600, got '100' (try 'glint --help')\n"},
         {"-r 0x10", "glint: -r: expected WIDTHxHEIGHT such as 800x600, got '0x10' (try 'glint --help')\n"},
         {"-s two", "glint: -s: expected a positive whole number, got 'two' (try 'glint --help')\n"},
-        {"-t -1", "glint: -t: expected a positive whole number, got '-1' (try 'glint --help')\n"},
+        {"-t -1", "glint: -t: expected a whole number >= 0 (0: all cores), got '-1' (try 'glint --help')\n"},
+        /* long options were named through a byte that was no character:
+         * a raw 0x01 for --transfer, a NUL for --stats=1 */
+        {"--transfer", "glint: --transfer needs a value (try 'glint --help')\n"},
+        {"--spp", "glint: --spp needs a value (try 'glint --help')\n"},
+        {"-q -s", "glint: -s needs a value (try 'glint --help')\n"},
+        {"--stats=1", "glint: --stats takes no value (got '--stats=1') (try 'glint --help')\n"},
+        {"--quiet=yes", "glint: --quiet takes no value (got '--quiet=yes') (try 'glint --help')\n"},
+        {"--s 4", "glint: unknown option --s (try 'glint --help')\n"},
         {"--transfer gamma", "glint: --transfer: expected none or srgb, got 'gamma' (try 'glint --help')\n"},
         {"-s 8", "glint: samples per pixel must be a perfect square (1, 4, 9, 16, ...) for the regular grid (got 8)\n"},
         {"-r 40000x10", "glint: resolution 40000x10 is out of range (1 to 32768 per side)\n"},
@@ -307,4 +334,75 @@ Test(cli, every_output_format_by_extension)
         cr_expect_eq(img.height, 16, "%s", files[i]);
         image_free(&img);
     }
+}
+
+/* -t 0 is the library's "one thread per core"; it was refused. */
+Test(cli, zero_threads_means_all_cores)
+{
+    char out[4096];
+    cr_expect_eq(run("-q -r 8x8 -t 0 --stats -o z.ppm", out, sizeof out), 0, "%s", out);
+    char want[64];
+    snprintf(want, sizeof want, "depth 5, %d thread", glint_default_threads());
+    cr_expect(strstr(out, want), "%s", out);
+}
+
+/* A scene without objects or lights renders, with a line saying why the
+ * picture is dark. */
+Test(cli, empty_and_unlit_scenes_are_said)
+{
+    char out[4096];
+    put("empty.yaml", "{}\n");
+    cr_expect_eq(run("-q -r 8x8 empty.yaml -o e.png", out, sizeof out), 0);
+    cr_expect_str_eq(out, "glint: warning: empty.yaml has no objects: the image is the "
+                          "background\n");
+    put("dark.yaml", "objects: [{type: sphere, center: [0, 0, -5], radius: 1}]\n");
+    cr_expect_eq(run("-q -r 8x8 dark.yaml -o d.png", out, sizeof out), 0);
+    cr_expect_str_eq(out, "glint: warning: dark.yaml has no lights: only ambient light shows "
+                          "(add a 'lights' list)\n");
+    cr_expect(exists("e.png") && exists("d.png"));
+    put("empty2.yaml", "# nothing\n");
+    cr_expect_eq(run("-q -r 8x8 empty2.yaml -o e2.png", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: empty2.yaml:1:1: the scene is empty (expected a mapping with "
+                          "keys such as camera, lights and objects)\n");
+}
+
+/* '-' reads the scene from standard input; a FIFO or device named as the
+ * scene is refused at once instead of blocking or being read. */
+Test(cli, scene_from_standard_input_and_no_fifos, .timeout = 60)
+{
+    char out[4096];
+    put("lit.yaml", "image: {width: 6, height: 4}\n"
+                    "lights: [{type: point, position: [0, 5, 0]}]\n"
+                    "objects: [{type: sphere, center: [0, 0, -5], radius: 1}]\n");
+    cr_expect_eq(run("-q -o in.ppm - < lit.yaml", out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "");
+    cr_expect_eq(run_sh("cat lit.yaml | \"$GLINT\" -q -o in2.ppm -", out, sizeof out), 0, "%s",
+                 out);
+    cr_expect_eq(run_sh("echo 'objets: []' | \"$GLINT\" -q -", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: <stdin>:1:1: unknown key 'objets' at the top level (did you "
+                          "mean 'objects'?)\n");
+    cr_expect_eq(run_sh("mkfifo pipe.yaml && \"$GLINT\" -q pipe.yaml", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: pipe.yaml: cannot read scene: not a regular file\n");
+    cr_expect_eq(run("-q /dev/zero", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: /dev/zero: cannot read scene: not a regular file\n");
+}
+
+/* Memory running out inside the mesh importer said "std::bad_alloc" and
+ * exited 2, as if the file were bad: it is out of memory, exit 1. A
+ * 200-byte PLY declaring two billion vertices, under a 400 MB address
+ * space limit (not with AddressSanitizer, which needs terabytes of it). */
+Test(cli, out_of_memory_in_the_mesh_importer_exits_1)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    cr_skip_test("AddressSanitizer cannot run under an address space limit");
+#else
+    char out[4096];
+    put("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
+                    "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n");
+    put("huge.yaml", "objects: [{type: mesh, file: huge.ply}]\n");
+    cr_expect_eq(run_sh("ulimit -v 400000 && \"$GLINT\" -q -r 8x8 huge.yaml", out, sizeof out),
+                 1);
+    cr_expect_str_eq(out, "glint: out of memory\n");
+#endif
 }

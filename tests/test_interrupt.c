@@ -25,7 +25,7 @@ TestSuite(interrupt, .init = setup, .fini = tmpdir_remove);
 /* Percent of the 100x80 image's pixels in its first n tiles. */
 static int percent_after(int n)
 {
-    glint_settings s = {100, 80, 4, 5, 1, GLINT_TRANSFER_NONE};
+    glint_settings s = {.width = 100, .height = 80, .samples = 4, .max_depth = 5, .threads = 1};
     long px = 0;
     for (int t = 0; t < n; t++) {
         glint_rect r;

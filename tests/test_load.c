@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "glint.h"
@@ -19,114 +20,7 @@
 #include "load/load.h"
 #include "scene/scene.h"
 #include "film.h"
-
-#define SCENES GLINT_SOURCE_DIR "/scenes"
-
-/* A file for mem_reader; text NULL makes it unreadable. */
-typedef struct vfile {
-    const char *path;
-    const char *text;
-} vfile;
-
-/* Serves an embedded texture for any path ending in textures/NAME. */
-/* The built-in textures, for paths ending in textures/NAME. */
-static bool asset_for(const char *path, char **data, size_t *size)
-{
-    const char *at = NULL;
-    for (const char *p = strstr(path, "textures/"); p; p = strstr(p + 1, "textures/"))
-        at = p;
-    const unsigned char *bytes;
-    if (!at || !asset_find(at, &bytes, size))
-        return false;
-    *data = malloc(*size);
-    cr_assert_not_null(*data);
-    memcpy(*data, bytes, *size);
-    return true;
-}
-
-static glint_rc mem_reader(void *user, const char *path, char **data, size_t *size,
-                           glint_error *err)
-{
-    for (const vfile *f = user; f && f->path; f++) {
-        if (strcmp(f->path, path) != 0)
-            continue;
-        if (!f->text)
-            return err_set(err, GLINT_ERR_IO, "Permission denied");
-        *size = strlen(f->text);
-        *data = malloc(*size + 1);
-        cr_assert_not_null(*data);
-        memcpy(*data, f->text, *size + 1);
-        return GLINT_OK;
-    }
-    if (asset_for(path, data, size))
-        return GLINT_OK;
-    return err_set(err, GLINT_ERR_IO, "No such file or directory");
-}
-
-/* Files from disk; the built-in textures when scenes/textures/ has not
- * been generated yet (they are the same images). */
-static glint_rc disk_reader(void *user, const char *path, char **data, size_t *size,
-                            glint_error *err)
-{
-    glint_rc rc = scene_read_file(user, path, data, size, err);
-    if (rc != GLINT_OK && asset_for(path, data, size))
-        return GLINT_OK;
-    return rc;
-}
-
-/* Loads a scene file from disk, textures falling back as disk_reader says. */
-static glint_rc load_path(const char *path, scene **out, glint_error *err)
-{
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "%s: %s", path, strerror(errno));
-    static char text[1 << 20];
-    size_t n = fread(text, 1, sizeof text, f);
-    fclose(f);
-    cr_assert_lt(n, sizeof text);
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s", path);
-    *strrchr(dir, '/') = '\0';
-    return scene_load_text(text, n, path, dir, disk_reader, NULL, out, err);
-}
-
-static scene *load_ok_with(const char *text, const vfile *files)
-{
-    scene *s = NULL;
-    glint_error err = {0};
-    glint_rc rc = scene_load_text(text, strlen(text), "scene.yaml", NULL, mem_reader,
-                                  (void *)files, &s, &err);
-    cr_assert_eq(rc, GLINT_OK, "%s", err.msg);
-    cr_assert_not_null(s);
-    return s;
-}
-
-static scene *load_ok(const char *text) { return load_ok_with(text, NULL); }
-
-/* Loads text as scene.yaml (with files beside it) and checks that it fails
- * with exactly message, as bad input, and leaves *out alone. */
-static void expect_error_with(const char *text, const vfile *files, const char *message)
-{
-    scene *sentinel = (scene *)&sentinel, *s = sentinel;
-    glint_error err = {0};
-    glint_rc rc = scene_load_text(text, strlen(text), "scene.yaml", NULL, mem_reader,
-                                  (void *)files, &s, &err);
-    cr_expect_eq(rc, GLINT_ERR_INPUT, "rc %d (%s) for:\n%.200s", rc, err.msg, text);
-    cr_expect_eq(glint_exit_code(rc), 2);
-    cr_expect_str_eq(err.msg, message, "\n got: %s\nwant: %s", err.msg, message);
-    cr_expect_eq(s, sentinel, "*out must be untouched on failure");
-    if (rc == GLINT_OK && s != sentinel)
-        scene_free(s);
-}
-
-static void expect_error(const char *text, const char *message)
-{
-    expect_error_with(text, NULL, message);
-}
-
-static glint_film render(const scene *s, int w, int h, int samples)
-{
-    return test_render(s, w, h, samples, 2);
-}
+#include "load_check.h"
 
 /* ---- the seed scene and the gallery ----------------------------------- */
 
@@ -201,7 +95,7 @@ Test(load, include_resolves_against_the_including_file_on_disk)
 Test(load, settings_camera_and_defaults)
 {
     scene *s = load_ok("image: {width: 320, height: 200, samples: 9, depth: 3,\n"
-                       "        background: [0.1, 0.2, 0.3], transfer: srgb}\n"
+                       "        background: [0.1, 0.2, 0.3], transfer: srgb, adc_bailout: 0.01}\n"
                        "camera: {eye: [1, 2, 3], look_at: [0, 0, 0], fov: 45}\n"
                        "ambient: [0.1, 0.2, 0.3]\n"
                        "objects: [{type: sphere, center: [0, 0, 0], radius: 1}]\n");
@@ -210,6 +104,7 @@ Test(load, settings_camera_and_defaults)
     cr_expect_eq(s->settings.samples, 9);
     cr_expect_eq(s->settings.max_depth, 3);
     cr_expect_eq(s->settings.transfer, GLINT_TRANSFER_SRGB);
+    cr_expect_float_eq(s->settings.adc_bailout, 0.01, 1e-9);
     cr_expect_eq(s->background.z, 0.3f);
     cr_expect_eq(s->camera.eye.y, 2.0f);
     cr_expect_eq(s->camera.up.y, 1.0f, "up defaults to +y");
@@ -223,6 +118,7 @@ Test(load, settings_camera_and_defaults)
     s = load_ok("objects: [{type: plane, point: [0, 0, 0], normal: [0, 2, 0]}]\n");
     cr_expect_eq(s->settings.width, 500, "defaults are scene_new's");
     cr_expect_eq(s->settings.samples, 1);
+    cr_expect_float_eq(s->settings.adc_bailout, 1.0 / 255, 1e-12, "POV-Ray's default");
     cr_expect_eq(s->ambient.x, 0.2f);
     cr_expect_eq(s->objects[0].shape.plane.normal.y, 1.0f, "plane normals are normalised");
     scene_free(s);
@@ -288,17 +184,17 @@ Test(load, materials_textures_and_names_in_any_order)
     cr_assert_geq(tiles->texture, 0);
     const texture *t = &s->textures[tiles->texture];
     cr_expect_eq(t->kind, TEXTURE_CHECKER);
-    cr_expect_eq(t->scale_v, 3.0f);
-    cr_expect_eq(t->offset_u, 0.5f);
-    cr_expect_eq(t->odd.x, 0.5f);
+    cr_expect_eq(t->scale.y, 3.0f);
+    cr_expect_eq(t->offset.x, 0.5f);
+    cr_expect_eq(t->pattern.map.color[1].x, 0.5f);
     const material *inline_m = &s->materials[s->objects[1].material];
     cr_expect_eq(inline_m->color.y, 0.5f);
-    cr_expect_eq(s->textures[inline_m->texture].scale_u, 4.0f);
+    cr_expect_eq(s->textures[inline_m->texture].scale.x, 4.0f);
     cr_expect_eq(s->nimages, 1, "one image for two spellings of the same path");
     bool found = false;
     for (int i = 0; i < s->ntextures; i++)
-        if (s->textures[i].kind == TEXTURE_IMAGE && s->textures[i].wrap_u == WRAP_CLAMP) {
-            cr_expect_eq(s->textures[i].wrap_v, WRAP_REPEAT);
+        if (s->textures[i].kind == TEXTURE_IMAGE && s->textures[i].image.wrap_u == WRAP_CLAMP) {
+            cr_expect_eq(s->textures[i].image.wrap_v, WRAP_REPEAT);
             found = true;
         }
     cr_expect(found);
@@ -451,9 +347,20 @@ Test(load_errors, yaml_syntax)
                  "line 1, column 1)");
     expect_error("ambient: \"0.2\n", "scene.yaml:2:1: found unexpected end of stream (while "
                                      "scanning a quoted scalar at line 1, column 10)");
+    /* libyaml's words for a tab in the indentation did not say what was
+     * wrong ("found character that cannot start any token"). */
     expect_error("ambient: 0.2\n\tlights: []\n",
-                 "scene.yaml:2:1: found a tab character that violates indentation (while "
-                 "scanning a plain scalar at line 1, column 10)");
+                 "scene.yaml:2:1: tabs cannot indent YAML; use spaces");
+    expect_error("camera:\n\teye: [0, 0, 0]\n",
+                 "scene.yaml:2:1: tabs cannot indent YAML; use spaces");
+    expect_error("camera:\n  eye: [0, 0, 0]\n \t fov: 30\n",
+                 "scene.yaml:3:2: tabs cannot indent YAML; use spaces");
+    expect_error("objects:\n\t- {type: sphere}\n",
+                 "scene.yaml:2:1: tabs cannot indent YAML; use spaces");
+    /* A tab between a key and its value is white space, as YAML says. */
+    scene *s = load_ok("image:\t{width: 7, height: 5}\n");
+    cr_expect_eq(scene_settings(s).width, 7);
+    scene_free(s);
     expect_error("ambient: \"\xff\"\n", "scene.yaml:1:11: invalid leading UTF-8 octet (byte 0xFF)");
     expect_error("objects: *nothing\n",
                  "scene.yaml:1:10: alias '*nothing' names no anchor defined before it");
@@ -477,7 +384,8 @@ Test(load_errors, unknown_keys_with_suggestions)
                  "'objects'?)");
     expect_error("materials: {m: {colour_map: 1}}\n",
                  "scene.yaml:1:17: unknown key 'colour_map' in material (valid: color, "
-                 "texture, ambient, diffuse, specular, shininess, reflect, transmit, ior, tint)");
+                 "texture, ambient, diffuse, specular, shininess, reflect, transmit, ior, tint, "
+                 "fresnel, absorption, emission, bump)");
     expect_error("camera: {fov: 30, look-at: [0, 0, -1]}\n",
                  "scene.yaml:1:19: unknown key 'look-at' in camera (did you mean 'look_at'?)");
     expect_error("objects: [{type: box, min: [0, 0, 0], max: [1, 1, 1], radius: 1}]\n",
@@ -485,8 +393,11 @@ Test(load_errors, unknown_keys_with_suggestions)
                  "material, transform)");
     expect_error("objects: [{type: sphear, center: [0, 0, 0], radius: 1}]\n",
                  "scene.yaml:1:18: unknown object type 'sphear' (did you mean 'sphere'?)");
-    expect_error("lights: [{type: spot, position: [0, 0, 0]}]\n",
-                 "scene.yaml:1:17: unknown light type 'spot' (valid: point)");
+    expect_error("lights: [{type: spott, position: [0, 0, 0]}]\n",
+                 "scene.yaml:1:17: unknown light type 'spott' (did you mean 'spot'?)");
+    expect_error("lights: [{type: laser, position: [0, 0, 0]}]\n",
+                 "scene.yaml:1:17: unknown light type 'laser' (valid: point, directional, "
+                 "spot, area)");
     expect_error("image: {transfer: sRGB}\n",
                  "scene.yaml:1:19: unknown transfer 'sRGB' (did you mean 'srgb'?)");
     expect_error("textures: {t: {type: image, file: x.png, wrap: [repeat, mirror]}}\n",
@@ -494,6 +405,15 @@ Test(load_errors, unknown_keys_with_suggestions)
     expect_error("objects: [{type: sphere, center: [0, 0, 0], radius: 1,\n"
                  "            transform: [{rotate_q: 30}]}]\n",
                  "scene.yaml:2:26: unknown transform 'rotate_q' (did you mean 'rotate_x'?)");
+    /* Distant words get the list, not another word: 'type' is two edits
+     * from 'eye', too many for four letters; a swap of two letters is one. */
+    expect_error("camera: {type: thin_lens}\n",
+                 "scene.yaml:1:10: unknown key 'type' in camera (valid: eye, look_at, up, fov)");
+    expect_error("camera: {eey: [0, 0, 0]}\n",
+                 "scene.yaml:1:10: unknown key 'eey' in camera (did you mean 'eye'?)");
+    expect_error("objects: [{type: cyl, base: [0, 0, 0]}]\n",
+                 "scene.yaml:1:18: unknown object type 'cyl' (valid: sphere, plane, quad, box, "
+                 "cylinder, triangle, mesh, cone, disk, torus, polyhedron, csg)");
 }
 
 Test(load_errors, wrong_types_and_lengths)
@@ -582,8 +502,15 @@ Test(load_errors, out_of_range_and_non_finite_numbers)
                  "scene.yaml:1:70: edge_v must not be parallel to edge_u (nor either be zero)");
     expect_error("objects: [{type: triangle, p0: [0, 0, 0], p1: [1, 1, 1], p2: [2, 2, 2]}]\n",
                  "scene.yaml:1:11: triangle is degenerate: p0, p1 and p2 lie on one line");
+    /* Corners near 1e38: the float cross product overflowed and the
+     * triangle was kept with no normal (and never seen). */
+    expect_error("objects: [{type: triangle, p0: [0, 0, 0], p1: [1e38, 0, 0], p2: [0, 1e38, 0]}]\n",
+                 "scene.yaml:1:11: triangle is too large for single precision (its normal "
+                 "overflows); scale it down");
     expect_error("materials: {m: {reflect: 1.5}}\n",
                  "scene.yaml:1:26: reflect must be between 0 and 1 (got 1.5)");
+    expect_error("image: {adc_bailout: -0.1}\n",
+                 "scene.yaml:1:22: adc_bailout must be between 0 and 1 (got -0.1)");
     expect_error("materials: {m: {ior: 0}}\n", "scene.yaml:1:22: ior must be > 0 (got 0)");
     expect_error("materials: {m: {color: [1, -0.5, 1]}}\n",
                  "scene.yaml:1:28: color components must be >= 0 (got -0.5)");
@@ -902,7 +829,9 @@ Test(load, mesh_from_disk_keeps_the_files_materials)
 Test(load_errors, meshes)
 {
     vfile files[] = {
-        {"bad.obj", "this is not a mesh\n"},
+        {"bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n"},
+        {"text.obj", "this is not a mesh\n"},
+        {"huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e38 0 0\nv 0 1e38 0\nf 1 2 3\nf 1 4 5\n"},
         {"lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n"},
         {NULL, NULL},
     };
@@ -914,6 +843,13 @@ Test(load_errors, meshes)
                       "scene.yaml:1:30: cannot read mesh 'nope.obj': No such file or directory");
     expect_error_with("objects: [{type: mesh, file: lines.obj}]\n", files,
                       "scene.yaml:1:30: lines.obj: mesh has no triangles");
+    /* assimp's validation spoke of its structures ("Mesh  contains no faces") */
+    expect_error_with("objects: [{type: mesh, file: text.obj}]\n", files,
+                      "scene.yaml:1:30: text.obj: mesh has no triangles");
+    /* A triangle near 1e38 was dropped without a word. */
+    expect_error_with("objects: [{type: mesh, file: huge.obj}]\n", files,
+                      "scene.yaml:1:30: huge.obj: triangle 2 is too large for single precision "
+                      "(its normal overflows); scale the model down");
 
     /* assimp's own reason follows; the start of the message is ours. */
     scene *s = NULL;
@@ -925,4 +861,108 @@ Test(load_errors, meshes)
     const char *want = "scene.yaml:1:30: bad.obj: cannot import mesh: ";
     cr_expect_eq(strncmp(err.msg, want, strlen(want)), 0, "got: %s", err.msg);
     cr_expect_null(s);
+}
+
+/* Writes text to dir/name. */
+static void put_file(const char *dir, const char *name, const char *text)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f, "%s", path);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* A FIFO blocked the loader for ever (nothing writes to it) and devices
+ * were read up to the size limit: every path to a file that is not a
+ * regular one is refused at once, before a byte is read, naming it. The
+ * timeout is the failure on the old code. */
+Test(load_errors, fifos_and_devices_are_refused_at_once, .timeout = 20)
+{
+    char dir[] = "/tmp/glint-fifo-XXXXXX", path[160], want[512];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/fifo", dir);
+    cr_assert_eq(mkfifo(path, 0600), 0);
+    static const struct {
+        const char *scene, *want; /* want: the message after "DIR/scene.yaml:" */
+    } cases[] = {
+        {"include: fifo\n", "1:10: cannot read include 'fifo' (%s/fifo): not a regular file"},
+        {"textures: {t: {type: image, file: fifo}}\n",
+         "1:35: cannot read texture 'fifo' (%s/fifo): not a regular file"},
+        {"objects: [{type: mesh, file: fifo}]\n",
+         "1:30: cannot read mesh 'fifo' (%s/fifo): not a regular file"},
+        {"textures: {t: {type: image, file: /dev/zero}}\n",
+         "1:35: cannot read texture '/dev/zero': not a regular file"},
+        {"objects: [{type: mesh, file: /dev/urandom}]\n",
+         "1:30: cannot read mesh '/dev/urandom': not a regular file"},
+        {"include: /dev/zero\n", "1:10: cannot read include '/dev/zero': not a regular file"},
+        /* a folder given as a mesh reached assimp ("aiScene::mNumMeshes is 0") */
+        {"objects: [{type: mesh, file: .}]\n",
+         "1:30: cannot read mesh '.' (%s): Is a directory"},
+    };
+    snprintf(path, sizeof path, "%s/scene.yaml", dir);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        put_file(dir, "scene.yaml", cases[i].scene);
+        scene *s = NULL;
+        glint_error err = {0};
+        cr_expect_eq(scene_load_file(path, &s, &err), GLINT_ERR_INPUT, "%s", cases[i].scene);
+        char tail[256];
+        snprintf(tail, sizeof tail, cases[i].want, dir);
+        snprintf(want, sizeof want, "%s:%s", path, tail);
+        cr_expect_str_eq(err.msg, want);
+        cr_expect_null(s);
+    }
+    /* The scene itself. */
+    const char *scenes[] = {"fifo", "/dev/zero", "/dev/null"};
+    for (int i = 0; i < 3; i++) {
+        char p[160];
+        snprintf(p, sizeof p, i == 0 ? "%s/%s" : "%.0s%s", dir, scenes[i]);
+        scene *s = NULL;
+        glint_error err = {0};
+        cr_expect_eq(scene_load_file(p, &s, &err), GLINT_ERR_INPUT);
+        snprintf(want, sizeof want, "%s: cannot read scene: not a regular file", p);
+        cr_expect_str_eq(err.msg, want);
+    }
+    remove(path);
+    snprintf(path, sizeof path, "%s/fifo", dir);
+    remove(path);
+    rmdir(dir);
+}
+
+/* "-" and /dev/stdin read the scene from standard input: paths in it are
+ * relative to the current folder, and messages call it <stdin>. */
+Test(load, dash_reads_the_scene_from_standard_input)
+{
+    char path[] = "/tmp/glint-stdin-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert_geq(fd, 0);
+    const char *text = "image: {width: 3, height: 2}\ncamera: {fov: [1]}\n";
+    cr_assert_eq(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+    int saved = dup(STDIN_FILENO);
+    const char *names[] = {"-", "/dev/stdin"};
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(lseek(fd, 0, SEEK_SET), 0);
+        cr_assert_eq(dup2(fd, STDIN_FILENO), STDIN_FILENO);
+        scene *s = NULL;
+        glint_error err = {0};
+        cr_expect_eq(scene_load_file(names[i], &s, &err), GLINT_ERR_INPUT);
+        cr_expect_str_eq(err.msg, "<stdin>:2:15: expected a number for 'fov', got a sequence");
+    }
+    /* Through a pipe, which a path on disk may not be. */
+    int p[2];
+    cr_assert_eq(pipe(p), 0);
+    cr_assert_eq(write(p[1], text, 29), 29);
+    close(p[1]);
+    cr_assert_eq(dup2(p[0], STDIN_FILENO), STDIN_FILENO);
+    close(p[0]);
+    scene *s = NULL;
+    glint_error err = {0};
+    cr_expect_eq(scene_load_file("-", &s, &err), GLINT_OK, "%s", err.msg);
+    cr_expect_eq(scene_settings(s).width, 3);
+    scene_free(s);
+    dup2(saved, STDIN_FILENO);
+    close(saved);
+    close(fd);
+    remove(path);
 }

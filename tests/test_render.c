@@ -147,7 +147,7 @@ static void expect_bad(glint_settings st, const char *needle)
 
 Test(render, settings_are_checked)
 {
-    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE};
+    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255};
     glint_error err = {0};
     cr_expect_eq(glint_settings_check(&ok, &err), GLINT_OK);
     glint_settings s = ok;
@@ -169,6 +169,12 @@ Test(render, settings_are_checked)
     s = ok;
     s.threads = -2;
     expect_bad(s, "threads");
+    s = ok;
+    s.adc_bailout = NAN;
+    expect_bad(s, "adc_bailout must be 0 (never prune) to 1 (got nan)");
+    s = ok;
+    s.adc_bailout = 1.5;
+    expect_bad(s, "adc_bailout must be 0 (never prune) to 1 (got 1.5)");
 }
 
 static void cancel_on_first_tile(void *user, const glint_film *f, int x0, int y0, int x1, int y1)
@@ -191,5 +197,91 @@ Test(render, cancel_stops_the_render)
     glint_error err = {0};
     cr_expect_eq(glint_render(s, &st, &cb, &film, NULL, &err), GLINT_ERR_CANCELLED);
     cr_expect_null(film.rgb, "a cancelled render leaves no film");
+    glint_scene_free(s);
+}
+
+/* Eight nested spheres of one material around the origin, seen from +z,
+ * lit by one light. */
+static glint_scene *nested_spheres(glint_material m)
+{
+    glint_scene *s = NULL;
+    glint_error err = {0};
+    cr_assert_eq(glint_scene_new(&s, &err), GLINT_OK, "%s", err.msg);
+    glint_camera cam = {{0, 0, 20}, {0, 0, 0}, {0, 1, 0}, 40, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    cr_assert_eq(glint_scene_set_camera(s, &cam, &err), GLINT_OK, "%s", err.msg);
+    glint_light l = {.kind = GLINT_LIGHT_POINT, .position = {5, 10, 20}, .color = {1, 1, 1}};
+    cr_assert_eq(glint_scene_add_light(s, &l, NULL, &err), GLINT_OK, "%s", err.msg);
+    int mat;
+    cr_assert_eq(glint_scene_add_material(s, &m, &mat, &err), GLINT_OK, "%s", err.msg);
+    for (int i = 1; i <= 8; i++) {
+        glint_object o = {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, i}}, mat, NULL, 0};
+        cr_assert_eq(glint_scene_add_object(s, &o, NULL, &err), GLINT_OK, "%s", err.msg);
+    }
+    cr_assert_eq(glint_scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+static glint_stats render_stats(const glint_scene *s, int depth, double bailout, glint_film *film)
+{
+    glint_settings st;
+    glint_scene_settings(s, &st, NULL);
+    st.width = st.height = 8;
+    st.samples = 1;
+    st.threads = 1;
+    st.max_depth = depth;
+    st.adc_bailout = bailout;
+    glint_stats stats = {0};
+    glint_error err = {0};
+    cr_assert_eq(glint_render(s, &st, NULL, film, &stats, &err), GLINT_OK, "%s", err.msg);
+    return stats;
+}
+
+/* Glass made the tree of rays grow as 2^depth: eight nested glass spheres
+ * needed 3.3 M rays for 64 pixels at depth 14 and never finished at depth
+ * 30. Adaptive depth control prunes a branch whose share of the pixel falls
+ * below adc_bailout, so each level of the tree holds at most 1 / bailout
+ * rays: at the deepest limit the render finishes within 64 pixels x 64
+ * levels x 255 secondary rays, even for a material that gains energy. The
+ * timeout is the failure on the old code. */
+Test(render, adaptive_depth_control_bounds_the_tree_of_rays, .timeout = 120)
+{
+    glint_material glass = glint_material_default();
+    glass.transmit = 0.9;
+    glass.ior = 1.5;
+    glint_material gain = glass; /* reflects and transmits all, and more */
+    gain.reflect = 1;
+    gain.transmit = 1;
+    gain.tint[0] = gain.tint[1] = gain.tint[2] = 2;
+    const uint64_t bound = 64ull * 64 * 255;
+    glint_material mats[] = {glass, gain};
+    for (int k = 0; k < 2; k++) {
+        glint_scene *s = nested_spheres(mats[k]);
+        glint_settings st;
+        glint_scene_settings(s, &st, NULL);
+        cr_expect_float_eq(st.adc_bailout, 1.0 / 255, 1e-12, "the default is POV-Ray's");
+        glint_film film = {0};
+        glint_stats deep = render_stats(s, 64, 1.0 / 255, &film);
+        cr_expect_leq(deep.secondary_rays, bound, "%llu secondary rays",
+                      (unsigned long long)deep.secondary_rays);
+        cr_expect_gt(deep.secondary_rays, 64u, "glass is traced through");
+        glint_film_free(&film);
+        glint_scene_free(s);
+    }
+
+    /* What pruning leaves out is below a level of an 8-bit pixel or
+     * close to it: the image at depth 9 without pruning (2^9 paths per
+     * pixel) against the pruned one. */
+    glint_scene *s = nested_spheres(glass);
+    glint_film full = {0}, pruned = {0};
+    glint_stats a = render_stats(s, 9, 0.0, &full);
+    glint_stats b = render_stats(s, 9, 1.0 / 255, &pruned);
+    cr_expect_lt(b.secondary_rays * 4, a.secondary_rays, "%llu of %llu",
+                 (unsigned long long)b.secondary_rays, (unsigned long long)a.secondary_rays);
+    double worst = 0;
+    for (int i = 0; i < 8 * 8 * 3; i++)
+        worst = fmax(worst, fabs(full.rgb[i] - pruned.rgb[i]));
+    cr_expect_lt(worst, 4.0 / 255, "largest difference %g", worst);
+    glint_film_free(&full);
+    glint_film_free(&pruned);
     glint_scene_free(s);
 }

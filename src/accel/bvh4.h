@@ -21,6 +21,13 @@
 #include "accel/bvh.h"
 #include "core/ray.h"
 
+/* The slab test rounds (lo - o) * (1 / d) and so can put a box's far
+ * distance just before its near one for a ray that passes exactly through
+ * an edge or corner of the box, skipping it. Growing the far distances by
+ * 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps) with eps = 2^-24, keeps the
+ * test conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013). */
+#define BVH4_FAR_SCALE (1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f))
+
 /* A path from the root is at most this long (collapsing never deepens a
  * tree), and a node pushes at most 3 entries besides the one it descends
  * to, so a stack of 3 * BVH_MAX_DEPTH + 4 entries never overflows. */
@@ -103,7 +110,8 @@ __attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, v
             __m128 t0z = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->box[4 + nz]), oz), iz);
             __m128 t1z = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->box[5 - nz]), oz), iz);
             __m128 vn = _mm_max_ps(_mm_max_ps(t0x, t0y), _mm_max_ps(t0z, vtmin));
-            __m128 vf = _mm_min_ps(_mm_min_ps(t1x, t1y), _mm_min_ps(t1z, _mm_set1_ps(*tmax)));
+            __m128 vf = _mm_min_ps(_mm_min_ps(t1x, t1y), _mm_min_ps(t1z, _mm_set1_ps(INFINITY)));
+            vf = _mm_min_ps(_mm_mul_ps(vf, _mm_set1_ps(BVH4_FAR_SCALE)), _mm_set1_ps(*tmax));
             mask = _mm_movemask_ps(_mm_cmple_ps(vn, vf));
             _mm_storeu_ps(tn, vn);
 #else
@@ -112,7 +120,7 @@ __attribute__((always_inline)) static inline bool bvh4_traverse(const bvh4 *b, v
                 float b0 = (n->box[2 + ny][k] - o.y) * inv.y, b1 = (n->box[3 - ny][k] - o.y) * inv.y;
                 float c0 = (n->box[4 + nz][k] - o.z) * inv.z, c1 = (n->box[5 - nz][k] - o.z) * inv.z;
                 tn[k] = maxf(maxf(a0, b0), maxf(c0, tmin));
-                float tf = minf(minf(a1, b1), minf(c1, *tmax));
+                float tf = minf(minf(minf(a1, b1), minf(c1, INFINITY)) * BVH4_FAR_SCALE, *tmax);
                 mask |= (tn[k] <= tf) << k;
             }
 #endif

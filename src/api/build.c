@@ -52,7 +52,8 @@ glint_material glint_material_default(void)
 {
     return (glint_material){.color = {1, 1, 1}, .ambient = 1, .diffuse = 1, .specular = 0,
                             .shininess = 50, .reflect = 0, .transmit = 0, .ior = 1,
-                            .tint = {1, 1, 1}, .texture = -1};
+                            .tint = {1, 1, 1}, .texture = -1, .absorption = {0, 0, 0},
+                            .emission = {0, 0, 0}, .fresnel_off = 0};
 }
 
 /* Stores the index of a new element, or says memory ran out. */
@@ -73,7 +74,8 @@ glint_rc glint_scene_add_material(glint_scene *s, const glint_material *in, int 
         return api_null(err, fn, !s ? "scene" : "material");
     const double scalars[] = {in->ambient, in->diffuse, in->specular, in->shininess,
                               in->reflect, in->transmit, in->ior};
-    if (!color_ok(in->color) || !color_ok(in->tint) || !api_finite(scalars, 7))
+    if (!color_ok(in->color) || !color_ok(in->tint) || !api_finite(scalars, 7) ||
+        !color_ok(in->absorption) || !color_ok(in->emission))
         return api_bad(err, fn, "every value must be finite and colours >= 0");
     if (in->ambient < 0 || in->diffuse < 0 || in->specular < 0 || in->shininess < 0)
         return api_bad(err, fn, "ambient, diffuse, specular and shininess must be >= 0");
@@ -97,6 +99,9 @@ glint_rc glint_scene_add_material(glint_scene *s, const glint_material *in, int 
     m.ior = (float)in->ior;
     m.tint = api_vec3(in->tint);
     m.texture = in->texture;
+    m.absorption = api_vec3(in->absorption);
+    m.emission = api_vec3(in->emission);
+    m.fresnel = !in->fresnel_off;
     return added(scene_add_material(s, &m), index, err);
 }
 
@@ -145,8 +150,8 @@ glint_rc glint_scene_add_texture(glint_scene *s, const glint_texture *in, int *i
         if (rc != GLINT_OK)
             return rc;
         t = texture_image(img);
-        t.wrap_u = in->wrap[0] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
-        t.wrap_v = in->wrap[1] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
+        t.image.wrap_u = in->wrap[0] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
+        t.image.wrap_v = in->wrap[1] == GLINT_WRAP_CLAMP ? WRAP_CLAMP : WRAP_REPEAT;
         break;
     }
     case GLINT_TEXTURE_CHECKER:
@@ -155,11 +160,40 @@ glint_rc glint_scene_add_texture(glint_scene *s, const glint_texture *in, int *i
         t = texture_checker(api_vec3(in->even), api_vec3(in->odd), 1.0f, 1.0f);
         break;
     }
-    t.scale_u = (float)in->scale[0];
-    t.scale_v = (float)in->scale[1];
-    t.offset_u = (float)in->offset[0];
-    t.offset_v = (float)in->offset[1];
+    t.scale = v3((float)in->scale[0], (float)in->scale[1], 1.0f);
+    t.offset = v3((float)in->offset[0], (float)in->offset[1], 0.0f);
     return added(scene_add_texture(s, &t), index, err);
+}
+
+glint_light glint_light_default(glint_light_kind kind)
+{
+    return (glint_light){.kind = kind, .color = {1, 1, 1}, .attenuation = {1, 0, 0},
+                         .inner_angle = 20, .outer_angle = 30, .samples = 4};
+}
+
+/* The checks of one kind (src/load/lights.c states the same rules). */
+static const char *light_problem(const glint_light *in)
+{
+    vec3 eu = api_vec3(in->edge_u), ev = api_vec3(in->edge_v);
+    switch (in->kind) {
+    case GLINT_LIGHT_POINT:
+        return NULL;
+    case GLINT_LIGHT_DIRECTIONAL:
+        return v3_is_zero(api_vec3(in->direction)) ? "direction must not be zero" : NULL;
+    case GLINT_LIGHT_SPOT:
+        if (v3_is_zero(v3_sub(api_vec3(in->look_at), api_vec3(in->position))))
+            return "look_at must differ from position";
+        if (!(in->inner_angle >= 0 && in->inner_angle < in->outer_angle && in->outer_angle < 180))
+            return "spot angles must satisfy 0 <= inner_angle < outer_angle < 180";
+        return NULL;
+    case GLINT_LIGHT_AREA:
+        if (!(in->samples >= 1 && in->samples <= LIGHT_MAX_AREA_SAMPLES))
+            return "samples must be 1 to 64";
+        if (!(v3_len2(v3_cross(eu, ev)) > 0.0f))
+            return "edge_u and edge_v must be non-zero and not parallel";
+        return NULL;
+    }
+    return "unknown kind";
 }
 
 glint_rc glint_scene_add_light(glint_scene *s, const glint_light *in, int *index,
@@ -168,13 +202,38 @@ glint_rc glint_scene_add_light(glint_scene *s, const glint_light *in, int *index
     static const char fn[] = "glint_scene_add_light";
     if (!s || !in)
         return api_null(err, fn, !s ? "scene" : "light");
-    if ((unsigned)in->kind > GLINT_LIGHT_POINT)
+    if ((unsigned)in->kind > GLINT_LIGHT_AREA)
         return api_bad(err, fn, "light kind %d is not one of glint_light_kind", (int)in->kind);
-    if (!api_finite(in->position, 3))
-        return api_bad(err, fn, "position must be finite");
+    const double angles[] = {in->inner_angle, in->outer_angle};
+    if (!api_finite(in->position, 3) || !api_finite(in->direction, 3) ||
+        !api_finite(in->look_at, 3) || !api_finite(in->edge_u, 3) ||
+        !api_finite(in->edge_v, 3) || !api_finite(angles, 2))
+        return api_bad(err, fn, "every coordinate and angle must be finite");
     if (!color_ok(in->color))
         return api_bad(err, fn, "colour components must be finite and >= 0");
-    light l = {LIGHT_POINT, api_vec3(in->position), api_vec3(in->color)};
+    if (!color_ok(in->attenuation))
+        return api_bad(err, fn, "attenuation terms must be finite and >= 0");
+    const char *problem = light_problem(in);
+    if (problem)
+        return api_bad(err, fn, "%s", problem);
+    vec3 pos = api_vec3(in->position), color = api_vec3(in->color);
+    vec3 att = v3_is_zero(api_vec3(in->attenuation)) ? v3(1, 0, 0) : api_vec3(in->attenuation);
+    light l;
+    switch (in->kind) {
+    case GLINT_LIGHT_POINT:
+        l = light_point(pos, color, att);
+        break;
+    case GLINT_LIGHT_DIRECTIONAL:
+        l = light_directional(api_vec3(in->direction), color);
+        break;
+    case GLINT_LIGHT_SPOT:
+        l = light_spot(pos, api_vec3(in->look_at), (float)in->inner_angle,
+                       (float)in->outer_angle, color, att);
+        break;
+    case GLINT_LIGHT_AREA:
+        l = light_area(pos, api_vec3(in->edge_u), api_vec3(in->edge_v), in->samples, color, att);
+        break;
+    }
     return added(scene_add_light(s, &l), index, err);
 }
 
@@ -229,10 +288,12 @@ static glint_rc make_shape(const glint_scene *s, const glint_shape *in, shape *o
         vec3 p0 = api_vec3(in->triangle.p0), p1 = api_vec3(in->triangle.p1),
              p2 = api_vec3(in->triangle.p2);
         if (!api_finite(in->triangle.p0, 3) || !api_finite(in->triangle.p1, 3) ||
-            !api_finite(in->triangle.p2, 3) ||
-            v3_is_zero(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0))))
+            !api_finite(in->triangle.p2, 3) || triangle_check(p0, p1, p2) == TRIANGLE_DEGENERATE)
             return api_bad(err, fn, "triangle is degenerate (p0, p1 and p2 lie on one line) or "
                                     "not finite");
+        if (triangle_check(p0, p1, p2) == TRIANGLE_TOO_LARGE)
+            return api_bad(err, fn, "triangle is too large for single precision (its normal "
+                                    "overflows)");
         *out = shape_triangle(p0, p1, p2);
         return GLINT_OK;
     }

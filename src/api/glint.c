@@ -57,6 +57,15 @@ glint_rc glint_scene_settings(const glint_scene *s, glint_settings *out, glint_e
     return GLINT_OK;
 }
 
+glint_rc glint_scene_count(const glint_scene *s, glint_scene_counts *out, glint_error *err)
+{
+    if (!s || !out)
+        return api_null(err, __func__, !s ? "scene" : "out");
+    *out = (glint_scene_counts){s->nobjects, s->nlights, scene_material_count(s), s->ntextures,
+                                scene_mesh_count(s)};
+    return GLINT_OK;
+}
+
 glint_rc glint_scene_set_settings(glint_scene *s, const glint_settings *st, glint_error *err)
 {
     if (!s || !st)

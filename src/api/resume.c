@@ -7,7 +7,6 @@
 
 #include "api/check.h"
 #include "render/resume.h"
-#include "scene/fingerprint.h"
 #include "scene/scene.h"
 #include "scene/settings.h"
 
@@ -32,7 +31,7 @@ glint_rc glint_fingerprint(const glint_scene *sc, const glint_settings *s, uint6
         return rc;
     if (!sc->built)
         return api_bad(err, __func__, "scene was not built (objects were added since)");
-    *out = scene_fingerprint(sc, s);
+    *out = resume_fingerprint(sc, s);
     return GLINT_OK;
 }
 

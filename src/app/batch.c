@@ -259,6 +259,8 @@ int batch_main(const struct cli *c)
     glint_rc rc = glint_output_check(c->output, &c->write, &err);
     if (rc == GLINT_OK)
         rc = cli_load(c, &scene, &s, &t.load, &err);
+    if (rc == GLINT_OK)
+        cli_warn(scene, c->scene_path);
     if (rc == GLINT_OK && !(rpath = batch_resume_path(c->output)) && strcmp(c->output, "-") != 0)
         rc = GLINT_ERR_NOMEM;
     if (rc == GLINT_OK)

@@ -29,6 +29,10 @@ struct cli {
 glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
                   double *load_seconds, glint_error *err);
 
+/* One line on stderr for a scene that will render but probably not as
+ * meant: nothing in it, or nothing lighting it. path NULL: built-in. */
+void cli_warn(const glint_scene *scene, const char *path);
+
 /* Seconds on a monotonic clock. */
 double cli_now(void);
 

@@ -1,5 +1,10 @@
 /* glint command line: the first client of the library (include/glint.h).
- * The option set is a stable contract, documented in README.md. */
+ * The option set is a stable contract, documented in README.md.
+ *
+ * Options live in one table (options[] below): each row names the option,
+ * its value, its help text and the function that takes it, and the
+ * getopt_long tables and --help are made from it. A new option is a row
+ * and a function. */
 #include <errno.h>
 #include <getopt.h>
 #include <stdarg.h>
@@ -14,62 +19,20 @@
 #include "batch.h"
 #include "cli.h"
 
-static const char usage[] =
-    "usage: glint [options] [SCENE.yaml]\n"
-    "Renders SCENE.yaml, or with no scene the built-in nine-object scene.\n"
-    "\n"
-    "  -o, --output FILE      output image (default glint.png); '-' for standard output\n"
-    "                         .png .ppm .jpg .hdr .pfm .exr, by extension or --format\n"
-    "      --format F         png, ppm, jpg, hdr, pfm or exr, whatever the name\n"
-    "      --quality N        JPEG quality, 1 to 100 (default 90)\n"
-    "      --bits N           bits per channel: PNG, PPM 8 (default) or 16;\n"
-    "                         EXR 16 (half, default) or 32 (float)\n"
-    "  -r, --resolution WxH   image size, overriding the scene's\n"
-    "  -s, --spp N            samples per pixel, a perfect square (4 = 2x2 grid)\n"
-    "  -d, --depth N          reflection/refraction recursion limit\n"
-    "  -t, --threads N        render threads (default: all cores)\n"
-    "      --transfer T       none (default) or srgb: how film values become pixels\n"
-    "  -p, --preview          a live window with an interactive camera (H there lists\n"
-    "                         the keys); re-renders when the scene's files change\n"
-    "      --exit-when-done   with -p: close the window once the image is final\n"
-    "      --preview-bench    time the preview along a scripted camera path (fps)\n"
-    "      --resume           continue an interrupted render from OUTPUT.resume;\n"
-    "                         'glint --resume OUT.resume' reruns its command line\n"
-    "      --stats            print times, scene size, rays, Mrays/s and memory to stderr\n"
-    "      --progress         progress lines on stderr even when it is not a terminal\n"
-    "  -q, --quiet            no progress bar and no 'wrote' line\n"
-    "  -h, --help             show this help\n"
-    "  -V, --version          show the version\n"
-    "\n"
-    "Exit status: 0 success, 1 runtime failure, 2 bad usage or bad input,\n"
-    "130/143 interrupted by Ctrl-C/SIGTERM (the render so far is kept in OUTPUT.resume).\n";
+static const char usage_head[] =
+    "usage: glint [options] [SCENE.yaml | -]\n"
+    "Renders SCENE.yaml ('-': the scene from standard input, its paths relative to\n"
+    "the current folder), or with no scene the built-in nine-object scene. The scene\n"
+    "format: docs/scene-format.md (installed in share/doc/glint).\n"
+    "\n";
 
-enum {
-    OPT_STATS = 256, OPT_TRANSFER, OPT_FORMAT, OPT_QUALITY, OPT_BITS, OPT_PROGRESS, OPT_RESUME,
-    OPT_EXIT_WHEN_DONE, OPT_PREVIEW_BENCH
-};
-
-static const struct option long_options[] = {
-    {"output", required_argument, NULL, 'o'},
-    {"resolution", required_argument, NULL, 'r'},
-    {"spp", required_argument, NULL, 's'},
-    {"depth", required_argument, NULL, 'd'},
-    {"threads", required_argument, NULL, 't'},
-    {"transfer", required_argument, NULL, OPT_TRANSFER},
-    {"format", required_argument, NULL, OPT_FORMAT},
-    {"quality", required_argument, NULL, OPT_QUALITY},
-    {"bits", required_argument, NULL, OPT_BITS},
-    {"stats", no_argument, NULL, OPT_STATS},
-    {"progress", no_argument, NULL, OPT_PROGRESS},
-    {"resume", no_argument, NULL, OPT_RESUME},
-    {"preview", no_argument, NULL, 'p'},
-    {"exit-when-done", no_argument, NULL, OPT_EXIT_WHEN_DONE},
-    {"preview-bench", no_argument, NULL, OPT_PREVIEW_BENCH},
-    {"quiet", no_argument, NULL, 'q'},
-    {"help", no_argument, NULL, 'h'},
-    {"version", no_argument, NULL, 'V'},
-    {NULL, 0, NULL, 0},
-};
+static const char usage_tail[] =
+    "\n"
+    "Options override the scene's image settings; the rest come from the scene.\n"
+    "Exit status: 0 success; 1 the render or the output failed (out of memory,\n"
+    "a write error); 2 bad usage or bad input: an option, the scene or a file it\n"
+    "names, an unreadable one included.\n"
+    "130 or 143 after Ctrl-C or SIGTERM: the render so far is kept in OUTPUT.resume.\n";
 
 
 __attribute__((format(printf, 1, 2))) static int usage_error(const char *fmt, ...)
@@ -120,20 +83,270 @@ static int flush_stdout(void)
     return 0;
 }
 
-/* The options without a value; false for any other. */
-static bool set_flag(struct cli *c, int opt)
+/* ---- the options ---------------------------------------------------------- */
+
+/* Each takes the option's value (NULL for flags) and returns -1 to go on,
+ * or the exit code to stop with. */
+typedef int (*option_fn)(struct cli *c, const char *arg);
+
+static int opt_output(struct cli *c, const char *arg)
 {
-    bool *flag = opt == OPT_STATS            ? &c->stats
-                 : opt == 'q'                ? &c->quiet
-                 : opt == OPT_PROGRESS       ? &c->progress
-                 : opt == OPT_RESUME         ? &c->resume
-                 : opt == 'p'                ? &c->preview
-                 : opt == OPT_EXIT_WHEN_DONE ? &c->exit_when_done
-                 : opt == OPT_PREVIEW_BENCH  ? &c->preview_bench
-                                             : NULL;
-    if (flag)
-        *flag = true;
-    return flag != NULL;
+    c->output = arg;
+    return -1;
+}
+
+static int opt_resolution(struct cli *c, const char *arg)
+{
+    if (!parse_resolution(arg, &c->width, &c->height))
+        return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'", arg);
+    return -1;
+}
+
+static int opt_spp(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 1, INT_MAX, &c->samples))
+        return usage_error("-s: expected a positive whole number, got '%s'", arg);
+    return -1;
+}
+
+static int opt_depth(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 0, INT_MAX, &c->depth))
+        return usage_error("-d: expected a whole number >= 0, got '%s'", arg);
+    return -1;
+}
+
+static int opt_threads(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 0, INT_MAX, &c->threads))
+        return usage_error("-t: expected a whole number >= 0 (0: all cores), got '%s'", arg);
+    return -1;
+}
+
+static int opt_transfer(struct cli *c, const char *arg)
+{
+    if (strcmp(arg, "none") == 0)
+        c->transfer = GLINT_TRANSFER_NONE;
+    else if (strcmp(arg, "srgb") == 0)
+        c->transfer = GLINT_TRANSFER_SRGB;
+    else
+        return usage_error("--transfer: expected none or srgb, got '%s'", arg);
+    return -1;
+}
+
+static int opt_format(struct cli *c, const char *arg)
+{
+    glint_error err;
+    if (glint_format_parse(arg, &c->write.format, &err) != GLINT_OK)
+        return usage_error("--format: %s", err.msg);
+    return -1;
+}
+
+static int opt_quality(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 1, 100, &c->write.quality))
+        return usage_error("--quality: expected a whole number from 1 to 100, got '%s'", arg);
+    return -1;
+}
+
+static int opt_bits(struct cli *c, const char *arg)
+{
+    if (!parse_int(arg, 8, 32, &c->write.bits))
+        return usage_error("--bits: expected 8, 16 or 32, got '%s'", arg);
+    return -1;
+}
+
+static int opt_stats(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->stats = true;
+    return -1;
+}
+
+static int opt_quiet(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->quiet = true;
+    return -1;
+}
+
+static int opt_progress(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->progress = true;
+    return -1;
+}
+
+static int opt_resume(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->resume = true;
+    return -1;
+}
+
+static int opt_preview(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->preview = true;
+    return -1;
+}
+
+static int opt_exit_when_done(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->exit_when_done = true;
+    return -1;
+}
+
+static int opt_preview_bench(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->preview_bench = true;
+    return -1;
+}
+
+static int opt_help(struct cli *c, const char *arg);
+
+static int opt_version(struct cli *c, const char *arg)
+{
+    (void)c, (void)arg;
+    printf("glint %s\n", GLINT_VERSION);
+    return flush_stdout();
+}
+
+typedef struct option_row {
+    const char *name;    /* the long name */
+    char letter;         /* the short name, 0: none */
+    const char *value;   /* NULL: a flag; else what --help calls its value */
+    option_fn take;
+    const char *help;    /* lines after the first are indented under it */
+} option_row;
+
+static const option_row options[] = {
+    {"output", 'o', "FILE", opt_output,
+     "output image (default glint.png); '-' for standard output\n"
+     ".png .ppm .jpg .hdr .pfm .exr, by extension or --format"},
+    {"format", 0, "F", opt_format, "png, ppm, jpg, hdr, pfm or exr, whatever the name"},
+    {"quality", 0, "N", opt_quality, "JPEG quality, 1 to 100 (default 90)"},
+    {"bits", 0, "N", opt_bits,
+     "bits per channel: PNG, PPM 8 (default) or 16;\n"
+     "EXR 16 (half, default) or 32 (float)"},
+    {"resolution", 'r', "WxH", opt_resolution,
+     "image size, 1 to 32768 a side (default: the scene's, else\n"
+     "500x500); the horizontal field of view is kept"},
+    {"spp", 's', "N", opt_spp,
+     "samples per pixel, a perfect square from 1 to 1024 on a\n"
+     "regular grid, 4 = 2x2 (default: the scene's, else 1)"},
+    {"depth", 'd', "N", opt_depth,
+     "reflection/refraction recursion limit, 0 to 64\n"
+     "(default: the scene's, else 5)"},
+    {"threads", 't', "N", opt_threads, "render threads, 0 to 1024 (default 0: one per core)"},
+    {"transfer", 0, "T", opt_transfer,
+     "none or srgb: how film values become pixels\n"
+     "(default: the scene's, else none)"},
+    {"preview", 'p', NULL, opt_preview,
+     "a live window with an interactive camera (H there lists\n"
+     "the keys); re-renders when the scene's files change"},
+    {"exit-when-done", 0, NULL, opt_exit_when_done,
+     "with -p: write the output and close once the image is final"},
+    {"preview-bench", 0, NULL, opt_preview_bench,
+     "time the preview along a scripted camera path (fps)"},
+    {"resume", 0, NULL, opt_resume,
+     "continue an interrupted render from OUTPUT.resume;\n"
+     "'glint --resume OUT.resume' reruns its command line"},
+    {"stats", 0, NULL, opt_stats,
+     "print times, scene size, rays, Mrays/s and memory to stderr"},
+    {"progress", 0, NULL, opt_progress,
+     "progress lines on stderr even when it is not a terminal"},
+    {"quiet", 'q', NULL, opt_quiet, "no progress bar and no 'wrote' line"},
+    {"help", 'h', NULL, opt_help, "show this help"},
+    {"version", 'V', NULL, opt_version, "show the version"},
+};
+
+#define NOPTIONS (sizeof options / sizeof options[0])
+#define HELP_COLUMN 25
+
+static int opt_help(struct cli *c, const char *arg)
+{
+    (void)c, (void)arg;
+    fputs(usage_head, stdout);
+    for (size_t i = 0; i < NOPTIONS; i++) {
+        const option_row *o = &options[i];
+        char left[64];
+        snprintf(left, sizeof left, "  %c%c%c --%s%s%s", o->letter ? '-' : ' ',
+                 o->letter ? o->letter : ' ', o->letter ? ',' : ' ', o->name, o->value ? " " : "",
+                 o->value ? o->value : "");
+        printf("%-*s", HELP_COLUMN - 1, left);
+        for (const char *line = o->help; line;) {
+            const char *nl = strchr(line, '\n');
+            int len = nl ? (int)(nl - line) : (int)strlen(line);
+            if (line == o->help)
+                printf(" %.*s\n", len, line);
+            else
+                printf("%*s%.*s\n", HELP_COLUMN, "", len, line);
+            line = nl ? nl + 1 : NULL;
+        }
+    }
+    fputs(usage_tail, stdout);
+    return flush_stdout();
+}
+
+/* The option named by a getopt_long value (a letter or a row's index plus
+ * 256), or NULL. */
+static const option_row *option_by_key(int key)
+{
+    for (size_t i = 0; i < NOPTIONS; i++)
+        if (key == (options[i].letter ? options[i].letter : 256 + (int)i))
+            return &options[i];
+    return NULL;
+}
+
+/* How an option is shown in a message: "-r" or "--resolution", as it was
+ * written. */
+static const char *option_shown(const option_row *o, const char *written, char *buf, size_t cap)
+{
+    if (o->letter && strncmp(written, "--", 2) != 0)
+        snprintf(buf, cap, "-%c", o->letter);
+    else
+        snprintf(buf, cap, "--%s", o->name);
+    return buf;
+}
+
+/* getopt_long's tables, made from options[]. */
+static void option_tables(char *shorts, struct option *longs)
+{
+    char *s = shorts;
+    *s++ = ':'; /* a missing value is ':', not '?' */
+    for (size_t i = 0; i < NOPTIONS; i++) {
+        const option_row *o = &options[i];
+        int key = o->letter ? o->letter : 256 + (int)i;
+        longs[i] = (struct option){o->name, o->value ? required_argument : no_argument, NULL, key};
+        if (o->letter) {
+            *s++ = o->letter;
+            if (o->value)
+                *s++ = ':';
+        }
+    }
+    *s = '\0';
+    longs[NOPTIONS] = (struct option){NULL, 0, NULL, 0};
+}
+
+/* The message for an option getopt_long refused: a value missing, a value
+ * given to a flag, or no such option. The option is named as written
+ * (optopt holds a value that is no character for a long option). */
+static int option_error(int opt, char **argv)
+{
+    char buf[64];
+    const option_row *o = option_by_key(optopt);
+    const char *written = argv[optind - 1];
+    if (opt == ':')
+        return usage_error("%s needs a value", o ? option_shown(o, written, buf, sizeof buf)
+                                                 : written);
+    if (o && !o->value && strncmp(written, "--", 2) == 0 && strchr(written, '='))
+        return usage_error("--%s takes no value (got '%s')", o->name, written);
+    if (optopt > 0 && optopt < 256)
+        return usage_error("unknown option -%c", optopt);
+    return usage_error("unknown option %s", written);
 }
 
 /* Returns -1 to go on, else the exit code. */
@@ -141,70 +354,19 @@ static int parse_args(int argc, char **argv, struct cli *c)
 {
     *c = (struct cli){.output = "glint.png", .width = -1, .height = -1, .samples = -1,
                       .depth = -1, .threads = -1, .transfer = -1, .argc = argc, .argv = argv};
-    opterr = 0;
     optind = 0; /* parsing may run twice: again for a resume file's arguments */
+    char shorts[2 * NOPTIONS + 2];
+    struct option longs[NOPTIONS + 1];
+    option_tables(shorts, longs);
+    opterr = 0;
     int opt;
-    while ((opt = getopt_long(argc, argv, ":o:r:s:d:t:pqhV", long_options, NULL)) != -1) {
-        if (set_flag(c, opt))
-            continue;
-        switch (opt) {
-        case 'o':
-            c->output = optarg;
-            break;
-        case 'r':
-            if (!parse_resolution(optarg, &c->width, &c->height))
-                return usage_error("-r: expected WIDTHxHEIGHT such as 800x600, got '%s'", optarg);
-            break;
-        case 's':
-            if (!parse_int(optarg, 1, INT_MAX, &c->samples))
-                return usage_error("-s: expected a positive whole number, got '%s'", optarg);
-            break;
-        case 'd':
-            if (!parse_int(optarg, 0, INT_MAX, &c->depth))
-                return usage_error("-d: expected a whole number >= 0, got '%s'", optarg);
-            break;
-        case 't':
-            if (!parse_int(optarg, 1, INT_MAX, &c->threads))
-                return usage_error("-t: expected a positive whole number, got '%s'", optarg);
-            break;
-        case OPT_TRANSFER:
-            if (strcmp(optarg, "none") == 0)
-                c->transfer = GLINT_TRANSFER_NONE;
-            else if (strcmp(optarg, "srgb") == 0)
-                c->transfer = GLINT_TRANSFER_SRGB;
-            else
-                return usage_error("--transfer: expected none or srgb, got '%s'", optarg);
-            break;
-        case OPT_FORMAT: {
-            glint_error err;
-            if (glint_format_parse(optarg, &c->write.format, &err) != GLINT_OK)
-                return usage_error("--format: %s", err.msg);
-            break;
-        }
-        case OPT_QUALITY:
-            if (!parse_int(optarg, 1, 100, &c->write.quality))
-                return usage_error("--quality: expected a whole number from 1 to 100, got '%s'",
-                                   optarg);
-            break;
-        case OPT_BITS:
-            if (!parse_int(optarg, 8, 32, &c->write.bits))
-                return usage_error("--bits: expected 8, 16 or 32, got '%s'", optarg);
-            break;
-        case 'h':
-            fputs(usage, stdout);
-            return flush_stdout();
-        case 'V':
-            printf("glint %s\n", GLINT_VERSION);
-            return flush_stdout();
-        case ':':
-            if (optopt)
-                return usage_error("-%c needs a value", optopt);
-            return usage_error("%s needs a value", argv[optind - 1]);
-        default:
-            if (optopt)
-                return usage_error("unknown option -%c", optopt);
-            return usage_error("unknown option %s", argv[optind - 1]);
-        }
+    while ((opt = getopt_long(argc, argv, shorts, longs, NULL)) != -1) {
+        const option_row *o = opt == ':' || opt == '?' ? NULL : option_by_key(opt);
+        if (!o)
+            return option_error(opt, argv);
+        int code = o->take(c, optarg);
+        if (code >= 0)
+            return code;
     }
     if (optind < argc)
         c->scene_path = argv[optind++];
@@ -213,6 +375,8 @@ static int parse_args(int argc, char **argv, struct cli *c)
                            argv[optind]);
     return -1;
 }
+
+/* ---- running --------------------------------------------------------------- */
 
 static char **kept_argv;
 

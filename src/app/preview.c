@@ -373,6 +373,7 @@ int preview_main(const struct cli *c)
         fprintf(stderr, "glint: %s\n", err.msg);
         return glint_exit_code(rc);
     }
+    cli_warn(p.scene, c->scene_path);
     p.width = p.settings.width;
     p.height = p.settings.height;
     glint_scene_camera(p.scene, &p.cam, NULL);

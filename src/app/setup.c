@@ -1,5 +1,7 @@
 #include "cli.h"
 
+#include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 double cli_now(void)
@@ -7,6 +9,22 @@ double cli_now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+void cli_warn(const glint_scene *scene, const char *path)
+{
+    glint_scene_counts n;
+    if (glint_scene_count(scene, &n, NULL) != GLINT_OK)
+        return;
+    const char *name = !path ? "the built-in scene" : strcmp(path, "-") == 0 ? "<stdin>" : path;
+    if (n.objects == 0)
+        fprintf(stderr, "glint: warning: %s has no objects: the image is the background\n",
+                name);
+    else if (n.lights == 0)
+        fprintf(stderr,
+                "glint: warning: %s has no lights: only ambient light shows (add a 'lights' "
+                "list)\n",
+                name);
 }
 
 glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
@@ -31,7 +49,7 @@ glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
         s->samples = c->samples;
     if (c->depth >= 0)
         s->max_depth = c->depth;
-    if (c->threads > 0)
+    if (c->threads >= 0)
         s->threads = c->threads;
     if (c->transfer >= 0)
         s->transfer = (glint_transfer)c->transfer;

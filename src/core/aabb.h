@@ -25,14 +25,18 @@ static inline float aabb_area(aabb b)
 }
 
 /* Slab test of the ray o + t d against b for t in (tmin, tmax), with
- * inv_d = 1 / d per component (infinite for zero components). */
+ * inv_d = 1 / d per component (infinite for zero components). The far
+ * distance is grown by 1 + 2 gamma(3) so that rounding never drops a ray
+ * through an edge or corner of the box (Ize, "Robust BVH Ray Traversal",
+ * JCGT 2013). */
 static inline bool aabb_hit(aabb b, vec3 o, vec3 inv_d, float tmin, float tmax)
 {
     float tx0 = (b.lo.x - o.x) * inv_d.x, tx1 = (b.hi.x - o.x) * inv_d.x;
     float ty0 = (b.lo.y - o.y) * inv_d.y, ty1 = (b.hi.y - o.y) * inv_d.y;
     float tz0 = (b.lo.z - o.z) * inv_d.z, tz1 = (b.hi.z - o.z) * inv_d.z;
     tmin = maxf(maxf(minf(tx0, tx1), maxf(minf(ty0, ty1), minf(tz0, tz1))), tmin);
-    tmax = minf(minf(maxf(tx0, tx1), minf(maxf(ty0, ty1), maxf(tz0, tz1))), tmax);
+    float far = minf(maxf(tx0, tx1), minf(maxf(ty0, ty1), maxf(tz0, tz1)));
+    tmax = minf(far * (1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f)), tmax);
     return tmin <= tmax;
 }
 

@@ -61,9 +61,44 @@ void box_surface(const struct box *s, vec3 p, const shape_hit *hit, surface *out
     float n[3] = {0.0f, 0.0f, 0.0f};
     n[axis] = side ? 1.0f : -1.0f;
     int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    /* The face's coordinate exactly (shape.h). */
+    float q[3] = {p.x, p.y, p.z};
+    q[axis] = v3_at(side ? s->hi : s->lo, axis);
+    p = v3(q[0], q[1], q[2]);
     vec3 ext = v3_sub(s->hi, s->lo), rel = v3_sub(p, s->lo);
     out->p = p;
     out->n = v3(n[0], n[1], n[2]);
     out->u = v3_at(ext, ua) > 0.0f ? v3_at(rel, ua) / v3_at(ext, ua) : 0.0f;
     out->v = v3_at(ext, va) > 0.0f ? v3_at(rel, va) / v3_at(ext, va) : 0.0f;
+}
+
+bool box_span(const struct box *s, const ray *r, shape_hit *in, shape_hit *out)
+{
+    float tnear = -INFINITY, tfar = INFINITY;
+    int near_face = -1, far_face = -1;
+    for (int a = 0; a < 3; a++) {
+        float o = v3_at(r->o, a), d = v3_at(r->d, a);
+        float lo = v3_at(s->lo, a), hi = v3_at(s->hi, a);
+        if (d == 0.0f) {
+            if (o < lo || o > hi)
+                return false;
+            continue;
+        }
+        float t0 = (lo - o) / d, t1 = (hi - o) / d;
+        int f0 = 2 * a, f1 = 2 * a + 1;
+        if (t0 > t1) {
+            float t = t0;
+            t0 = t1, t1 = t;
+            f0 = 2 * a + 1, f1 = 2 * a;
+        }
+        if (t0 > tnear)
+            tnear = t0, near_face = f0;
+        if (t1 < tfar)
+            tfar = t1, far_face = f1;
+    }
+    if (!(tnear <= tfar) || near_face < 0 || far_face < 0)
+        return false;
+    *in = (shape_hit){.t = tnear, .part = near_face};
+    *out = (shape_hit){.t = tfar, .part = far_face};
+    return true;
 }

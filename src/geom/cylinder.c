@@ -61,12 +61,59 @@ void cylinder_surface(const struct cylinder *s, vec3 p, const shape_hit *hit, su
     out->p = p;
     if (hit->part == 0) {
         out->n = v3_norm(v3(x, 0.0f, z));
+        /* Back onto the side (shape.h). */
+        out->p = v3(s->base.x + out->n.x * s->radius, p.y, s->base.z + out->n.z * s->radius);
         out->u = 0.5f + atan2f(x, z) * (float)(0.5 / M_PI);
         out->v = s->height > 0.0f ? (p.y - s->base.y) / s->height : 0.0f;
         return;
     }
     float sign = hit->part == 2 ? 1.0f : -1.0f;
+    out->p.y = s->base.y + (hit->part == 2 ? s->height : 0.0f);
     out->n = v3(0.0f, sign, 0.0f);
     out->u = 0.5f + 0.5f * x / s->radius;
     out->v = 0.5f - 0.5f * sign * z / s->radius;
+}
+
+/* The capped cylinder's entry and exit: the slab 0 <= y <= height met with
+ * the infinite cylinder, each end keeping the part that bounds it. */
+bool cylinder_span(const struct cylinder *s, const ray *r, shape_hit *in, shape_hit *out)
+{
+    float ox = r->o.x - s->base.x, oy = r->o.y - s->base.y, oz = r->o.z - s->base.z;
+    float dx = r->d.x, dy = r->d.y, dz = r->d.z;
+    float t0 = -INFINITY, t1 = INFINITY;
+    int p0 = 0, p1 = 0;
+    float a = dx * dx + dz * dz, rr = s->radius * s->radius;
+    if (a > 0.0f) {
+        float b = -(ox * dx + oz * dz);
+        float lx = ox + dx * (b / a), lz = oz + dz * (b / a);
+        float disc = a * (rr - (lx * lx + lz * lz));
+        if (disc < 0.0f)
+            return false;
+        float c = ox * ox + oz * oz - rr;
+        float q = b + copysignf(sqrtf(disc), b);
+        float ra = q != 0.0f ? c / q : 0.0f, rb = q / a;
+        t0 = fminf(ra, rb), t1 = fmaxf(ra, rb);
+    } else if (ox * ox + oz * oz > rr) {
+        return false;
+    }
+    if (dy != 0.0f) {
+        float ya = -oy / dy, yb = (s->height - oy) / dy;
+        int pa = 1, pb = 2;
+        if (ya > yb) {
+            float t = ya;
+            ya = yb, yb = t;
+            pa = 2, pb = 1;
+        }
+        if (ya > t0)
+            t0 = ya, p0 = pa;
+        if (yb < t1)
+            t1 = yb, p1 = pb;
+    } else if (oy < 0.0f || oy > s->height) {
+        return false;
+    }
+    if (!(t0 <= t1))
+        return false;
+    *in = (shape_hit){.t = t0, .part = p0};
+    *out = (shape_hit){.t = t1, .part = p1};
+    return true;
 }

@@ -7,13 +7,6 @@
 #include "geom/shape.h"
 #include "geom/tri4.h"
 
-static bool degenerate(vec3 a, vec3 b, vec3 c)
-{
-    if (!v3_is_finite(a) || !v3_is_finite(b) || !v3_is_finite(c))
-        return true;
-    vec3 n = v3_cross(v3_sub(b, a), v3_sub(c, a));
-    return !(v3_len2(n) > 0.0f);
-}
 
 /* Copies each leaf's triangles into tri4 blocks, in node order, and
  * renumbers the leaf to its first block, so traversal reaches the corners
@@ -67,7 +60,15 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
     for (int i = 0; i < m->ntris; i++) {
         const uint32_t *t = m->tri[i];
         if (t[0] >= (uint32_t)m->nverts || t[1] >= (uint32_t)m->nverts ||
-            t[2] >= (uint32_t)m->nverts || degenerate(m->pos[t[0]], m->pos[t[1]], m->pos[t[2]]))
+            t[2] >= (uint32_t)m->nverts)
+            continue;
+        triangle_fit fit = triangle_check(m->pos[t[0]], m->pos[t[1]], m->pos[t[2]]);
+        if (fit == TRIANGLE_TOO_LARGE) /* dropping it silently would leave a hole */
+            return err_set(err, GLINT_ERR_INPUT,
+                           "%s: triangle %d is too large for single precision (its normal "
+                           "overflows); scale the model down",
+                           name, i + 1);
+        if (fit == TRIANGLE_DEGENERATE)
             continue;
         memmove(m->tri[kept], m->tri[i], sizeof m->tri[i]);
         if (m->tri_material)
@@ -204,12 +205,64 @@ bool mesh_occluded(const mesh *m, const ray *r)
     return bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, true, leaf_any, &c);
 }
 
+typedef struct all_ctx {
+    const mesh *m;
+    tri4_ray q;
+    const ray *r;
+    crossing *out;
+    int n, max;
+    bool more;
+} all_ctx;
+
+/* Collects every hit of the leaf (tmax is left alone, so every leaf the
+ * line meets is visited), keeping the max nearest in order. */
+__attribute__((always_inline)) static inline bool leaf_all(void *ctx, uint32_t first,
+                                                           uint32_t count, float tmin, float *tmax)
+{
+    all_ctx *c = ctx;
+    const tri4 *blk = &c->m->blocks[first];
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        float t[4], b1[4], b2[4];
+        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
+        for (int k = 0; mask; k++, mask >>= 1) {
+            if (!(mask & 1))
+                continue;
+            const uint32_t *tri = c->m->tri[blk->id[k]];
+            vec3 p0 = c->m->pos[tri[0]];
+            vec3 ng = v3_cross(v3_sub(c->m->pos[tri[1]], p0), v3_sub(c->m->pos[tri[2]], p0));
+            crossing x = {{.t = t[k], .part = blk->id[k], .b1 = b1[k], .b2 = b2[k]},
+                          v3_dot(ng, c->r->d) < 0.0f};
+            int at = c->n < c->max ? c->n++ : c->n;
+            if (at == c->max) {
+                c->more = true;
+                if (t[k] >= c->out[c->max - 1].h.t)
+                    continue;
+                at = c->max - 1;
+            }
+            for (; at > 0 && c->out[at - 1].h.t > t[k]; at--)
+                c->out[at] = c->out[at - 1];
+            c->out[at] = x;
+        }
+    }
+    return false;
+}
+
+int mesh_crossings(const mesh *m, const ray *r, crossing *out, int max, bool *more)
+{
+    all_ctx c = {m, tri4_ray_make(r), r, out, 0, max, false};
+    float tmax = INFINITY;
+    bvh4_traverse(&m->bvh, r->o, r->d, r->tmin, &tmax, false, leaf_all, &c);
+    *more = c.more;
+    return c.n;
+}
+
 void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)
 {
     const uint32_t *t = m->tri[hit->part];
     float b1 = hit->b1, b2 = hit->b2, b0 = 1.0f - b1 - b2;
     vec3 p0 = m->pos[t[0]], p1 = m->pos[t[1]], p2 = m->pos[t[2]];
-    out->p = p;
+    (void)p; /* the point from the barycentrics, on the triangle (geom/shape.h) */
+    out->p = v3_madd(v3_madd(p0, v3_sub(p1, p0), b1), v3_sub(p2, p0), b2);
     out->ng = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
     out->n = out->ng;
     if (m->nrm) {
@@ -225,4 +278,81 @@ void mesh_surface(const mesh *m, vec3 p, const shape_hit *hit, surface *out)
         out->u = b1;
         out->v = b2;
     }
+}
+
+/* ---- closedness --------------------------------------------------------- */
+
+static int vec_cmp(const void *pa, const void *pb)
+{
+    const vec3 *a = *(const vec3 *const *)pa, *b = *(const vec3 *const *)pb;
+    if (a->x != b->x)
+        return a->x < b->x ? -1 : 1;
+    if (a->y != b->y)
+        return a->y < b->y ? -1 : 1;
+    return (a->z > b->z) - (a->z < b->z);
+}
+
+typedef struct medge {
+    uint32_t lo, hi;
+    int dir; /* +1: lo -> hi, -1: hi -> lo */
+} medge;
+
+static int medge_cmp(const void *pa, const void *pb)
+{
+    const medge *a = pa, *b = pb;
+    if (a->lo != b->lo)
+        return a->lo < b->lo ? -1 : 1;
+    return (a->hi > b->hi) - (a->hi < b->hi);
+}
+
+/* Vertices at the same position count as one (files often repeat them
+ * where normals or texture coordinates change), so each vertex is renamed
+ * to the first of its position. */
+static uint32_t *weld(const mesh *m)
+{
+    const vec3 **order = malloc(sizeof *order * (size_t)m->nverts);
+    uint32_t *id = malloc(sizeof *id * (size_t)m->nverts);
+    if (!order || !id) {
+        free(order);
+        free(id);
+        return NULL;
+    }
+    for (int i = 0; i < m->nverts; i++)
+        order[i] = &m->pos[i];
+    qsort(order, (size_t)m->nverts, sizeof *order, vec_cmp);
+    for (int i = 0; i < m->nverts; i++) {
+        bool same = i > 0 && vec_cmp(&order[i], &order[i - 1]) == 0;
+        id[order[i] - m->pos] = same ? id[order[i - 1] - m->pos] : (uint32_t)(order[i] - m->pos);
+    }
+    free(order);
+    return id;
+}
+
+int mesh_open_edges(const mesh *m)
+{
+    uint32_t *id = weld(m);
+    medge *e = malloc(sizeof *e * (size_t)m->ntris * 3);
+    if (!id || !e) {
+        free(id);
+        free(e);
+        return -1;
+    }
+    int n = 0;
+    for (int t = 0; t < m->ntris; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = id[m->tri[t][k]], b = id[m->tri[t][(k + 1) % 3]];
+            e[n++] = a < b ? (medge){a, b, 1} : (medge){b, a, -1};
+        }
+    qsort(e, (size_t)n, sizeof *e, medge_cmp);
+    int bad = 0;
+    for (int i = 0; i < n;) {
+        int j = i, sum = 0;
+        for (; j < n && e[j].lo == e[i].lo && e[j].hi == e[i].hi; j++)
+            sum += e[j].dir;
+        bad += j - i != 2 || sum != 0;
+        i = j;
+    }
+    free(id);
+    free(e);
+    return bad;
 }

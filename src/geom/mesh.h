@@ -12,6 +12,7 @@
 
 struct surface;
 struct shape_hit;
+struct crossing;
 
 typedef struct mesh {
     vec3 *pos;
@@ -35,8 +36,17 @@ void mesh_free(mesh *m);
 
 bool mesh_intersect(const mesh *m, const ray *r, struct shape_hit *hit);
 bool mesh_occluded(const mesh *m, const ray *r);
+/* Every triangle crossing after r->tmin, nearest first, entering where
+ * the triangle faces the ray (see shape_crossings). */
+int mesh_crossings(const mesh *m, const ray *r, struct crossing *out, int max, bool *more);
 /* hit->part is the triangle; b1, b2 its barycentrics. */
 void mesh_surface(const mesh *m, vec3 p, const struct shape_hit *hit, struct surface *out);
+
+/* How many edges (vertices at one position counted as one) do not join
+ * exactly two triangles running along them in opposite directions: 0 for a
+ * closed, consistently wound surface, which bounds a solid. -1 when memory
+ * runs out. */
+int mesh_open_edges(const mesh *m);
 
 /* Bytes held by the mesh and its BVH. */
 size_t mesh_bytes(const mesh *m);

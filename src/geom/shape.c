@@ -1,6 +1,8 @@
 #include "shape.h"
 
+#include "csg.h"
 #include "mesh.h"
+#include "polyhedron.h"
 
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit)
 {
@@ -19,13 +21,26 @@ bool shape_intersect(const shape *s, const ray *r, shape_hit *hit)
         return triangle_intersect(&s->triangle, r, hit);
     case SHAPE_MESH:
         return mesh_intersect(s->mesh, r, hit);
+    case SHAPE_CONE:
+        return cone_intersect(&s->cone, r, hit);
+    case SHAPE_DISK:
+        return disk_intersect(&s->disk, r, hit);
+    case SHAPE_TORUS:
+        return torus_intersect(&s->torus, r, hit);
+    case SHAPE_POLYHEDRON:
+        return polyhedron_intersect(s->polyhedron, r, hit);
+    case SHAPE_CSG:
+        return csg_intersect(s->csg, r, hit);
+    case SHAPE_COUNT:
+        break;
     }
     return false;
 }
 
 /* Analytic shapes find their nearest hit without computing normals, so
  * for them the occlusion query costs the same as intersect; meshes stop at
- * the first triangle found. */
+ * the first triangle found. A csg has to classify the ray up to its first
+ * boundary whichever query it answers. */
 bool shape_occluded(const shape *s, const ray *r)
 {
     shape_hit h;
@@ -36,9 +51,16 @@ bool shape_occluded(const shape *s, const ray *r)
     case SHAPE_BOX:
     case SHAPE_CYLINDER:
     case SHAPE_TRIANGLE:
+    case SHAPE_CONE:
+    case SHAPE_DISK:
+    case SHAPE_TORUS:
+    case SHAPE_POLYHEDRON:
+    case SHAPE_CSG:
         return shape_intersect(s, r, &h);
     case SHAPE_MESH:
         return mesh_occluded(s->mesh, r);
+    case SHAPE_COUNT:
+        break;
     }
     return false;
 }
@@ -65,11 +87,44 @@ void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *
     case SHAPE_TRIANGLE:
         triangle_surface(&s->triangle, p, hit, out);
         break;
+    case SHAPE_CONE:
+        cone_surface(&s->cone, p, hit, out);
+        break;
+    case SHAPE_DISK:
+        disk_surface(&s->disk, p, out);
+        break;
+    case SHAPE_TORUS:
+        torus_surface(&s->torus, p, out);
+        break;
+    case SHAPE_POLYHEDRON:
+        polyhedron_surface(s->polyhedron, p, hit, out);
+        break;
     case SHAPE_MESH:
         mesh_surface(s->mesh, p, hit, out);
         return;
+    case SHAPE_CSG:
+        csg_surface(s->csg, r, hit, out);
+        return;
+    case SHAPE_COUNT:
+        break;
     }
     out->ng = out->n;
+}
+
+static aabb cylinder_bounds(vec3 base, float radius, float height)
+{
+    return (aabb){v3(base.x - radius, base.y, base.z - radius),
+                  v3(base.x + radius, base.y + height, base.z + radius)};
+}
+
+/* A disk's box: along each axis the rim reaches radius * sqrt(1 - n_i^2). */
+static aabb disk_bounds(const struct disk *d)
+{
+    vec3 n = d->normal;
+    vec3 e = v3(d->radius * sqrtf(fmaxf(0.0f, 1.0f - n.x * n.x)),
+                d->radius * sqrtf(fmaxf(0.0f, 1.0f - n.y * n.y)),
+                d->radius * sqrtf(fmaxf(0.0f, 1.0f - n.z * n.z)));
+    return (aabb){v3_sub(d->center, e), v3_add(d->center, e)};
 }
 
 aabb shape_bounds(const shape *s)
@@ -90,16 +145,28 @@ aabb shape_bounds(const shape *s)
     }
     case SHAPE_BOX:
         return (aabb){s->box.lo, s->box.hi};
-    case SHAPE_CYLINDER: {
-        const struct cylinder *c = &s->cylinder;
-        vec3 lo = v3(c->base.x - c->radius, c->base.y, c->base.z - c->radius);
-        vec3 hi = v3(c->base.x + c->radius, c->base.y + c->height, c->base.z + c->radius);
-        return (aabb){lo, hi};
-    }
+    case SHAPE_CYLINDER:
+        return cylinder_bounds(s->cylinder.base, s->cylinder.radius, s->cylinder.height);
     case SHAPE_TRIANGLE:
         return aabb_grow(aabb_grow(aabb_point(s->triangle.p0), s->triangle.p1), s->triangle.p2);
     case SHAPE_MESH:
         return s->mesh->bounds;
+    case SHAPE_CONE:
+        return cylinder_bounds(s->cone.base, fmaxf(s->cone.radius, s->cone.top_radius),
+                               s->cone.height);
+    case SHAPE_DISK:
+        return disk_bounds(&s->disk);
+    case SHAPE_TORUS: {
+        float a = s->torus.major + s->torus.minor;
+        vec3 e = v3(a, s->torus.minor, a);
+        return (aabb){v3_sub(s->torus.center, e), v3_add(s->torus.center, e)};
+    }
+    case SHAPE_POLYHEDRON:
+        return s->polyhedron->bounds;
+    case SHAPE_CSG:
+        return s->csg->bounds;
+    case SHAPE_COUNT:
+        break;
     }
     return aabb_empty();
 }
@@ -112,13 +179,107 @@ bool shape_is_convex(const shape *s)
     case SHAPE_QUAD:
     case SHAPE_BOX:
     case SHAPE_TRIANGLE:
+    case SHAPE_DISK:
         return true;
     case SHAPE_CYLINDER:
         return s->cylinder.capped;
+    case SHAPE_CONE:
+        return s->cone.capped;
+    case SHAPE_POLYHEDRON:
+        return s->polyhedron->convex;
     case SHAPE_MESH:
+    case SHAPE_TORUS:
+    case SHAPE_CSG:
         return false;
+    case SHAPE_COUNT:
+        break;
     }
     return false;
+}
+
+bool shape_is_solid(const shape *s)
+{
+    switch (s->kind) {
+    case SHAPE_SPHERE:
+    case SHAPE_BOX:
+    case SHAPE_MESH:
+    case SHAPE_TORUS:
+    case SHAPE_POLYHEDRON:
+    case SHAPE_CSG:
+        return true;
+    case SHAPE_CYLINDER:
+        return s->cylinder.capped;
+    case SHAPE_CONE:
+        return s->cone.capped;
+    case SHAPE_PLANE:
+    case SHAPE_QUAD:
+    case SHAPE_TRIANGLE:
+    case SHAPE_DISK:
+    case SHAPE_COUNT:
+        break;
+    }
+    return false;
+}
+
+/* A convex solid's entry and exit, those after tmin. */
+static int convex_crossings(bool found, shape_hit in, shape_hit out, const ray *r,
+                            crossing *x, int max)
+{
+    int n = 0;
+    if (!found)
+        return 0;
+    if (in.t > r->tmin && n < max)
+        x[n++] = (crossing){in, true};
+    if (out.t > r->tmin && n < max)
+        x[n++] = (crossing){out, false};
+    return n;
+}
+
+int shape_crossings(const shape *s, const ray *r, crossing *x, int max, bool *more)
+{
+    shape_hit in, out;
+    bool found = false;
+    *more = false;
+    switch (s->kind) {
+    case SHAPE_SPHERE:
+        found = sphere_span(&s->sphere, r, &in, &out);
+        break;
+    case SHAPE_BOX:
+        found = box_span(&s->box, r, &in, &out);
+        break;
+    case SHAPE_CYLINDER:
+        found = cylinder_span(&s->cylinder, r, &in, &out);
+        break;
+    case SHAPE_CONE:
+        found = cone_span(&s->cone, r, &in, &out);
+        break;
+    case SHAPE_TORUS:
+        return torus_crossings(&s->torus, r, x, max);
+    case SHAPE_POLYHEDRON:
+        return polyhedron_crossings(s->polyhedron, r, x, max, more);
+    case SHAPE_MESH:
+        return mesh_crossings(s->mesh, r, x, max, more);
+    case SHAPE_PLANE:
+    case SHAPE_QUAD:
+    case SHAPE_TRIANGLE:
+    case SHAPE_DISK:
+    case SHAPE_CSG:
+    case SHAPE_COUNT:
+        return 0;
+    }
+    return convex_crossings(found, in, out, r, x, max);
+}
+
+int shape_hit_material(const shape *s, const shape_hit *hit)
+{
+    if (s->kind == SHAPE_MESH)
+        return s->mesh->tri_material ? s->mesh->tri_material[hit->part] : -1;
+    if (s->kind != SHAPE_CSG)
+        return -1;
+    const csg_leaf *l = &s->csg->leaves[hit->leaf];
+    if (l->material >= 0 || l->shape.kind != SHAPE_MESH || !l->shape.mesh->tri_material)
+        return l->material;
+    return l->shape.mesh->tri_material[hit->part];
 }
 
 shape shape_sphere(vec3 center, float radius)
@@ -160,4 +321,31 @@ shape shape_triangle(vec3 p0, vec3 p1, vec3 p2)
 {
     return (shape){.kind = SHAPE_TRIANGLE,
                    .triangle = {p0, p1, p2, {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}}}};
+}
+
+shape shape_cone(vec3 base, float radius, float top_radius, float height, bool capped)
+{
+    return (shape){.kind = SHAPE_CONE, .cone = {base, radius, top_radius, height, capped}};
+}
+
+shape shape_disk(vec3 center, vec3 normal, float radius, float inner_radius)
+{
+    vec3 n = v3_norm(normal), tu, tv;
+    v3_basis(n, &tu, &tv);
+    return (shape){.kind = SHAPE_DISK, .disk = {center, n, tu, tv, radius, inner_radius}};
+}
+
+shape shape_torus(vec3 center, float major_radius, float minor_radius)
+{
+    return (shape){.kind = SHAPE_TORUS, .torus = {center, major_radius, minor_radius}};
+}
+
+shape shape_polyhedron(const struct polyhedron *p)
+{
+    return (shape){.kind = SHAPE_POLYHEDRON, .polyhedron = p};
+}
+
+shape shape_csg(const struct csg *c)
+{
+    return (shape){.kind = SHAPE_CSG, .csg = c};
 }

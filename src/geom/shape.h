@@ -1,14 +1,28 @@
 /* shape: the closed set of geometric primitives. Each shape is described in
  * its own coordinates; an object (scene.h) may add a transform on top.
  *
- * Every shape answers four questions, dispatched by one switch each:
+ * Every shape answers these questions, dispatched by one switch each in
+ * shape.c:
  *   intersect  nearest hit with t in (ray.tmin, ray.tmax); fills a shape_hit
  *   occluded   whether any hit exists in (ray.tmin, ray.tmax) (shadow rays)
- *   surface    point, unit outward normal and (u, v) at a hit found above
+ *   surface    point, unit outward normal and (u, v) at a hit found above;
+ *              the point is put back onto the surface (see below)
  *   bounds     an axis-aligned box around the shape (empty for planes)
+ *   crossings  for closed solids (the operands of csg): every place where
+ *              the ray's line crosses the boundary after tmin, in order,
+ *              each marked entering or leaving
  * intersect keeps only what it needs to finish the hit later (t and, for
  * some shapes, which part was hit), so the cost of normals and texture
- * coordinates is paid once per shaded point, not once per candidate. */
+ * coordinates is paid once per shaded point, not once per candidate.
+ *
+ * The hit point. o + t d rounds to within about |t d| * 2^-24 of the
+ * surface, which from far away (t ~ 10^4 x the object's size) is more than
+ * the offset new rays get (core/ray.h) and shows as acne. So surface()
+ * returns the point moved back onto the surface along the normal
+ * (Wächter and Binder, "A Fast and Robust Method for Avoiding
+ * Self-Intersection", Ray Tracing Gems ch. 6, 2019, take the same view:
+ * the offset only has to cover the error of a point computed from the
+ * surface itself, which is a few ulps of its coordinates). */
 #ifndef GLINT_GEOM_SHAPE_H
 #define GLINT_GEOM_SHAPE_H
 
@@ -24,9 +38,17 @@ typedef enum shape_kind {
     SHAPE_CYLINDER,
     SHAPE_TRIANGLE,
     SHAPE_MESH,
+    SHAPE_CONE,
+    SHAPE_DISK,
+    SHAPE_TORUS,
+    SHAPE_POLYHEDRON,
+    SHAPE_CSG,
+    SHAPE_COUNT /* not a shape: the number of kinds, for tables indexed by kind */
 } shape_kind;
 
 struct mesh;
+struct polyhedron;
+struct csg;
 
 struct sphere {
     vec3 center;
@@ -59,6 +81,29 @@ struct cylinder {
     bool capped;
 };
 
+/* Cone round the +y axis: radius at the base, top_radius (0: pointed) at
+ * base + height; caps optional (a pointed cone has only the bottom one). */
+struct cone {
+    vec3 base;
+    float radius, top_radius, height;
+    bool capped;
+};
+
+/* Disk (annulus when inner > 0) in the plane through center with unit
+ * normal; tu, tv as for the plane. */
+struct disk {
+    vec3 center, normal;
+    vec3 tu, tv;
+    float radius, inner;
+};
+
+/* Torus round the +y axis through center: the tube of radius minor round
+ * the circle of radius major in the xz plane. */
+struct torus {
+    vec3 center;
+    float major, minor;
+};
+
 /* Triangle p0 p1 p2, front face counter-clockwise; optional per-vertex (u, v). */
 struct triangle {
     vec3 p0, p1, p2;
@@ -74,17 +119,29 @@ typedef struct shape {
         struct box box;
         struct cylinder cylinder;
         struct triangle triangle;
-        const struct mesh *mesh; /* owned by the scene */
+        struct cone cone;
+        struct disk disk;
+        struct torus torus;
+        const struct mesh *mesh;             /* these three are owned by the scene */
+        const struct polyhedron *polyhedron;
+        const struct csg *csg;
     };
 } shape;
 
 /* What intersect leaves for surface: t, and shape-specific detail. */
 typedef struct shape_hit {
     float t;
-    int part;     /* box face 0..5 (axis*2 + max side), cylinder 0 side 1 bottom 2 top,
-                     mesh triangle */
+    int part;     /* box face 0..5 (axis*2 + max side); cylinder and cone 0 side,
+                     1 bottom, 2 top; polyhedron face; mesh triangle */
     float b1, b2; /* triangle barycentrics, quad (u, v) */
+    int leaf;     /* csg: the solid hit (part, b1, b2 are its own) */
 } shape_hit;
+
+/* A place where a line crosses the boundary of a closed solid. */
+typedef struct crossing {
+    shape_hit h;
+    bool enter; /* into the solid as t grows */
+} crossing;
 
 typedef struct surface {
     vec3 p;   /* hit point in the shape's space */
@@ -102,6 +159,22 @@ shape shape_box(vec3 lo, vec3 hi);
 shape shape_cylinder(vec3 base, float radius, float height, bool capped);
 shape shape_triangle(vec3 p0, vec3 p1, vec3 p2);
 shape shape_mesh(const struct mesh *m);
+/* top_radius 0 makes a pointed cone. */
+shape shape_cone(vec3 base, float radius, float top_radius, float height, bool capped);
+shape shape_disk(vec3 center, vec3 normal, float radius, float inner_radius);
+shape shape_torus(vec3 center, float major_radius, float minor_radius);
+shape shape_polyhedron(const struct polyhedron *p);
+shape shape_csg(const struct csg *c);
+
+/* What a triangle's corners allow: its normal (the cross product of two
+ * edges) is worked out in double, so a triangle too large for single
+ * precision is told from one with no area. */
+typedef enum triangle_fit {
+    TRIANGLE_OK,
+    TRIANGLE_DEGENERATE, /* corners on one line (or not finite, or too small for floats) */
+    TRIANGLE_TOO_LARGE,  /* its normal overflows single precision (edges of about 4e9 or more) */
+} triangle_fit;
+triangle_fit triangle_check(vec3 p0, vec3 p1, vec3 p2);
 
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);
@@ -109,6 +182,19 @@ void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *
 aabb shape_bounds(const shape *s);
 /* True when a ray leaving the surface can never meet the shape again. */
 bool shape_is_convex(const shape *s);
+/* Whether the shape bounds a solid, so that it can be an operand of csg:
+ * spheres, boxes, capped cylinders and cones, tori, polyhedra, meshes (the
+ * loader checks that they are closed) and csg. */
+bool shape_is_solid(const shape *s);
+
+/* The crossings of a solid along r after r->tmin (r->tmax is ignored), in
+ * order, at most max of them. When there are more, *more is set and the
+ * ones returned are the nearest. Whether the ray starts inside follows
+ * from the first crossing (leaving: inside); with none, it is outside. */
+int shape_crossings(const shape *s, const ray *r, crossing *out, int max, bool *more);
+/* The material index a hit names when the object has none of its own: a
+ * mesh triangle's, or that of the csg operand hit; -1 when there is none. */
+int shape_hit_material(const shape *s, const shape_hit *hit);
 
 /* Per-shape routines, called by the dispatchers above. */
 bool sphere_intersect(const struct sphere *s, const ray *r, shape_hit *hit);
@@ -123,5 +209,20 @@ bool cylinder_intersect(const struct cylinder *s, const ray *r, shape_hit *hit);
 void cylinder_surface(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out);
 bool triangle_intersect(const struct triangle *s, const ray *r, shape_hit *hit);
 void triangle_surface(const struct triangle *s, vec3 p, const shape_hit *hit, surface *out);
+bool cone_intersect(const struct cone *s, const ray *r, shape_hit *hit);
+void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *out);
+bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit);
+void disk_surface(const struct disk *s, vec3 p, surface *out);
+bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit);
+void torus_surface(const struct torus *s, vec3 p, surface *out);
+
+/* Crossings of the convex solids: the whole line's entry and exit, of
+ * which those after r->tmin are kept (convex_crossings, shape.c). Each
+ * returns false when the line misses. */
+bool sphere_span(const struct sphere *s, const ray *r, shape_hit *in, shape_hit *out);
+bool box_span(const struct box *s, const ray *r, shape_hit *in, shape_hit *out);
+bool cylinder_span(const struct cylinder *s, const ray *r, shape_hit *in, shape_hit *out);
+bool cone_span(const struct cone *s, const ray *r, shape_hit *in, shape_hit *out);
+int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max);
 
 #endif

@@ -183,20 +183,26 @@ static int slot_of(const char *name, bool grey)
     return strcmp(n, "R") == 0 ? 0 : strcmp(n, "G") == 0 ? 1 : strcmp(n, "B") == 0 ? 2 : -1;
 }
 
-static void bind_image(exr_decode_pipeline_t *dec, float *px, int width, int row, bool grey)
+/* Points each channel at its place in px (rows from row on); a channel
+ * glint does not use is decoded into skip (one float per pixel of a chunk)
+ * and dropped: OpenEXR 3.1's unpackers read through a NULL destination
+ * when some channels have one and others not (found by fuzzing). */
+static void bind_image(exr_decode_pipeline_t *dec, float *px, float *skip, int width, int row,
+                       bool grey)
 {
     for (int c = 0; c < dec->channel_count; c++) {
         exr_coding_channel_info_t *ch = &dec->channels[c];
         int k = slot_of(ch->channel_name, grey);
-        if (k < 0 || k == 3) { /* Y is copied to G, B after the chunk */
-            ch->decode_to_ptr = NULL;
-            if (k == 3)
-                k = 0;
-            else
-                continue;
-        }
         ch->user_bytes_per_element = 4;
         ch->user_data_type = EXR_PIXEL_FLOAT;
+        if (k < 0) {
+            ch->user_pixel_stride = 4;
+            ch->user_line_stride = width * 4;
+            ch->decode_to_ptr = (uint8_t *)skip;
+            continue;
+        }
+        if (k == 3) /* Y goes to R; copied to G, B after the last chunk */
+            k = 0;
         ch->user_pixel_stride = 12;
         ch->user_line_stride = width * 12;
         ch->decode_to_ptr = (uint8_t *)(px + ((size_t)row * (size_t)width * 3 + (size_t)k));
@@ -221,6 +227,9 @@ static exr_result_t read_chunks(exr_context_t ctx, float *px, exr_attr_box2i_t d
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     int lines;
     exr_result_t e = exr_get_scanlines_per_chunk(ctx, 0, &lines);
+    float *skip = e || lines < 1 ? NULL : malloc((size_t)width * (size_t)lines * sizeof *skip);
+    if (!e && !skip)
+        return lines < 1 ? EXR_ERR_CORRUPT_CHUNK : EXR_ERR_OUT_OF_MEMORY;
     bool started = false;
     for (int y = dw.min.y; !e && y <= dw.max.y; y += lines) {
         exr_chunk_info_t cinfo;
@@ -236,7 +245,7 @@ static exr_result_t read_chunks(exr_context_t ctx, float *px, exr_attr_box2i_t d
             e = EXR_ERR_CORRUPT_CHUNK;
             break;
         }
-        bind_image(&dec, px, width, row, grey);
+        bind_image(&dec, px, skip, width, row, grey);
         if (!started) {
             e = exr_decoding_choose_default_routines(ctx, 0, &dec);
             started = true;
@@ -246,6 +255,7 @@ static exr_result_t read_chunks(exr_context_t ctx, float *px, exr_attr_box2i_t d
     }
     if (started)
         exr_decoding_destroy(ctx, &dec);
+    free(skip);
     size_t n = (size_t)width * (size_t)height;
     if (!e && grey)
         for (size_t i = 0; i < n; i++)

@@ -3,6 +3,8 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -116,6 +118,24 @@ static glint_rc write_direct(const char *path, bool truncate, const void *data, 
     return rc;
 }
 
+/* While a temporary file exists, the signals that end a program by
+ * default (Ctrl-C, kill, a closed terminal) wait: they arrive once it is
+ * renamed or removed, so an interrupted write leaves no .glint-* behind.
+ * Blocked for the calling thread, which is the one the kernel picks when
+ * the others block them too (glint's render threads are done by then). */
+static void hold_signals(sigset_t *saved)
+{
+    sigset_t s;
+    sigemptyset(&s);
+    sigaddset(&s, SIGINT);
+    sigaddset(&s, SIGTERM);
+    sigaddset(&s, SIGHUP);
+    sigaddset(&s, SIGQUIT);
+    pthread_sigmask(SIG_BLOCK, &s, saved);
+}
+
+static void release_signals(const sigset_t *saved) { pthread_sigmask(SIG_SETMASK, saved, NULL); }
+
 /* Creates dir/.glint-XXXXXXXX (8 random letters: short, so any name the
  * folder accepts still works) with the given mode. */
 static int create_temp(const char *dir, mode_t mode, char **tmp)
@@ -174,10 +194,13 @@ static glint_rc replace(const char *shown, const char *path, const void *data, s
     if (!dir)
         return err_nomem(err);
     /* a new file gets 0666 less the umask, as creat() would give it */
+    sigset_t saved;
+    hold_signals(&saved);
     int fd = create_temp(dir, exists ? 0600 : 0666, &tmp);
     if (fd < 0) {
         rc = err_set(err, GLINT_ERR_IO, "%s: cannot write in folder '%s': %s", shown, dir,
                      strerror(errno));
+        release_signals(&saved);
         goto out;
     }
     rc = write_all(fd, data, n, shown, err);
@@ -194,10 +217,11 @@ static glint_rc replace(const char *shown, const char *path, const void *data, s
         rc = err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", shown, strerror(errno));
     if (rc == GLINT_OK && rename(tmp, path) != 0)
         rc = err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", shown, strerror(errno));
-    if (rc != GLINT_OK) {
+    if (rc != GLINT_OK)
         unlink(tmp);
+    release_signals(&saved);
+    if (rc != GLINT_OK)
         goto out;
-    }
     /* make the rename itself durable; a failure here loses nothing now */
     int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dfd >= 0) {
@@ -255,6 +279,8 @@ static glint_rc check_folder(const char *shown, const char *path, glint_error *e
     } else {
         /* the one reliable test of writability (permissions, read-only
          * mounts, ACLs, root): create the temporary file the write will */
+        sigset_t saved;
+        hold_signals(&saved);
         int fd = create_temp(dir, 0600, &tmp);
         if (fd < 0) {
             rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot write in folder '%s': %s", shown, dir,
@@ -263,6 +289,7 @@ static glint_rc check_folder(const char *shown, const char *path, glint_error *e
             close(fd);
             unlink(tmp);
         }
+        release_signals(&saved);
     }
     free(tmp);
     free(dir);

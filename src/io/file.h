@@ -4,7 +4,9 @@
  * memory) go to a temporary file with a short random name in the target's
  * folder, which is flushed to disk and renamed over the target, so the
  * target is always either the old file or the whole new one; on failure the
- * temporary file is removed. Symbolic links are followed: the file they
+ * temporary file is removed. Ctrl-C, SIGTERM, SIGHUP and SIGQUIT wait while
+ * the temporary file exists (blocked in the calling thread), so an
+ * interrupted program leaves none behind. Symbolic links are followed: the file they
  * point to is replaced and the links stay. An existing file keeps its mode
  * (and, when allowed, its owner); a read-only file (no write bit) is refused,
  * as cp refuses it. A file with several hard links is replaced under the

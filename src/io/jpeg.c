@@ -1,8 +1,9 @@
 /* jpeg: JPEG read and written through libjpeg-turbo (libjpeg's API, as its
  * libjpeg.txt documents). libjpeg reports errors by calling error_exit,
  * which must not return: ours longjmps back to the call, the library's
- * documented way. A "premature end of data" warning, which libjpeg would
- * paper over with grey, is an error here ("file is truncated"). */
+ * documented way. A "premature end of data" warning, or a marker met where
+ * coded data should go on (libjpeg would paper over both with grey), is an
+ * error here ("file is truncated"). */
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,11 +35,12 @@ static void on_error(j_common_ptr cinfo)
 }
 
 /* Warnings (level -1) are collected, never printed; the end-of-data one
- * means the file was cut short. */
+ * and a marker inside the coded data mean the file was cut short. */
 static void on_message(j_common_ptr cinfo, int level)
 {
     jpeg_failure *f = (jpeg_failure *)cinfo->err;
-    if (level < 0 && cinfo->err->msg_code == JWRN_JPEG_EOF)
+    if (level < 0 &&
+        (cinfo->err->msg_code == JWRN_JPEG_EOF || cinfo->err->msg_code == JWRN_HIT_MARKER))
         f->truncated = true;
 }
 
@@ -76,7 +78,13 @@ glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *
     cinfo.mem->max_memory_to_use = 1L << 30;
     jpeg_mem_src(&cinfo, data, (unsigned long)size);
     jpeg_read_header(&cinfo, TRUE);
-    if (codec_check_size(cinfo.image_width, cinfo.image_height, name, err) != GLINT_OK) {
+    /* Huffman coding spends at least one bit on each 8x8 block's DC term
+     * (in some scan), so a byte holds at most 512 pixels; arithmetic
+     * coding has no such floor. */
+    if (codec_check_size(cinfo.image_width, cinfo.image_height, name, err) != GLINT_OK ||
+        (!cinfo.arith_code &&
+         codec_check_data(cinfo.image_width, cinfo.image_height, size, 512, name, err) !=
+             GLINT_OK)) {
         jpeg_destroy_decompress(&cinfo);
         return GLINT_ERR_INPUT;
     }

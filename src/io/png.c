@@ -52,6 +52,10 @@ glint_rc png_decode(const uint8_t *data, size_t size, const char *name, image *o
         goto out;
     }
     rc = codec_check_size(ihdr.width, ihdr.height, name, err);
+    /* deflate expands a byte at most about 1032 times (a 258-byte match
+     * fits in 2 bits), and a byte of 1-bit pixels holds 8 of them */
+    if (rc == GLINT_OK)
+        rc = codec_check_data(ihdr.width, ihdr.height, size, 1032 * 8, name, err);
     if (rc != GLINT_OK)
         goto out;
     size_t len;

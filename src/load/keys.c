@@ -325,7 +325,7 @@ glint_rc load_add_ref(loader *L, ref **refs, int *n, int *cap, int index, uint32
     int i = array_push((void **)refs, n, cap, sizeof **refs);
     if (i < 0)
         return err_nomem(L->err);
-    (*refs)[i] = (ref){index, L->cur, name};
+    (*refs)[i] = (ref){.index = index, .file = L->cur, .node = name};
     return GLINT_OK;
 }
 

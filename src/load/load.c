@@ -3,21 +3,26 @@
 #include "loader.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/array.h"
 #include "scene/settings.h"
 
 /* ---- files ------------------------------------------------------------ */
 
-static const char *const top_keys[] = {"image",     "camera",  "ambient", "lights",
-                                       "textures",  "materials", "objects", "include", NULL};
+static const char *const top_keys[] = {"image",    "camera",    "ambient", "fog",
+                                       "lights",   "textures",  "materials", "objects",
+                                       "include",  NULL};
 
 
 static glint_rc load_text(loader *L, const char *text, size_t len, char *data, const char *name,
                           const char *key, const char *dir);
+static glint_rc read_fd(int fd, char **data, size_t *size, glint_error *err);
 
 static glint_rc load_include(loader *L, uint32_t v)
 {
@@ -104,6 +109,8 @@ static glint_rc load_top(loader *L, uint32_t root)
             rc = load_color(L, v, "ambient", &c);
             if (rc == GLINT_OK && load_claim(L, SET_AMBIENT))
                 L->ambient = c;
+        } else if (strcmp(key, "fog") == 0) {
+            rc = load_fog(L, v);
         } else if (strcmp(key, "lights") == 0) {
             rc = load_list(L, v, "lights", load_light);
         } else if (strcmp(key, "textures") == 0) {
@@ -159,8 +166,40 @@ static glint_rc load_text(loader *L, const char *text, size_t len, char *data, c
 
 /* ---- after every file ------------------------------------------------- */
 
-/* Resolves the names materials give textures, or objects materials. */
-static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what)
+static glint_rc set_texture(loader *L, const ref *r, int index)
+{
+    scene_set_material_texture(L->s, r->index, index);
+    return GLINT_OK;
+}
+
+/* A bump pattern is a function of a point in space: its gradient is taken
+ * there (texture.h). */
+static glint_rc set_bump(loader *L, const ref *r, int index)
+{
+    if (L->s->textures[index].space == SPACE_UV)
+        return load_fail_in(L, r->file, r->node,
+                            "a bump pattern must be in space object or world (its gradient "
+                            "is taken in space), not on (u, v)");
+    scene_set_material_bump(L->s, r->index, index);
+    return GLINT_OK;
+}
+
+static glint_rc set_material(loader *L, const ref *r, int index)
+{
+    scene_set_object_material(L->s, r->index, index);
+    return GLINT_OK;
+}
+
+static glint_rc set_csg_material(loader *L, const ref *r, int index)
+{
+    scene_set_csg_material(L->s, r->index, r->leaf, index);
+    return GLINT_OK;
+}
+
+/* Resolves the names materials give textures (and bump patterns), or
+ * objects (and csg operands) materials, through set. */
+static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, const char *what,
+                        glint_rc (*set)(loader *, const ref *, int))
 {
     for (int i = 0; i < n; i++) {
         const ydoc *d = L->files[refs[i].file].doc;
@@ -168,11 +207,9 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
         const char *name = ydoc_text(d, nn);
         int at = names_find(table, name, nn->count);
         if (at >= 0) {
-            int index = L->defs[at].index;
-            if (table == &L->texture_names)
-                scene_set_material_texture(L->s, refs[i].index, index);
-            else
-                scene_set_object_material(L->s, refs[i].index, index);
+            glint_rc rc = set(L, &refs[i], L->defs[at].index);
+            if (rc != GLINT_OK)
+                return rc;
             continue;
         }
         char buf[SHOWN], hint[SHOWN + 32] = "";
@@ -192,9 +229,16 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
 
 static glint_rc finish(loader *L)
 {
-    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture");
+    glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture",
+                          set_texture);
     if (rc == GLINT_OK)
-        rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material");
+        rc = resolve(L, L->bump_refs, L->nbump_refs, &L->texture_names, "texture", set_bump);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->material_refs, L->nmaterial_refs, &L->material_names, "material",
+                     set_material);
+    if (rc == GLINT_OK)
+        rc = resolve(L, L->csg_refs, L->ncsg_refs, &L->material_names, "material",
+                     set_csg_material);
     if (rc != GLINT_OK)
         return rc;
     glint_error serr = {0};
@@ -214,6 +258,7 @@ static glint_rc finish(loader *L)
     scene_set_camera(L->s, &L->camera);
     scene_set_background(L->s, L->background);
     scene_set_ambient(L->s, L->ambient);
+    scene_set_fog(L->s, &L->fog);
     return scene_build(L->s, L->err);
 }
 
@@ -234,6 +279,8 @@ static void loader_free(loader *L)
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);
+    free(L->bump_refs);
+    free(L->csg_refs);
 }
 
 static glint_rc load(const char *text, size_t len, char *data, const char *name, const char *dir,
@@ -262,6 +309,7 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
     L.camera = scene_camera(L.s);
     L.background = scene_background(L.s);
     L.ambient = scene_ambient(L.s);
+    L.fog = scene_fog(L.s);
     rc = load_text(&L, text, len, data, name, key, dir);
     if (rc == GLINT_OK)
         rc = finish(&L);
@@ -282,70 +330,110 @@ glint_rc scene_load_text(const char *text, size_t len, const char *name, const c
     return load(text, len, NULL, name, base_dir, reader, user, out, err);
 }
 
+/* The scene file named "-" (or "/dev/stdin") is standard input, read to
+ * its end whatever it is (a pipe, a terminal); its includes and textures
+ * are relative to the current folder, and messages call it <stdin>. */
+static bool is_stdin(const char *path)
+{
+    return strcmp(path, "-") == 0 || strcmp(path, "/dev/stdin") == 0;
+}
+
 glint_rc scene_load_file(const char *path, scene **out, glint_error *err)
 {
-    char *data = NULL, *dir = path_dir(path);
+    bool in = is_stdin(path);
+    const char *name = in ? "<stdin>" : path;
+    char *data = NULL, *dir = path_dir(in ? "" : path);
     size_t size = 0;
     glint_error rerr = {0};
     if (!dir)
         return err_nomem(err);
-    glint_rc rc = scene_read_file(NULL, path, &data, &size, &rerr);
+    glint_rc rc = in ? read_fd(STDIN_FILENO, &data, &size, &rerr)
+                     : scene_read_file(NULL, path, &data, &size, &rerr);
     if (rc == GLINT_ERR_NOMEM)
         rc = err_nomem(err);
     else if (rc != GLINT_OK)
-        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read scene: %s", path, rerr.msg);
+        rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read scene: %s", name, rerr.msg);
     if (rc == GLINT_OK)
-        rc = load(data, size, data, path, dir, scene_read_file, NULL, out, err);
+        rc = load(data, size, data, name, dir, scene_read_file, NULL, out, err);
     free(dir);
     return rc;
 }
 
-
-glint_rc scene_read_file(void *user, const char *path, char **data, size_t *size,
-                         glint_error *err)
+/* Reads fd to its end, at most LOAD_MAX_FILE_BYTES. */
+static glint_rc read_fd(int fd, char **data, size_t *size, glint_error *err)
 {
-    (void)user;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return err_set(err, GLINT_ERR_IO, "%s", strerror(errno));
-    glint_rc rc = GLINT_OK;
     size_t n = 0, cap = 1 << 16;
     char *buf = malloc(cap);
-    if (!buf) {
-        rc = err_nomem(err);
-        goto out;
-    }
+    if (!buf)
+        return err_nomem(err);
     for (;;) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (ferror(f)) {
-            rc = err_set(err, GLINT_ERR_IO, "%s", strerror(errno));
-            goto out;
+        ssize_t k = read(fd, buf + n, cap - n);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k < 0) {
+            free(buf);
+            return err_set(err, GLINT_ERR_IO, "%s", strerror(errno));
         }
-        if (n < cap)
+        if (k == 0)
             break; /* end of file */
+        n += (size_t)k;
+        if (n < cap)
+            continue;
         if (n > LOAD_MAX_FILE_BYTES) {
-            rc = err_set(err, GLINT_ERR_INPUT, "the file is larger than the %u-byte limit",
-                         LOAD_MAX_FILE_BYTES);
-            goto out;
+            free(buf);
+            return err_set(err, GLINT_ERR_INPUT, "the file is larger than the %u-byte limit",
+                           LOAD_MAX_FILE_BYTES);
         }
         /* One byte past the limit tells a file of exactly the limit from a larger one. */
         size_t ncap = cap * 2 > (size_t)LOAD_MAX_FILE_BYTES + 1 ? (size_t)LOAD_MAX_FILE_BYTES + 1
                                                                 : cap * 2;
         char *bigger = realloc(buf, ncap);
         if (!bigger) {
-            rc = err_nomem(err);
-            goto out;
+            free(buf);
+            return err_nomem(err);
         }
         buf = bigger;
         cap = ncap;
     }
-out:
-    fclose(f);
-    if (rc != GLINT_OK) {
-        free(buf);
-        return rc;
-    }
     *data = buf;
     *size = n;
     return GLINT_OK;
+}
+
+glint_rc load_open_regular(const char *path, int *fd, glint_error *err)
+{
+    /* Without blocking: a FIFO would wait for a writer for ever. */
+    *fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+    if (*fd < 0)
+        return err_set(err, GLINT_ERR_IO, "%s", strerror(errno));
+    struct stat st;
+    glint_rc rc = GLINT_OK;
+    if (fstat(*fd, &st) != 0)
+        rc = err_set(err, GLINT_ERR_IO, "%s", strerror(errno));
+    else if (!S_ISREG(st.st_mode))
+        rc = err_set(err, GLINT_ERR_INPUT, "%s",
+                     S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file");
+    if (rc != GLINT_OK) {
+        close(*fd);
+        *fd = -1;
+        return rc;
+    }
+    /* A regular file never blocks; reads go on as usual. */
+    fcntl(*fd, F_SETFL, fcntl(*fd, F_GETFL) & ~O_NONBLOCK);
+    return GLINT_OK;
+}
+
+/* Files on disk: regular files only, refused at once otherwise (a FIFO,
+ * /dev/zero, a folder), before a byte is read. */
+glint_rc scene_read_file(void *user, const char *path, char **data, size_t *size,
+                         glint_error *err)
+{
+    (void)user;
+    int fd;
+    glint_rc rc = load_open_regular(path, &fd, err);
+    if (rc != GLINT_OK)
+        return rc;
+    rc = read_fd(fd, data, size, err);
+    close(fd);
+    return rc;
 }

@@ -34,12 +34,20 @@ typedef struct glint_scene scene;
 typedef glint_rc (*scene_reader)(void *user, const char *path, char **data, size_t *size,
                                  glint_error *err);
 
-/* The reader for files on disk (user is unused). */
+/* The reader for files on disk (user is unused): regular files only; a
+ * FIFO, a device or a folder is refused at once ("not a regular file",
+ * "Is a directory"), before a byte is read. */
 glint_rc scene_read_file(void *user, const char *path, char **data, size_t *size,
                          glint_error *err);
 
+/* Opens path for reading when it is a regular file (without blocking on a
+ * FIFO); else returns an error whose message is the reason alone. */
+glint_rc load_open_regular(const char *path, int *fd, glint_error *err);
+
 /* Loads the scene file at path; paths in it resolve against its folder.
- * Messages name the file as path. */
+ * Messages name the file as path. "-" and "/dev/stdin" are standard
+ * input, read to its end (whatever it is), named <stdin> in messages, its
+ * paths relative to the current folder. */
 glint_rc scene_load_file(const char *path, scene **out, glint_error *err);
 
 /* Loads a scene from text (len bytes). name is the text's path: messages

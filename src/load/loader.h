@@ -9,7 +9,7 @@
  *
  * One file per part of the format: keys.c (reading keys and values, with
  * the messages), paths.c (paths and files named in a scene), settings.c
- * (image and camera), lights.c, materials.c (textures and materials),
+ * (image, camera and fog), lights.c, textures.c, materials.c,
  * transform.c, objects.c (shapes, meshes, objects), load.c (files,
  * includes, the second pass). Each section builds the scene only through
  * scene_add_* and the scene's setters.
@@ -41,7 +41,8 @@ typedef struct lfile {
 /* A name used by a material (for a texture) or an object (for a material),
  * to be resolved once every file has been read. */
 typedef struct ref {
-    int index; /* the material or object */
+    int index; /* the material or object; for a csg's operand, the scene's csg */
+    int leaf;  /* the csg's operand; 0 otherwise */
     int file;
     uint32_t node; /* the name */
 } ref;
@@ -67,6 +68,8 @@ enum {
     SET_UP = 1 << 8,
     SET_FOV = 1 << 9,
     SET_AMBIENT = 1 << 10,
+    SET_ADC_BAILOUT = 1 << 11,
+    SET_FOG = 1 << 12,
 };
 
 typedef struct loader {
@@ -87,14 +90,17 @@ typedef struct loader {
     int ndefs, cap_defs;
     names images; /* resolved path -> index into the scene's images */
     names meshes; /* resolved path -> index into the scene's meshes */
-    ref *texture_refs, *material_refs;
+    ref *texture_refs, *material_refs, *csg_refs, *bump_refs;
     int ntexture_refs, cap_texture_refs, nmaterial_refs, cap_material_refs;
+    int ncsg_refs, cap_csg_refs;
+    int nbump_refs, cap_bump_refs;
     int default_material; /* -1 until an object needs it */
     unsigned set;
     /* Scene-wide values, handed to the scene once every file is read. */
     glint_settings settings;
     camera camera;
     vec3 background, ambient;
+    fog fog;
     int size_file, camera_file; /* where the image size and camera were set; -1: nowhere */
     uint32_t size_node, camera_node;
 } loader;
@@ -185,13 +191,32 @@ glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char
 glint_rc load_image_settings(loader *L, uint32_t map); /* settings.c: image: */
 glint_rc load_camera(loader *L, uint32_t map);         /* settings.c: camera: */
 glint_rc load_light(loader *L, uint32_t map);          /* lights.c: one item of lights: */
-/* materials.c: a texture or material mapping, added; *index gets it. */
+/* textures.c and materials.c: a texture or material mapping, added;
+ * *index gets it. */
 glint_rc load_texture(loader *L, uint32_t map, int *index);
 glint_rc load_material(loader *L, uint32_t map, int *index);
+/* settings.c: fog: at the top level. */
+glint_rc load_fog(loader *L, uint32_t map);
 /* materials.c: textures: or materials: at the top level. */
 glint_rc load_named(loader *L, uint32_t map, bool textures);
 /* transform.c: a list of steps; *index the scene's xform or -1 for none. */
 glint_rc load_transform(loader *L, uint32_t list, int *index);
+/* The same as a value: *any says whether there were steps. */
+glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any);
 glint_rc load_object(loader *L, uint32_t map); /* objects.c: one item of objects: */
+
+/* ---- parts of objects, shared by objects.c, polyhedron.c and csg.c ------ */
+
+/* The format's name for a shape kind. */
+const char *load_type_name(shape_kind kind);
+/* An object mapping's type, its keys checked; list names where it is. */
+glint_rc load_object_type(loader *L, uint32_t map, const char *list, int *type);
+/* The shape of an object of the given kind (not a csg). */
+glint_rc load_object_shape(loader *L, uint32_t map, shape_kind kind, shape *out);
+/* The object's material: an index, or a name to resolve (*name, with
+ * *index -1); without one, the default material, or -1 for a mesh. */
+glint_rc load_object_material(loader *L, uint32_t map, bool is_mesh, int *index, uint32_t *name);
+glint_rc load_polyhedron(loader *L, uint32_t map, shape *out); /* polyhedron.c */
+glint_rc load_csg(loader *L, uint32_t map); /* csg.c: a csg object, added to the scene */
 
 #endif

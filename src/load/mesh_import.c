@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -14,6 +15,7 @@
 #include <assimp/scene.h>
 
 #include "core/error.h"
+#include "load/load.h"
 #include "scene/scene.h"
 
 /* Meshes larger than this are refused before allocating. */
@@ -149,6 +151,19 @@ out:
     return GLINT_OK;
 }
 
+/* assimp's validation of a file without faces or meshes speaks of its own
+ * structures ("Mesh  contains no faces", "aiScene::mNumMeshes is 0"); the
+ * user is told what the documentation says. Memory running out in assimp
+ * is out of memory (exit 1), not bad input. */
+static glint_rc import_error(const char *name, const char *why, glint_error *err)
+{
+    if (strstr(why, "contains no faces") || strstr(why, "mNumMeshes is 0"))
+        return err_set(err, GLINT_ERR_INPUT, "%s: mesh has no triangles", name);
+    if (strstr(why, "bad_alloc")) /* a C++ allocation failed inside assimp */
+        return err_nomem(err);
+    return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, why);
+}
+
 /* assimp keeps the reason for the last failure in one process-wide string,
  * so imports are serialised: the message read after a failed import is that
  * import's own, whatever other threads load at the same time. This lock is
@@ -156,29 +171,31 @@ out:
 static pthread_mutex_t import_lock = PTHREAD_MUTEX_INITIALIZER;
 
 /* Imports the file at name (data NULL) or the size bytes at data (with the
- * format hint); on failure sets err and returns NULL. */
-static const struct aiScene *import_locked(const char *name, const void *data, size_t size,
-                                           const char *hint, glint_error *err)
+ * format hint) into *sc, or sets err. */
+static glint_rc import_locked(const char *name, const void *data, size_t size, const char *hint,
+                              const struct aiScene **sc, glint_error *err)
 {
+    glint_rc rc = GLINT_OK;
     pthread_mutex_lock(&import_lock);
-    const struct aiScene *sc =
-        data ? aiImportFileFromMemory(data, (unsigned)size, import_flags, hint)
-             : aiImportFile(name, import_flags);
-    if (!sc)
-        err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name, aiGetErrorString());
+    *sc = data ? aiImportFileFromMemory(data, (unsigned)size, import_flags, hint)
+               : aiImportFile(name, import_flags);
+    if (!*sc)
+        rc = import_error(name, aiGetErrorString(), err);
     pthread_mutex_unlock(&import_lock);
-    return sc;
+    return rc;
 }
 
 glint_rc mesh_import(const char *path, mesh_file *out, glint_error *err)
 {
     memset(out, 0, sizeof *out);
-    FILE *probe = fopen(path, "rb");
-    if (!probe)
-        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, strerror(errno));
-    fclose(probe);
-    const struct aiScene *sc = import_locked(path, NULL, 0, NULL, err);
-    return sc ? convert(sc, path, out, err) : GLINT_ERR_INPUT;
+    int probe;
+    glint_error perr = {0};
+    if (load_open_regular(path, &probe, &perr) != GLINT_OK)
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot open mesh: %s", path, perr.msg);
+    close(probe);
+    const struct aiScene *sc;
+    glint_rc rc = import_locked(path, NULL, 0, NULL, &sc, err);
+    return rc == GLINT_OK ? convert(sc, path, out, err) : rc;
 }
 
 glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mesh_file *out,
@@ -191,8 +208,9 @@ glint_rc mesh_import_memory(const void *data, size_t size, const char *name, mes
     if (size == 0 || size > UINT_MAX)
         return err_set(err, GLINT_ERR_INPUT, "%s: cannot import mesh: %s", name,
                        size ? "file too large" : "file is empty");
-    const struct aiScene *sc = import_locked(name, data, size, hint, err);
-    return sc ? convert(sc, name, out, err) : GLINT_ERR_INPUT;
+    const struct aiScene *sc;
+    glint_rc rc = import_locked(name, data, size, hint, &sc, err);
+    return rc == GLINT_OK ? convert(sc, name, out, err) : rc;
 }
 
 glint_rc mesh_file_add(scene *s, mesh_file *f, int *index, glint_error *err)

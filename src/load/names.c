@@ -84,43 +84,49 @@ void names_free(names *t)
 
 static char lower(char c) { return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c; }
 
-/* Levenshtein distance between a and b, ignoring ASCII case, or limit + 1
- * when it exceeds limit (Wagner and Fischer, "The String-to-String
- * Correction Problem", JACM 1974). Only the cells within limit of the
- * diagonal can stay within limit (Ukkonen, "Algorithms for approximate
- * string matching", 1985), so each row costs O(limit), not O(length). */
+/* Edit distance between a and b, ignoring ASCII case, counting a swap of
+ * two neighbouring letters as one edit (the optimal string alignment
+ * distance: Wagner and Fischer, "The String-to-String Correction Problem",
+ * JACM 1974, with Damerau's transpositions), or limit + 1 when it exceeds
+ * limit. Only the cells within limit of the diagonal can stay within limit
+ * (Ukkonen, "Algorithms for approximate string matching", 1985), so each
+ * row costs O(limit), not O(length). */
 static size_t distance(const char *a, size_t na, const char *b, size_t nb, size_t limit)
 {
     if (na > SUGGEST_MAX_LEN || nb > SUGGEST_MAX_LEN)
         return limit + 1;
     if ((na > nb ? na - nb : nb - na) > limit)
         return limit + 1;
-    size_t row[SUGGEST_MAX_LEN + 2]; /* row[j]: distance of a[0..i) to b[0..j) */
+    /* rows[i % 3][j]: distance of a[0..i) to b[0..j); cells outside the
+     * band hold limit + 1. */
+    size_t rows[3][SUGGEST_MAX_LEN + 1];
     for (size_t j = 0; j <= nb; j++)
-        row[j] = j <= limit ? j : limit + 1;
+        rows[0][j] = j <= limit ? j : limit + 1;
     for (size_t i = 1; i <= na; i++) {
+        size_t *row = rows[i % 3], *up = rows[(i - 1) % 3], *up2 = rows[(i + 1) % 3];
         size_t lo = i > limit ? i - limit : 1, hi = i + limit < nb ? i + limit : nb;
-        size_t diag = row[lo - 1];
-        row[lo - 1] = lo == 1 && i <= limit ? i : limit + 1;
+        for (size_t j = 0; j <= nb; j++)
+            row[j] = limit + 1;
+        if (lo == 1)
+            row[0] = i <= limit ? i : limit + 1;
         size_t best = row[lo - 1];
         for (size_t j = lo; j <= hi; j++) {
-            size_t up = row[j];
-            size_t v = diag + (lower(a[i - 1]) != lower(b[j - 1]));
-            if (up + 1 < v)
-                v = up + 1;
+            size_t v = up[j - 1] + (lower(a[i - 1]) != lower(b[j - 1]));
+            if (up[j] + 1 < v)
+                v = up[j] + 1;
             if (row[j - 1] + 1 < v)
                 v = row[j - 1] + 1;
+            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+                lower(a[i - 2]) == lower(b[j - 1]) && up2[j - 2] + 1 < v)
+                v = up2[j - 2] + 1;
             row[j] = v > limit ? limit + 1 : v;
-            diag = up;
             if (row[j] < best)
                 best = row[j];
         }
-        if (hi < nb)
-            row[hi + 1] = limit + 1; /* outside the band: never within limit */
         if (best > limit)
             return limit + 1;
     }
-    return row[nb];
+    return rows[na % 3][nb];
 }
 
 /* Whether candidate (c, nc) at distance d beats the best so far. */
@@ -135,16 +141,22 @@ static bool better(const char *c, size_t nc, size_t d, const char *best, size_t 
     return cmp < 0 || (cmp == 0 && nc < nb);
 }
 
+/* Edits allowed for a word of len characters (names.h). */
+static size_t suggest_limit(size_t len)
+{
+    return len >= NAMES_SUGGEST_LONG ? NAMES_SUGGEST_DISTANCE : 1;
+}
+
 const char *names_suggest(const names *t, const char *word, size_t len)
 {
     const char *best = NULL;
-    size_t best_d = 0;
+    size_t best_d = 0, limit = suggest_limit(len);
     for (size_t i = 0; i < t->cap; i++) {
         const names_slot *s = &t->slots[i];
         if (!s->key || memchr(s->key, '\0', s->len))
             continue;
-        size_t d = distance(word, len, s->key, s->len, NAMES_SUGGEST_DISTANCE);
-        if (d <= NAMES_SUGGEST_DISTANCE && better(s->key, s->len, d, best, best_d)) {
+        size_t d = distance(word, len, s->key, s->len, limit);
+        if (d <= limit && better(s->key, s->len, d, best, best_d)) {
             best = s->key;
             best_d = d;
         }
@@ -155,9 +167,9 @@ const char *names_suggest(const names *t, const char *word, size_t len)
 const char *names_suggest_list(const char *const *list, const char *word, size_t len)
 {
     const char *best = NULL;
-    size_t best_d = NAMES_SUGGEST_DISTANCE + 1;
+    size_t limit = suggest_limit(len), best_d = limit + 1;
     for (; *list; list++) {
-        size_t d = distance(word, len, *list, strlen(*list), NAMES_SUGGEST_DISTANCE);
+        size_t d = distance(word, len, *list, strlen(*list), limit);
         if (d < best_d) {
             best = *list;
             best_d = d;

@@ -13,8 +13,12 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-/* Suggestions are offered up to this edit distance. */
+/* Suggestions are offered up to this edit distance, and only for words of
+ * NAMES_SUGGEST_LONG characters or more; a shorter word gets one edit, so
+ * a suggestion is a likely typo, not another word ('type' is not 'eye').
+ * A swap of two neighbouring letters counts as one edit ('bleu', 'blue'). */
 #define NAMES_SUGGEST_DISTANCE 2
+#define NAMES_SUGGEST_LONG 5
 
 typedef struct names_slot {
     char *key; /* NULL: empty slot */
@@ -33,7 +37,7 @@ int names_find(const names *t, const char *key, size_t len);
 bool names_put(names *t, const char *key, size_t len, int value);
 void names_free(names *t);
 
-/* The key of t nearest to word within NAMES_SUGGEST_DISTANCE edits, or
+/* The key of t nearest to word within the edits above, or
  * NULL. Ties go to the key that sorts first, so answers do not depend on
  * the table's layout. */
 const char *names_suggest(const names *t, const char *word, size_t len);

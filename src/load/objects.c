@@ -7,14 +7,23 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "load/mesh_import.h"
 
 /* ---- objects ---------------------------------------------------------- */
 
-/* In shape_kind order. */
-static const char *const object_types[] = {"sphere",   "plane",    "quad", "box",
-                                           "cylinder", "triangle", "mesh", NULL};
+/* The scene format's name for each shape_kind, in its order; the
+ * compiler checks that there is one per kind. */
+static const char *const object_types[] = {
+    "sphere", "plane", "quad", "box",        "cylinder", "triangle", "mesh",
+    "cone",   "disk",  "torus", "polyhedron", "csg",     NULL,
+};
+_Static_assert(sizeof object_types / sizeof *object_types == SHAPE_COUNT + 1,
+               "object_types names every shape_kind, in order");
+
+const char *load_type_name(shape_kind kind) { return object_types[kind]; }
+
 static const char *const *const object_keys[] = {
     (const char *const[]){"type", "center", "radius", "material", "transform", NULL},
     (const char *const[]){"type", "point", "normal", "material", "transform", NULL},
@@ -24,7 +33,18 @@ static const char *const *const object_keys[] = {
                           NULL},
     (const char *const[]){"type", "p0", "p1", "p2", "uv", "material", "transform", NULL},
     (const char *const[]){"type", "file", "material", "transform", NULL},
+    (const char *const[]){"type", "base", "radius", "top_radius", "height", "capped", "material",
+                          "transform", NULL},
+    (const char *const[]){"type", "center", "normal", "radius", "inner_radius", "material",
+                          "transform", NULL},
+    (const char *const[]){"type", "center", "major_radius", "minor_radius", "material",
+                          "transform", NULL},
+    (const char *const[]){"type", "vertices", "faces", "preset", "center", "radius", "material",
+                          "transform", NULL},
+    (const char *const[]){"type", "op", "objects", "material", "transform", NULL},
 };
+_Static_assert(sizeof object_keys / sizeof *object_keys == SHAPE_COUNT,
+               "object_keys lists the keys of every shape_kind, in order");
 
 static glint_rc load_box(loader *L, uint32_t map, shape *out)
 {
@@ -55,8 +75,15 @@ static glint_rc load_triangle(loader *L, uint32_t map, shape *out)
         rc = load_need_vec3(L, map, pk[i], "triangle", &p[i]);
     if (rc != GLINT_OK)
         return rc;
-    if (v3_is_zero(v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0]))))
+    switch (triangle_check(p[0], p[1], p[2])) {
+    case TRIANGLE_OK:
+        break;
+    case TRIANGLE_DEGENERATE:
         return load_fail(L, map, "triangle is degenerate: p0, p1 and p2 lie on one line");
+    case TRIANGLE_TOO_LARGE:
+        return load_fail(L, map, "triangle is too large for single precision (its normal "
+                                 "overflows); scale it down");
+    }
     *out = shape_triangle(p[0], p[1], p[2]);
     uint32_t v = load_get(L, map, "uv");
     if (v == YDOC_NONE)
@@ -93,12 +120,13 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, shape *out)
     }
     glint_error merr = {0};
     if (L->reader == scene_read_file) {
-        FILE *probe = fopen(resolved, "rb");
-        if (!probe) {
-            rc = load_cannot_read(L, v, "mesh", written, resolved, strerror(errno));
+        int probe;
+        rc = load_open_regular(resolved, &probe, &merr);
+        if (rc != GLINT_OK) {
+            rc = load_cannot_read(L, v, "mesh", written, resolved, merr.msg);
             goto out;
         }
-        fclose(probe);
+        close(probe);
         rc = scene_add_source(L->s, resolved) < 0 ? err_nomem(&merr) : mesh_import(resolved, &mf, &merr);
     } else {
         size_t size;
@@ -127,6 +155,66 @@ out:
     mesh_file_free(&mf);
     free(data);
     free(resolved);
+    return rc;
+}
+
+/* Cone: radius > 0 at the base, top_radius >= 0 (default 0, pointed). */
+static glint_rc load_cone(loader *L, uint32_t map, shape *out)
+{
+    vec3 base;
+    float r, top = 0.0f, h;
+    bool capped = true;
+    uint32_t v;
+    glint_rc rc = load_need_vec3(L, map, "base", "cone", &base);
+    if (rc == GLINT_OK)
+        rc = load_need_positive(L, map, "radius", "cone", &r);
+    if (rc == GLINT_OK && (v = load_get(L, map, "top_radius")) != YDOC_NONE)
+        rc = load_nonneg(L, v, "top_radius", &top);
+    if (rc == GLINT_OK)
+        rc = load_need_positive(L, map, "height", "cone", &h);
+    if (rc == GLINT_OK && (v = load_get(L, map, "capped")) != YDOC_NONE)
+        rc = load_bool(L, v, "capped", &capped);
+    if (rc == GLINT_OK)
+        *out = shape_cone(base, r, top, h, capped);
+    return rc;
+}
+
+/* Disk: radius > 0, 0 <= inner_radius < radius. */
+static glint_rc load_disk(loader *L, uint32_t map, shape *out)
+{
+    vec3 c, n;
+    float r, inner = 0.0f;
+    uint32_t v, nv;
+    glint_rc rc = load_need_vec3(L, map, "center", "disk", &c);
+    if (rc == GLINT_OK)
+        rc = load_need(L, map, "normal", "disk", &nv);
+    if (rc == GLINT_OK)
+        rc = load_nonzero_vec3(L, nv, "normal", &n);
+    if (rc == GLINT_OK)
+        rc = load_need_positive(L, map, "radius", "disk", &r);
+    if (rc == GLINT_OK && (v = load_get(L, map, "inner_radius")) != YDOC_NONE) {
+        rc = load_nonneg(L, v, "inner_radius", &inner);
+        char b1[SHOWN], b2[SHOWN];
+        if (rc == GLINT_OK && !(inner < r))
+            rc = load_fail(L, v, "inner_radius must be less than radius (got %s, radius %s)",
+                           load_shown(L, v, b1), load_shown(L, load_get(L, map, "radius"), b2));
+    }
+    if (rc == GLINT_OK)
+        *out = shape_disk(c, n, r, inner);
+    return rc;
+}
+
+static glint_rc load_torus(loader *L, uint32_t map, shape *out)
+{
+    vec3 c;
+    float major, minor;
+    glint_rc rc = load_need_vec3(L, map, "center", "torus", &c);
+    if (rc == GLINT_OK)
+        rc = load_need_positive(L, map, "major_radius", "torus", &major);
+    if (rc == GLINT_OK)
+        rc = load_need_positive(L, map, "minor_radius", "torus", &minor);
+    if (rc == GLINT_OK)
+        *out = shape_torus(c, major, minor);
     return rc;
 }
 
@@ -190,13 +278,24 @@ static glint_rc load_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
         if (rc == GLINT_OK)
             rc = load_mesh_file(L, v, out);
         return rc;
+    case SHAPE_CONE:
+        return load_cone(L, map, out);
+    case SHAPE_DISK:
+        return load_disk(L, map, out);
+    case SHAPE_TORUS:
+        return load_torus(L, map, out);
+    case SHAPE_POLYHEDRON:
+        return load_polyhedron(L, map, out);
+    case SHAPE_CSG: /* load_csg builds it whole */
+    case SHAPE_COUNT:
+        break;
     }
     return rc;
 }
 
 /* The object's material: a name (resolved later), a mapping, or nothing:
  * a mesh's own materials (index -1) or the default material, added once. */
-static glint_rc object_material(loader *L, uint32_t map, bool is_mesh, int *index, uint32_t *name)
+glint_rc load_object_material(loader *L, uint32_t map, bool is_mesh, int *index, uint32_t *name)
 {
     uint32_t v = load_get(L, map, "material");
     *name = YDOC_NONE;
@@ -223,29 +322,43 @@ static glint_rc object_material(loader *L, uint32_t map, bool is_mesh, int *inde
     return load_expected(L, v, "a material name or mapping", "material");
 }
 
-glint_rc load_object(loader *L, uint32_t map)
+glint_rc load_object_type(loader *L, uint32_t map, const char *list, int *type)
 {
     if (load_node(L, map)->kind != YNODE_MAP)
-        return load_expected(L, map, "a mapping", "objects");
+        return load_expected(L, map, "a mapping", list);
+    uint32_t v;
+    glint_rc rc = load_need(L, map, "type", "object", &v);
+    if (rc == GLINT_OK)
+        rc = load_enum(L, v, "type", "object type", object_types, type);
+    if (rc != GLINT_OK)
+        return rc;
+    char where[32];
+    snprintf(where, sizeof where, "in %s", object_types[*type]);
+    return load_check_keys(L, map, object_keys[*type], where);
+}
+
+glint_rc load_object_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
+{
+    return load_shape(L, map, kind, out);
+}
+
+glint_rc load_object(loader *L, uint32_t map)
+{
     if (scene_object_count(L->s) >= LOAD_MAX_OBJECTS)
         return load_fail(L, map, "more than %d objects", LOAD_MAX_OBJECTS);
     uint32_t v;
     int type;
-    glint_rc rc = load_need(L, map, "type", "object", &v);
-    if (rc == GLINT_OK)
-        rc = load_enum(L, v, "type", "object type", object_types, &type);
+    glint_rc rc = load_object_type(L, map, "objects", &type);
     if (rc != GLINT_OK)
         return rc;
-    char where[32];
-    snprintf(where, sizeof where, "in %s", object_types[type]);
-    rc = load_check_keys(L, map, object_keys[type], where);
+    if (type == SHAPE_CSG)
+        return load_csg(L, map);
     shape sh;
-    if (rc == GLINT_OK)
-        rc = load_shape(L, map, (shape_kind)type, &sh);
+    rc = load_shape(L, map, (shape_kind)type, &sh);
     int mat, xf = -1;
     uint32_t name;
     if (rc == GLINT_OK)
-        rc = object_material(L, map, type == SHAPE_MESH, &mat, &name);
+        rc = load_object_material(L, map, type == SHAPE_MESH, &mat, &name);
     if (rc == GLINT_OK && (v = load_get(L, map, "transform")) != YDOC_NONE)
         rc = load_transform(L, v, &xf);
     if (rc != GLINT_OK)
@@ -257,4 +370,3 @@ glint_rc load_object(loader *L, uint32_t map)
         return load_add_ref(L, &L->material_refs, &L->nmaterial_refs, &L->cap_material_refs, o, name);
     return GLINT_OK;
 }
-

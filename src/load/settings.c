@@ -3,8 +3,8 @@
 #include "loader.h"
 #include "scene/settings.h"
 
-static const char *const image_keys[] = {"width", "height", "samples", "depth",
-                                         "background", "transfer", NULL};
+static const char *const image_keys[] = {"width",      "height",   "samples",     "depth",
+                                         "background", "transfer", "adc_bailout", NULL};
 static const char *const transfers[] = {"none", "srgb", NULL};
 
 glint_rc load_image_settings(loader *L, uint32_t map)
@@ -54,6 +54,12 @@ glint_rc load_image_settings(loader *L, uint32_t map)
         rc = load_enum(L, v, "transfer", "transfer", transfers, &x);
         if (rc == GLINT_OK && load_claim(L, SET_TRANSFER))
             st->transfer = x == 0 ? GLINT_TRANSFER_NONE : GLINT_TRANSFER_SRGB;
+    }
+    float f;
+    if (rc == GLINT_OK && (v = load_get(L, map, "adc_bailout")) != YDOC_NONE) {
+        rc = load_unit(L, v, "adc_bailout", &f);
+        if (rc == GLINT_OK && load_claim(L, SET_ADC_BAILOUT))
+            st->adc_bailout = f;
     }
     return rc;
 }

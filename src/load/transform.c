@@ -211,16 +211,25 @@ static glint_rc load_steps(loader *L, uint32_t list, xform *acc, bool *any)
     return GLINT_OK;
 }
 
+/* A list of steps, first applied first, composed into *out; *any says
+ * whether there was a step. */
+glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
+{
+    *out = xform_identity();
+    *any = false;
+    if (load_node(L, list)->kind != YNODE_SEQ)
+        return load_expected(L, list, "a list of steps", "transform");
+    return load_steps(L, list, out, any);
+}
+
 /* A list of steps, first applied first; *index gets the scene's xform, or
  * -1 when there are no steps. */
 glint_rc load_transform(loader *L, uint32_t list, int *index)
 {
     *index = -1;
-    if (load_node(L, list)->kind != YNODE_SEQ)
-        return load_expected(L, list, "a list of steps", "transform");
-    xform acc = xform_identity();
-    bool any = false;
-    glint_rc rc = load_steps(L, list, &acc, &any);
+    xform acc;
+    bool any;
+    glint_rc rc = load_xform(L, list, &acc, &any);
     if (rc != GLINT_OK || !any)
         return rc;
     *index = scene_add_xform(L->s, &acc);

@@ -483,6 +483,23 @@ static void offset_position(const char *s, size_t len, size_t offset, uint32_t *
     *col = c;
 }
 
+/* The column (from 1) of the first tab in the indentation of the line
+ * holding byte at, or 0 when it has none. libyaml's own words for a tab
+ * that indents ("found character that cannot start any token") do not
+ * say what is wrong. */
+static uint32_t indent_tab(const char *src, size_t len, size_t at)
+{
+    if (at > len)
+        return 0;
+    size_t start = at;
+    while (start > 0 && src[start - 1] != '\n' && src[start - 1] != '\r')
+        start--;
+    for (size_t i = start; i < len && (src[i] == ' ' || src[i] == '\t'); i++)
+        if (src[i] == '\t')
+            return (uint32_t)(i - start + 1);
+    return 0;
+}
+
 static glint_rc parser_error(builder *b, const yaml_parser_t *p)
 {
     const char *problem = p->problem ? p->problem : "cannot parse the YAML";
@@ -505,6 +522,9 @@ static glint_rc parser_error(builder *b, const yaml_parser_t *p)
         break;
     }
     uint32_t line = (uint32_t)p->problem_mark.line + 1, col = (uint32_t)p->problem_mark.column + 1;
+    uint32_t tab = indent_tab(b->src, b->srclen, p->problem_mark.index);
+    if (tab)
+        return fail(b, line, tab, "tabs cannot indent YAML; use spaces");
     if (p->context)
         return fail(b, line, col, "%s (%s at line %u, column %u)", problem, p->context,
                     (uint32_t)p->context_mark.line + 1, (uint32_t)p->context_mark.column + 1);

@@ -103,6 +103,7 @@ vec3 render_samples(const camera_frame *f, int n, trace_ctx *ctx, int x, int y, 
     float inv_n = 1.0f / (float)n;
     for (int k = k0; k < k1; k++) {
         int a = k % n, b = k / n;
+        trace_begin_sample(ctx, (uint32_t)x, (uint32_t)y, (uint32_t)k);
         ray ry = camera_ray(f, (float)x + ((float)a + 0.5f) * inv_n,
                             (float)y + ((float)b + 0.5f) * inv_n);
         sum = v3_add(sum, whitted_trace(ctx, &ry, 0));
@@ -137,7 +138,8 @@ static void render_tile(job *j, trace_ctx *ctx, int item, glint_rect r)
 static void *worker(void *arg)
 {
     job *j = arg;
-    trace_ctx ctx = {j->scene, j->decode, j->settings->max_depth, 0, 0};
+    trace_ctx ctx = {.scene = j->scene, .decode = j->decode, .max_depth = j->settings->max_depth,
+                     .bailout = (float)j->settings->adc_bailout, .weight = 1.0f};
     const glint_callbacks *cb = j->cb;
     for (;;) {
         if (atomic_load(&j->cancelled))

@@ -14,7 +14,28 @@
 
 static const char magic[8] = {'G', 'L', 'I', 'N', 'T', 'R', 'S', 'M'};
 
-#define HEADER_BYTES (8 + 4 + 4 + 6 * 4 + 8 + 4 + 4)
+#define HEADER_BYTES (8 + 4 + 4 + 6 * 4 + 8 + 8 + 4 + 4)
+
+/* A probe: the scene rendered at 24 x 16 pixels, 1 sample each. */
+#define PROBE_W 24
+#define PROBE_H 16
+
+uint64_t resume_fingerprint(const scene *sc, const glint_settings *s)
+{
+    uint64_t h = scene_fingerprint(sc, s);
+    glint_settings probe = *s;
+    probe.width = PROBE_W;
+    probe.height = PROBE_H;
+    probe.samples = 1;
+    probe.threads = 1;
+    float rgb[PROBE_W * PROBE_H * 3] = {0};
+    glint_film film = {PROBE_W, PROBE_H, rgb};
+    render_work w = {.region = {0, 0, PROBE_W, PROBE_H}};
+    glint_error err;
+    glint_rc rc = render_run(sc, &probe, NULL, &w, &film, NULL, &err);
+    h = fingerprint_bytes(h, &rc, sizeof rc);
+    return fingerprint_bytes(h, rgb, sizeof rgb);
+}
 
 glint_rc resume_init(glint_resume *r, const scene *sc, const glint_settings *s, glint_error *err)
 {
@@ -25,7 +46,7 @@ glint_rc resume_init(glint_resume *r, const scene *sc, const glint_settings *s, 
         return err_set(err, GLINT_ERR_INPUT, "scene was not built (objects were added since)");
     *r = (glint_resume){0};
     r->settings = *s;
-    r->fingerprint = scene_fingerprint(sc, s);
+    r->fingerprint = resume_fingerprint(sc, s);
     r->ntiles = render_tile_count(s->width, s->height);
     r->done = calloc((size_t)r->ntiles, 1);
     r->film.rgb = calloc((size_t)s->width * (size_t)s->height * 3, sizeof(float));
@@ -122,6 +143,9 @@ glint_rc resume_write(const glint_resume *r, const char *path, glint_error *err)
                           s->threads};
     for (int i = 0; i < 6; i++)
         put_u32(&b, (uint32_t)v[i]);
+    uint64_t bailout;
+    memcpy(&bailout, &s->adc_bailout, 8);
+    put_u64(&b, bailout);
     put_u64(&b, r->fingerprint);
     put_u32(&b, (uint32_t)r->ntiles);
     put_u32(&b, (uint32_t)r->note_len);
@@ -222,8 +246,13 @@ static glint_rc read_header(reader *rd, const char *path, glint_resume *r, glint
     for (int i = 0; i < 6; i++)
         if (!get_u32(rd, &v[i]))
             return err_set(err, GLINT_ERR_INPUT, "%s: resume file is cut short", path);
-    r->settings = (glint_settings){(int32_t)v[0], (int32_t)v[1], (int32_t)v[2], (int32_t)v[3],
-                                   (int32_t)v[5], (glint_transfer)v[4]};
+    uint64_t bailout;
+    if (!get_u64(rd, &bailout))
+        return err_set(err, GLINT_ERR_INPUT, "%s: resume file is cut short", path);
+    r->settings = (glint_settings){.width = (int32_t)v[0], .height = (int32_t)v[1],
+                                   .samples = (int32_t)v[2], .max_depth = (int32_t)v[3],
+                                   .threads = (int32_t)v[5], .transfer = (glint_transfer)v[4]};
+    memcpy(&r->settings.adc_bailout, &bailout, 8);
     glint_error inner;
     if (v[4] > GLINT_TRANSFER_SRGB || settings_check(&r->settings, &inner) != GLINT_OK)
         return err_set(err, GLINT_ERR_INPUT, "%s: resume file holds bad settings", path);
@@ -325,9 +354,12 @@ glint_rc resume_check(const glint_resume *r, const scene *sc, const glint_settin
                        w->max_depth, s->max_depth);
     if (w->transfer != s->transfer)
         return err_set(err, GLINT_ERR_INPUT, "resume file is for another transfer function");
+    if (w->adc_bailout != s->adc_bailout)
+        return err_set(err, GLINT_ERR_INPUT, "resume file is for adc_bailout %g, this render has %g",
+                       w->adc_bailout, s->adc_bailout);
     if (!sc->built)
         return err_set(err, GLINT_ERR_INPUT, "scene was not built (objects were added since)");
-    if (r->fingerprint != scene_fingerprint(sc, s))
+    if (r->fingerprint != resume_fingerprint(sc, s))
         return err_set(err, GLINT_ERR_INPUT,
                        "resume file was written for a different scene or camera");
     return GLINT_OK;

@@ -8,6 +8,7 @@
  * File layout, every number little-endian:
  *   "GLINTRSM" magic, u32 version (1), u32 tile side (RENDER_TILE)
  *   i32 width, height, samples, max_depth, transfer, threads
+ *   f64 adc_bailout (its IEEE bits as a u64)
  *   u64 fingerprint
  *   u32 tile count, u32 note length, note bytes
  *   one byte per tile: 1 final, 0 not yet
@@ -24,6 +25,9 @@
 #define RESUME_MAX_NOTE (1u << 20)
 
 struct glint_scene;
+
+/* scene_fingerprint with a small probe render of the scene mixed in. */
+uint64_t resume_fingerprint(const struct glint_scene *sc, const glint_settings *s);
 
 glint_rc resume_init(glint_resume *r, const struct glint_scene *sc, const glint_settings *s,
                      glint_error *err);

@@ -1,14 +1,13 @@
-/* fingerprint: a 64-bit hash of everything in a built scene that a pixel's
- * value depends on, with the settings of the render. Two renders whose
- * fingerprints match produce the same pixels, so a resume file (render/
- * resume.h) records it and refuses to continue a render of anything else.
- *
- * What it covers: the camera, background and ambient; every material,
- * texture (with its image's pixels), light and transform; every object's
- * shape (one case per kind), material and transform; every mesh's
- * vertices, normals, (u, v) and triangles; and the
- * settings but the thread count, which never changes a pixel. Values are
- * hashed field by field (never struct bytes, whose padding is undefined). */
+/* fingerprint: a 64-bit hash of a built scene and the settings of a render,
+ * for resume files (render/resume.h), which refuse to continue a render of
+ * anything else. It covers the settings but the thread count (which never
+ * changes a pixel), the camera, background and ambient light, the counts
+ * of everything in the scene, the pixels of its images, the vertices and
+ * triangles of its meshes, and the bytes of every file the scene was read
+ * from (scene, includes, textures, meshes), read again now. The renderer
+ * adds a small probe render of the scene (resume_fingerprint), which covers
+ * what a scene built in code holds in no file. Values are hashed field by
+ * field, never as structures, whose padding bytes are undefined. */
 #ifndef GLINT_SCENE_FINGERPRINT_H
 #define GLINT_SCENE_FINGERPRINT_H
 
@@ -24,7 +23,6 @@ struct glint_scene;
 
 uint64_t fingerprint_bytes(uint64_t h, const void *data, size_t n);
 
-/* The fingerprint of a built scene rendered with settings. */
 uint64_t scene_fingerprint(const struct glint_scene *s, const glint_settings *settings);
 
 #endif

@@ -7,6 +7,7 @@
 
 #include "core/array.h"
 #include "core/error.h"
+#include "scene/settings.h"
 
 scene *scene_new(void)
 {
@@ -17,7 +18,8 @@ scene *scene_new(void)
     s->background = v3s(0.0f);
     s->ambient = v3s(0.2f);
     s->settings = (glint_settings){.width = 500, .height = 500, .samples = 1, .max_depth = 5,
-                                   .threads = 0, .transfer = GLINT_TRANSFER_NONE};
+                                   .threads = 0, .transfer = GLINT_TRANSFER_NONE,
+                                   .adc_bailout = SETTINGS_ADC_BAILOUT};
     return s;
 }
 
@@ -44,6 +46,16 @@ void scene_free(scene *s)
     for (int i = 0; i < s->nsources; i++)
         free(s->sources[i]);
     free(s->sources);
+    for (int i = 0; i < s->npolyhedra; i++) {
+        polyhedron_free(s->polyhedra[i]);
+        free(s->polyhedra[i]);
+    }
+    free(s->polyhedra);
+    for (int i = 0; i < s->ncsgs; i++) {
+        csg_free(s->csgs[i]);
+        free(s->csgs[i]);
+    }
+    free(s->csgs);
     free(s);
 }
 
@@ -88,7 +100,7 @@ int scene_add_image(scene *s, image *img)
 
 int scene_add_object(scene *s, const shape *sh, int mat, int xf)
 {
-    object o = {*sh, mat, xf, false};
+    object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}};
     s->built = false;
     PUSH(s->objects, s->nobjects, s->cap_objects, o);
 }
@@ -98,6 +110,16 @@ int scene_add_mesh(scene *s, mesh *m)
     PUSH(s->meshes, s->nmeshes, s->cap_meshes, m);
 }
 
+int scene_add_polyhedron(scene *s, polyhedron *p)
+{
+    PUSH(s->polyhedra, s->npolyhedra, s->cap_polyhedra, p);
+}
+
+int scene_add_csg(scene *s, csg *c)
+{
+    PUSH(s->csgs, s->ncsgs, s->cap_csgs, c);
+}
+
 void scene_set_camera(scene *s, const camera *c) { s->camera = *c; }
 
 void scene_set_settings(scene *s, const glint_settings *st) { s->settings = *st; }
@@ -105,6 +127,8 @@ void scene_set_settings(scene *s, const glint_settings *st) { s->settings = *st;
 void scene_set_background(scene *s, vec3 color) { s->background = color; }
 
 void scene_set_ambient(scene *s, vec3 color) { s->ambient = color; }
+
+void scene_set_fog(scene *s, const fog *f) { s->fog = *f; }
 
 void scene_set_material_texture(scene *s, int mat, int tex)
 {
@@ -118,6 +142,18 @@ void scene_set_object_material(scene *s, int obj, int mat)
     s->built = false;
 }
 
+void scene_set_material_bump(scene *s, int mat, int tex)
+{
+    s->materials[mat].bump = tex;
+    s->built = false;
+}
+
+void scene_set_csg_material(scene *s, int c, int leaf, int mat)
+{
+    s->csgs[c]->leaves[leaf].material = mat;
+    s->built = false;
+}
+
 camera scene_camera(const scene *s) { return s->camera; }
 
 glint_settings scene_settings(const scene *s) { return s->settings; }
@@ -125,6 +161,8 @@ glint_settings scene_settings(const scene *s) { return s->settings; }
 vec3 scene_background(const scene *s) { return s->background; }
 
 vec3 scene_ambient(const scene *s) { return s->ambient; }
+
+fog scene_fog(const scene *s) { return s->fog; }
 
 int scene_object_count(const scene *s) { return s->nobjects; }
 
@@ -188,41 +226,89 @@ out:
     return rc;
 }
 
-static glint_rc build(scene *s, glint_error *err)
+/* Whether the material a shape uses (mat, or with mat -1 those of a
+ * mesh's triangles or a csg's operands) exist; *transmits is set when one
+ * of them transmits. */
+static bool materials_ok(const scene *s, const shape *sh, int mat, bool *transmits)
+{
+    if (mat >= s->nmaterials)
+        return false;
+    if (mat >= 0) {
+        *transmits = *transmits || s->materials[mat].transmit > 0.0f;
+        return true;
+    }
+    if (sh->kind == SHAPE_CSG) {
+        const csg *c = sh->csg;
+        for (int k = 0; k < c->nleaves; k++)
+            if (!materials_ok(s, &c->leaves[k].shape, c->leaves[k].material, transmits))
+                return false;
+        return true;
+    }
+    const mesh *m = sh->kind == SHAPE_MESH ? sh->mesh : NULL;
+    if (!m || !m->tri_material)
+        return false;
+    for (int t = 0; t < m->ntris; t++) {
+        int32_t tm = m->tri_material[t];
+        if (tm < 0 || tm >= s->nmaterials)
+            return false;
+        *transmits = *transmits || s->materials[tm].transmit > 0.0f;
+    }
+    return true;
+}
+
+/* Textures' images and materials' textures exist; bump patterns are
+ * functions of a point in space (their gradient is taken there). */
+static glint_rc check_shading(const scene *s, glint_error *err)
 {
     for (int i = 0; i < s->ntextures; i++)
         if (s->textures[i].kind == TEXTURE_IMAGE &&
-            (s->textures[i].image < 0 || s->textures[i].image >= s->nimages))
+            (s->textures[i].image.image < 0 || s->textures[i].image.image >= s->nimages))
             return err_set(err, GLINT_ERR_INPUT, "texture %d refers to a missing image", i);
-    for (int i = 0; i < s->nmaterials; i++)
-        if (s->materials[i].texture >= s->ntextures)
+    for (int i = 0; i < s->nmaterials; i++) {
+        const material *m = &s->materials[i];
+        if (m->texture >= s->ntextures || m->bump >= s->ntextures)
             return err_set(err, GLINT_ERR_INPUT, "material %d refers to a missing texture", i);
+        if (m->bump >= 0 && s->textures[m->bump].space == SPACE_UV)
+            return err_set(err, GLINT_ERR_INPUT,
+                           "material %d's bump texture is on (u, v); bump patterns must be in "
+                           "object or world space", i);
+    }
+    return GLINT_OK;
+}
+
+/* Where object-space textures have their origin: the centre of the
+ * shape's bounds, or a plane's point (texture.h). */
+static vec3 texture_origin(const shape *sh)
+{
+    if (sh->kind == SHAPE_PLANE)
+        return sh->plane.point;
+    aabb b = shape_bounds(sh);
+    if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+        return v3s(0.0f);
+    return v3_scale(v3_add(b.lo, b.hi), 0.5f);
+}
+
+static glint_rc build(scene *s, glint_error *err)
+{
+    glint_rc rc = check_shading(s, err);
+    if (rc != GLINT_OK)
+        return rc;
     free(s->bounds);
     s->bounds = malloc(sizeof *s->bounds * (size_t)(s->nobjects ? s->nobjects : 1));
     if (!s->bounds)
         return err_nomem(err);
     for (int i = 0; i < s->nobjects; i++) {
         object *o = &s->objects[i];
-        const mesh *m = o->shape.kind == SHAPE_MESH ? o->shape.mesh : NULL;
-        if (o->material >= s->nmaterials || (o->material < 0 && !(m && m->tri_material)))
+        o->transmits = false;
+        if (!materials_ok(s, &o->shape, o->material, &o->transmits))
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
-        if (o->material >= 0) {
-            o->transmits = s->materials[o->material].transmit > 0.0f;
-        } else {
-            o->transmits = false;
-            for (int t = 0; t < m->ntris; t++) {
-                int32_t tm = m->tri_material[t];
-                if (tm < 0 || tm >= s->nmaterials)
-                    return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
-                o->transmits = o->transmits || s->materials[tm].transmit > 0.0f;
-            }
-        }
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
         aabb b = shape_bounds(&o->shape);
         s->bounds[i] = o->xform >= 0 ? xform_bounds(&s->xforms[o->xform], b) : b;
+        o->origin = texture_origin(&o->shape);
     }
-    glint_rc rc = build_accel(s, err);
+    rc = build_accel(s, err);
     if (rc != GLINT_OK)
         return rc;
     s->any_transmit = false;
@@ -328,9 +414,23 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     const xform *x = &s->xforms[o->xform];
     ray lr = object_ray(s, o, r);
     shape_surface(&o->shape, &lr, &hit->h, out);
-    out->p = ray_at(r, hit->h.t);
+    out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
     out->ng = v3_norm(xform_normal(x, out->ng));
+}
+
+void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no)
+{
+    const object *o = &s->objects[i];
+    if (o->xform < 0) {
+        *po = v3_sub(p, o->origin);
+        *no = n;
+        return;
+    }
+    const xform *x = &s->xforms[o->xform];
+    mat4 ft = mat4_transpose(&x->fwd);
+    *po = v3_sub(mat4_point(&x->inv, p), o->origin);
+    *no = mat4_vector(&ft, n);
 }
 
 /* Times the build for --stats (glint_scene_describe). */

@@ -11,19 +11,23 @@
 #include "glint.h"
 #include "accel/bvh4.h"
 #include "core/mat4.h"
+#include "geom/csg.h"
 #include "geom/mesh.h"
+#include "geom/polyhedron.h"
 #include "geom/shape.h"
 #include "io/image.h"
 #include "scene/camera.h"
+#include "shade/fog.h"
 #include "shade/light.h"
 #include "shade/material.h"
 #include "shade/texture.h"
 
 typedef struct object {
     shape shape;
-    int material;   /* -1: a mesh's own per-triangle materials */
+    int material;   /* -1: a mesh's own per-triangle materials, or a csg's per operand */
     int xform;      /* -1: the shape is in world space */
     bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
+    vec3 origin;    /* of object-space textures, in the shape's space (by scene_build) */
 } object;
 
 struct glint_scene {
@@ -42,10 +46,15 @@ struct glint_scene {
     int nlights, cap_lights;
     mesh **meshes;
     int nmeshes, cap_meshes;
+    polyhedron **polyhedra;
+    int npolyhedra, cap_polyhedra;
+    csg **csgs;
+    int ncsgs, cap_csgs;
 
     camera camera;
     vec3 background;
     vec3 ambient; /* ambient light, scaled by each material's ambient */
+    fog fog;
     glint_settings settings;
     bvh4 bvh;        /* over the objects with finite bounds, by scene_build */
     int32_t *unbounded; /* the others (planes), tested by every ray */
@@ -72,21 +81,30 @@ int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
+/* The same for a polyhedron (by polyhedron_init or _preset) and a csg (by
+ * csg_finish); objects place them with shape_polyhedron and shape_csg. */
+int scene_add_polyhedron(scene *s, polyhedron *p);
+int scene_add_csg(scene *s, csg *c);
 
 /* The scene-wide values a front end sets; each marks the scene unbuilt. */
 void scene_set_camera(scene *s, const camera *c);
 void scene_set_settings(scene *s, const glint_settings *st);
 void scene_set_background(scene *s, vec3 color);
 void scene_set_ambient(scene *s, vec3 color);
+void scene_set_fog(scene *s, const fog *f);
 /* Names resolved after their users were added: a material's texture and an
  * object's material (indices as returned by the adds). */
 void scene_set_material_texture(scene *s, int mat, int tex);
+void scene_set_material_bump(scene *s, int mat, int tex);
 void scene_set_object_material(scene *s, int obj, int mat);
+/* The material of operand leaf of the scene's csg number c. */
+void scene_set_csg_material(scene *s, int c, int leaf, int mat);
 
 camera scene_camera(const scene *s);
 glint_settings scene_settings(const scene *s);
 vec3 scene_background(const scene *s);
 vec3 scene_ambient(const scene *s);
+fog scene_fog(const scene *s);
 int scene_object_count(const scene *s);
 int scene_material_count(const scene *s);
 int scene_texture_count(const scene *s);
@@ -113,11 +131,16 @@ bool scene_occluded_opaque(const scene *s, const ray *r);
 /* Surface at a hit, in world space, normals unit and outward. */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
 
+/* World point p and normal n of a surface of object i in the object's
+ * texture space: the shape's own coordinates measured from the object's
+ * origin (texture.h, step 1). The normal is not normalised. */
+void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no);
+
 /* The material at a hit. */
 static inline const material *scene_hit_material(const scene *s, const scene_hit *hit)
 {
     const object *o = &s->objects[hit->object];
-    int m = o->material >= 0 ? o->material : o->shape.mesh->tri_material[hit->h.part];
+    int m = o->material >= 0 ? o->material : shape_hit_material(&o->shape, &hit->h);
     return &s->materials[m];
 }
 

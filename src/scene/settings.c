@@ -47,5 +47,8 @@ glint_rc settings_check(const glint_settings *s, glint_error *err)
     if (s->transfer != GLINT_TRANSFER_NONE && s->transfer != GLINT_TRANSFER_SRGB)
         return err_set(err, GLINT_ERR_INPUT, "transfer must be none (%d) or srgb (%d) (got %d)",
                        GLINT_TRANSFER_NONE, GLINT_TRANSFER_SRGB, (int)s->transfer);
+    if (!(s->adc_bailout >= 0.0 && s->adc_bailout <= 1.0))
+        return err_set(err, GLINT_ERR_INPUT, "adc_bailout must be 0 (never prune) to 1 (got %g)",
+                       s->adc_bailout);
     return GLINT_OK;
 }

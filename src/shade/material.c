@@ -13,5 +13,10 @@ material material_default(void)
         .transmit = 0.0f,
         .ior = 1.0f,
         .tint = {1.0f, 1.0f, 1.0f},
+        .absorption = {0.0f, 0.0f, 0.0f},
+        .emission = {0.0f, 0.0f, 0.0f},
+        .fresnel = true,
+        .bump = -1,
+        .bump_strength = 0.0f,
     };
 }

@@ -1,21 +1,29 @@
 /* material: how a surface answers light, in the Whitted model.
  *
  *   local  = (ambient * scene ambient + sum over lights of diffuse * max(0, n.l)
- *             * light * shadow) * base * (1 - transmit, at least 0)
+ *             * light * shadow) * base * (1 - transmit)
  *   + sum over lights of specular * max(0, r.v)^shininess * light * shadow
- *   + reflect * (reflected ray) + transmit * tint * (transmitted ray)
+ *   + emission
+ *   + kr * (reflected ray) + kt * tint * (transmitted ray)
  *
- * Reflection adds on top of the local colour (as in POV-Ray); transmission
- * takes its share from it. base = color, times the texture when there is
- * one. transmit with ior == 1 is plain transparency: the ray goes on
- * undeviated. With ior != 1 the
- * transmitted ray refracts by Snell's law and the split between reflection
- * and transmission follows Fresnel (Schlick's approximation); under total
- * internal reflection all of it reflects. Shadow rays pass through any
+ * base = color, times the texture when there is one; n is the shading
+ * normal, tilted by the bump pattern when there is one. Only transmission
+ * takes light from the local colour; reflection adds on top, as in POV-Ray.
+ * The highlight has the light's colour, not the surface's. Surfaces are
+ * two-sided: n faces the incoming ray. A light with several samples (an
+ * area light) adds each sample's share. kr = reflect and kt = transmit,
+ * except that with ior != 1 and fresnel on, Fresnel moves a share of kt to
+ * kr (all of it under total internal reflection, fresnel on or off).
+ * transmit with ior == 1 is plain transparency: the ray goes on undeviated.
+ * With ior != 1 the transmitted ray refracts by Snell's law and the split
+ * follows Fresnel (Schlick's approximation). Inside a transmitting object
+ * light fades by Beer-Lambert's law, exp(-absorption * distance) per
+ * channel, along rays and shadow rays. Shadow rays pass through any
  * transmitting surface, filtered by transmit * tint at each crossing. */
 #ifndef GLINT_SHADE_MATERIAL_H
 #define GLINT_SHADE_MATERIAL_H
 
+#include <stdbool.h>
 #include "core/vec3.h"
 
 typedef struct material {
@@ -24,9 +32,21 @@ typedef struct material {
     float ambient, diffuse, specular, shininess;
     float reflect, transmit, ior;
     vec3 tint;
+    vec3 absorption; /* per unit length inside; 0: clear */
+    vec3 emission;   /* light of its own, added unlit */
+    bool fresnel;    /* false: reflect and transmit are used as given */
+    int bump;        /* index into the scene's textures (not in uv space), or -1 */
+    float bump_strength;
 } material;
 
-/* Matte white: ambient 1, diffuse 1, specular 0, no reflection or transmission. */
+/* Matte white: ambient 1, diffuse 1, specular 0, no reflection or
+ * transmission, no absorption or emission, Fresnel on, no bump. */
 material material_default(void);
+
+/* Whether the material absorbs (some absorption component is > 0). */
+static inline bool material_absorbs(const material *m)
+{
+    return m->absorption.x > 0.0f || m->absorption.y > 0.0f || m->absorption.z > 0.0f;
+}
 
 #endif

@@ -1,0 +1,130 @@
+#include "roots.h"
+
+#include <math.h>
+#include <stdbool.h>
+
+int roots_quadratic(const double c[3], double lo, double hi, double out[2])
+{
+    double r[2];
+    int n = 0;
+    if (c[2] == 0.0) {
+        if (c[1] != 0.0)
+            r[n++] = -c[0] / c[1];
+    } else {
+        double disc = c[1] * c[1] - 4.0 * c[2] * c[0];
+        if (disc < 0.0)
+            return 0;
+        double q = -0.5 * (c[1] + copysign(sqrt(disc), c[1]));
+        r[n++] = q / c[2];
+        if (q != 0.0)
+            r[n++] = c[0] / q;
+        if (n == 2 && r[0] > r[1]) {
+            double t = r[0];
+            r[0] = r[1];
+            r[1] = t;
+        }
+    }
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (r[i] > lo && r[i] < hi)
+            out[k++] = r[i];
+    return k;
+}
+
+/* The one root of p in [a, b], where p(a) = fa and p(b) have opposite
+ * signs and p is monotonic: Newton from the secant point, bisecting
+ * whenever a step would leave the bracket, which shrinks every step. */
+static double bracketed(const double *c, const double *dc, int deg, double a, double b,
+                        double fa, double fb)
+{
+    double x = a - fa * (b - a) / (fb - fa);
+    if (!(x > a && x < b))
+        x = 0.5 * (a + b);
+    bool neg_a = fa < 0.0;
+    for (int it = 0; it < 100; it++) {
+        double f = roots_eval(c, deg, x);
+        if (f == 0.0)
+            return x;
+        if ((f < 0.0) == neg_a)
+            a = x;
+        else
+            b = x;
+        double df = roots_eval(dc, deg - 1, x);
+        double nx = df != 0.0 ? x - f / df : 0.5 * (a + b);
+        if (!(nx > a && nx < b))
+            nx = 0.5 * (a + b);
+        if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(nx)) || nx == a || nx == b)
+            return nx;
+        x = nx;
+    }
+    return x;
+}
+
+/* The roots of c (degree deg, leading coefficient non-zero) in (lo, hi),
+ * given the turning points crit[0 .. ncrit) inside it, in order. */
+static int between(const double *c, const double *dc, int deg, double lo, double hi,
+                   const double *crit, int ncrit, double *out, int max)
+{
+    int n = 0;
+    double x0 = lo, f0 = roots_eval(c, deg, lo);
+    for (int i = 0; i <= ncrit && n < max; i++) {
+        double x1 = i < ncrit ? crit[i] : hi;
+        double f1 = roots_eval(c, deg, x1);
+        if ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0))
+            out[n++] = bracketed(c, dc, deg, x0, x1, f0, f1);
+        x0 = x1;
+        f0 = f1;
+    }
+    return n;
+}
+
+int roots_cubic(const double c[4], double lo, double hi, double out[3])
+{
+    if (c[3] == 0.0)
+        return roots_quadratic(c, lo, hi, out);
+    double dc[3] = {c[1], 2.0 * c[2], 3.0 * c[3]};
+    double crit[2];
+    int ncrit = roots_quadratic(dc, lo, hi, crit);
+    return between(c, dc, 3, lo, hi, crit, ncrit, out, 3);
+}
+
+/* The quartic's turning points (the cubic's roots) are found one at a
+ * time, in order, and each piece between two of them is searched as soon
+ * as its end is known, so asking for the first root alone skips the
+ * turning points beyond it. */
+int roots_quartic(const double c[5], double lo, double hi, double out[4], int max)
+{
+    if (c[4] == 0.0) {
+        double r[3];
+        int n = roots_cubic(c, lo, hi, r);
+        for (int i = 0; i < n && i < max; i++)
+            out[i] = r[i];
+        return n < max ? n : max;
+    }
+    const double dc[4] = {c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4]};
+    const double ddc[3] = {dc[1], 2.0 * dc[2], 3.0 * dc[3]};
+    double bend[2]; /* the cubic's turning points cut it into monotonic pieces */
+    int nbend = roots_quadratic(ddc, lo, hi, bend), n = 0;
+    double x0 = lo, f0 = roots_eval(c, 4, lo);  /* start of the quartic's piece */
+    double y0 = lo, g0 = roots_eval(dc, 3, lo); /* start of the cubic's */
+    for (int i = 0; i <= nbend; i++) {
+        double y1 = i < nbend ? bend[i] : hi, g1 = roots_eval(dc, 3, y1);
+        if ((g0 < 0.0 && g1 > 0.0) || (g0 > 0.0 && g1 < 0.0)) {
+            double x1 = bracketed(dc, ddc, 3, y0, y1, g0, g1); /* a quartic turning point */
+            double f1 = roots_eval(c, 4, x1);
+            if ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0)) {
+                out[n++] = bracketed(c, dc, 4, x0, x1, f0, f1);
+                if (n >= max)
+                    return n;
+            }
+            x0 = x1;
+            f0 = f1;
+        }
+        y0 = y1;
+        g0 = g1;
+    }
+    double f1 = roots_eval(c, 4, hi);
+    if (n < max && ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0)))
+        out[n++] = bracketed(c, dc, 4, x0, hi, f0, f1);
+    return n;
+}

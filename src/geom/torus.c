@@ -1,0 +1,164 @@
+/* Torus round the +y axis: f(p) = (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + z^2)
+ * = 0 (p relative to the centre, R the major and r the minor radius);
+ * f < 0 inside the tube.
+ *
+ * The quartic along the ray is solved in double precision by Yuksel's
+ * method (core/roots.h): critical points cut the segment into monotonic
+ * pieces, and each piece whose ends differ in sign gives its root by
+ * bracketed Newton. Nothing is lost at grazing angles (two close roots
+ * are split by the critical point between them) and nothing is invented
+ * (a root is only reported where f changes sign). Two things keep the
+ * coefficients well-conditioned: the ray is first clipped to the torus's
+ * bounding box and the polynomial is written about the entry point, so
+ * its coefficients are of the order of the torus's size however far away
+ * the ray starts (about its origin they would grow as distance^4 and
+ * swamp the roots); and the direction is made unit length, so the leading
+ * coefficient is 1 and the unknown is arc length. A ray from inside the
+ * tube starts with f < 0 and finds its way out the same way. */
+#include <math.h>
+
+#include "core/roots.h"
+#include "shape.h"
+
+/* The ray's quartic in s = (t - t0) |d|, valid for s in (0, hi). */
+typedef struct tquartic {
+    double c[5];
+    double t0, len, hi;
+} tquartic;
+
+/* Clips t in (tmin, tmax) to the torus's box, enlarged by 1% so that a
+ * root is never on its faces; false when nothing is left. */
+static bool setup(const struct torus *s, const ray *r, double tmin, double tmax, tquartic *q)
+{
+    double R = s->major, rm = s->minor;
+    double o[3] = {(double)r->o.x - s->center.x, (double)r->o.y - s->center.y,
+                   (double)r->o.z - s->center.z};
+    double d[3] = {r->d.x, r->d.y, r->d.z};
+    double ext[3] = {1.01 * (R + rm), 1.01 * rm, 1.01 * (R + rm)};
+    double t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; a++) {
+        if (d[a] == 0.0) {
+            if (fabs(o[a]) > ext[a])
+                return false;
+            continue;
+        }
+        double inv = 1.0 / d[a];
+        double ta = (-ext[a] - o[a]) * inv, tb = (ext[a] - o[a]) * inv;
+        if (ta > tb) { /* (fmin and fmax are library calls) */
+            double t = ta;
+            ta = tb, tb = t;
+        }
+        t0 = ta > t0 ? ta : t0;
+        t1 = tb < t1 ? tb : t1;
+    }
+    if (!(t0 < t1))
+        return false;
+    /* Within the slab |y| <= r the tube lies between the cylinders of radius
+     * R - r and R + r round the axis: a segment wholly inside the inner one
+     * (down the hole) or wholly outside the outer one (past a corner of the
+     * box) misses. The squared distance from the axis is a quadratic in t,
+     * largest at an end of the segment and smallest at its vertex. */
+    double qa = d[0] * d[0] + d[2] * d[2], qb = o[0] * d[0] + o[2] * d[2];
+    double qc = o[0] * o[0] + o[2] * o[2];
+    double e0 = qc + t0 * (2.0 * qb + t0 * qa), e1 = qc + t1 * (2.0 * qb + t1 * qa);
+    double inner = R > rm ? (R - rm) * (R - rm) * 0.999 : 0.0, outer = (R + rm) * (R + rm) * 1.001;
+    if (e0 < inner && e1 < inner)
+        return false;
+    double tv = qa > 0.0 ? -qb / qa : t0;
+    tv = tv < t0 ? t0 : tv > t1 ? t1 : tv;
+    if (qc + tv * (2.0 * qb + tv * qa) > outer)
+        return false;
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double u[3] = {d[0] / len, d[1] / len, d[2] / len};
+    double p[3] = {o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2]};
+    double b = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+    double beta = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + R * R - rm * rm;
+    double k = 4.0 * R * R;
+    q->c[4] = 1.0;
+    q->c[3] = 4.0 * b;
+    q->c[2] = 4.0 * b * b + 2.0 * beta - k * (u[0] * u[0] + u[2] * u[2]);
+    q->c[1] = 4.0 * b * beta - 2.0 * k * (p[0] * u[0] + p[2] * u[2]);
+    q->c[0] = beta * beta - k * (p[0] * p[0] + p[2] * p[2]);
+    q->t0 = t0;
+    q->len = len;
+    q->hi = (t1 - t0) * len;
+    return true;
+}
+
+bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit)
+{
+    tquartic q;
+    if (!setup(s, r, r->tmin, r->tmax, &q))
+        return false;
+    double roots[4];
+    int n = roots_quartic(q.c, 0.0, q.hi, roots, 1);
+    for (int pass = 0; pass < 2 && n > 0; pass++) {
+        for (int i = 0; i < n; i++) {
+            float t = (float)(q.t0 + roots[i] / q.len);
+            if (ray_in_range(r, t)) {
+                hit->t = t;
+                hit->part = 0;
+                return true;
+            }
+        }
+        /* The first root rounded onto tmin: look at the others. */
+        n = pass == 0 ? roots_quartic(q.c, 0.0, q.hi, roots, 4) : 0;
+    }
+    return false;
+}
+
+int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max)
+{
+    tquartic q;
+    if (!setup(s, r, r->tmin, INFINITY, &q))
+        return 0;
+    double roots[4];
+    int n = roots_quartic(q.c, 0.0, q.hi, roots, 4), k = 0;
+    double dc[4] = {q.c[1], 2.0 * q.c[2], 3.0 * q.c[3], 4.0 * q.c[4]};
+    for (int i = 0; i < n && k < max; i++) {
+        float t = (float)(q.t0 + roots[i] / q.len);
+        if (!(t > r->tmin))
+            continue;
+        out[k++] = (crossing){.h = {.t = t, .part = 0}, .enter = roots_eval(dc, 3, roots[i]) < 0.0};
+    }
+    return k;
+}
+
+/* f and its gradient at p. */
+static double field(double R2, double r2, const double p[3], double g[3])
+{
+    double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + R2 - r2;
+    g[0] = 4.0 * s * p[0] - 8.0 * R2 * p[0];
+    g[1] = 4.0 * s * p[1];
+    g[2] = 4.0 * s * p[2] - 8.0 * R2 * p[2];
+    return s * s - 4.0 * R2 * (p[0] * p[0] + p[2] * p[2]);
+}
+
+/* The point is moved onto the surface by two Newton steps along the
+ * gradient (shape.h); the normal is the gradient there, which points out
+ * of the tube. u runs once round the y axis (0.5 facing +z), v once round
+ * the tube (0.5 on the outer equator, rising over the top). */
+void torus_surface(const struct torus *s, vec3 p, surface *out)
+{
+    double R2 = (double)s->major * s->major, r2 = (double)s->minor * s->minor;
+    double q[3] = {(double)p.x - s->center.x, (double)p.y - s->center.y,
+                   (double)p.z - s->center.z};
+    double g[3];
+    for (int i = 0; i < 2; i++) {
+        double f = field(R2, r2, q, g);
+        double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+        if (!(gg > 0.0))
+            break;
+        for (int a = 0; a < 3; a++)
+            q[a] -= f * g[a] / gg;
+    }
+    field(R2, r2, q, g);
+    double gl = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    out->p = v3((float)(q[0] + s->center.x), (float)(q[1] + s->center.y),
+                (float)(q[2] + s->center.z));
+    out->n = gl > 0.0 ? v3((float)(g[0] / gl), (float)(g[1] / gl), (float)(g[2] / gl))
+                      : v3(0.0f, 1.0f, 0.0f);
+    double rho = sqrt(q[0] * q[0] + q[2] * q[2]);
+    out->u = 0.5f + (float)(atan2(q[0], q[2]) * (0.5 / M_PI));
+    out->v = 0.5f + (float)(atan2(q[1], rho - s->major) * (0.5 / M_PI));
+}

@@ -1,0 +1,27 @@
+/* lighting: the local part of material.h's formula at a shaded point:
+ * ambient, every sample of every light with its shadow ray, and emission.
+ *
+ * Samples. A light with several samples per point (an area light's N x N
+ * grid) places sample k at a point of its own cell, jittered by a hash of
+ * the camera sample (pixel and index, trace_begin_sample), the shading
+ * event along that sample's path, the light and k. The jitter turns what
+ * would be N^2 hard-edged copies of each shadow (banding) into fine noise
+ * that supersampling averages away, and the image stays the same for any
+ * number of threads. */
+#ifndef GLINT_TRACE_LIGHTING_H
+#define GLINT_TRACE_LIGHTING_H
+
+#include "shade/light.h"
+#include "trace/shading.h"
+
+/* ambient * base * (1 - transmit) + lights (diffuse, specular) + emission. */
+vec3 lighting_local(trace_ctx *ctx, const shade_point *sp);
+
+/* Fraction of light reaching p from the light sample lr: 0 behind an
+ * opaque object, filtered by transmit * tint at each transmitting surface
+ * crossed and by Beer-Lambert absorption inside those that absorb. ng is
+ * the geometric normal at p on the side facing the light. Counts one
+ * shadow ray. */
+vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr);
+
+#endif

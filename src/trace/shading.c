@@ -1,0 +1,73 @@
+#include "shading.h"
+
+#include <math.h>
+
+#include "shade/texture.h"
+
+/* The point where a texture of this space is looked up. */
+static texture_point texture_at(const scene *s, const scene_hit *hit, const surface *sf,
+                                texture_space space)
+{
+    texture_point tp = {sf->p, sf->n, sf->u, sf->v};
+    if (space == SPACE_OBJECT)
+        scene_object_point(s, hit->object, sf->p, sf->n, &tp.p, &tp.n);
+    return tp;
+}
+
+/* The outward normal n tilted by the bump pattern: the surface is raised
+ * by strength * value along n, so the normal leans against the value's
+ * gradient across the surface. */
+static vec3 bump(const trace_ctx *ctx, const scene_hit *hit, const surface *sf,
+                 const material *m)
+{
+    const scene *s = ctx->scene;
+    const texture *t = &s->textures[m->bump];
+    texture_point tp = texture_at(s, hit, sf, t->space);
+    vec3 g = texture_gradient(t, s->images, ctx->decode, &tp);
+    const object *o = &s->objects[hit->object];
+    if (t->space == SPACE_OBJECT && o->xform >= 0)
+        g = xform_normal(&s->xforms[o->xform], g); /* d/dp of f(inverse(p)) */
+    vec3 tangential = v3_madd(g, sf->n, -v3_dot(g, sf->n));
+    vec3 n = v3_norm(v3_madd(sf->n, tangential, -m->bump_strength));
+    return v3_is_finite(n) ? n : sf->n;
+}
+
+void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_point *out)
+{
+    const scene *s = ctx->scene;
+    surface sf;
+    scene_surface(s, r, hit, &sf);
+    const material *m = scene_hit_material(s, hit);
+    out->m = m;
+    out->p = sf.p;
+    out->d = v3_norm(r->d);
+    out->base = m->color;
+    if (m->texture >= 0) {
+        const texture *t = &s->textures[m->texture];
+        texture_point tp = texture_at(s, hit, &sf, t->space);
+        out->base = v3_mul(out->base, texture_eval(t, s->images, ctx->decode, &tp));
+    }
+    vec3 n = m->bump >= 0 ? bump(ctx, hit, &sf, m) : sf.n;
+    /* Both normals turned to face the incoming ray; the geometric one
+     * decides the side, the shading one the lighting. */
+    out->inside = v3_dot(out->d, sf.ng) > 0.0f;
+    out->ng = out->inside ? v3_neg(sf.ng) : sf.ng;
+    out->n = out->inside ? v3_neg(n) : n;
+    if (v3_dot(out->n, out->ng) < 0.0f)
+        out->n = out->ng;
+}
+
+vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp, vec3 c)
+{
+    if (sp && sp->inside && sp->m->transmit > 0.0f) {
+        if (!material_absorbs(sp->m))
+            return c;
+        float len = t * v3_len(r->d);
+        vec3 a = sp->m->absorption;
+        return v3_mul(c, v3(expf(-a.x * len), expf(-a.y * len), expf(-a.z * len)));
+    }
+    if (s->fog.kind == FOG_NONE)
+        return c;
+    float dl = v3_len(r->d);
+    return fog_apply(&s->fog, r->o, v3_scale(r->d, 1.0f / dl), t * dl, c);
+}
