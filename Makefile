@@ -40,14 +40,24 @@ GEN_SRC  := $(BUILD)/gen/assets.c
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/assets.o
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/obj/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/obj/%.o)
-DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
+DIST_SRC := $(wildcard src/dist/*.c)
+DIST_OBJ := $(DIST_SRC:%.c=$(BUILD)/obj/%.o)
+DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(DIST_OBJ:.o=.d)
+
+# glint-mpi (src/dist, the only code that includes mpi.h) is built whenever
+# Open MPI's compiler wrapper is there; its flags, with the compiler above.
+MPICC      ?= mpicc
+HAVE_MPI   := $(shell command -v $(MPICC) >/dev/null 2>&1 && echo yes)
+MPI_CFLAGS := $(if $(HAVE_MPI),$(shell $(MPICC) --showme:compile 2>/dev/null))
+MPI_LIBS   := $(if $(HAVE_MPI),$(shell $(MPICC) --showme:link 2>/dev/null))
+MPI_BIN    := $(if $(HAVE_MPI),$(BUILD)/glint-mpi)
 
 .PHONY: all deps run test check clean fuzz
 .DEFAULT_GOAL := all
 
 all: deps
 	@$(MAKE) --no-print-directory $(BUILD)/glint $(BUILD)/libglint.a $(BUILD)/libglint.so \
-		scenes/textures/flag.png scenes/textures/globe.png
+		$(MPI_BIN) scenes/textures/flag.png scenes/textures/globe.png
 
 deps:
 	@scripts/install-deps build
@@ -61,10 +71,10 @@ test:
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 check
 
-check: $(BUILD)/glint $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
+check: $(BUILD)/glint $(MPI_BIN) $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
 	scripts/check-layers
-	GLINT_BIN=$(BUILD)/glint ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-		$(BUILD)/tests --jobs 2
+	GLINT_BIN=$(BUILD)/glint GLINT_MPI_BIN=$(MPI_BIN) ASAN_OPTIONS=detect_leaks=1 \
+		UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/tests --jobs 2
 ifeq ($(SAN),0)
 	@$(MAKE) --no-print-directory check-lib
 endif
@@ -78,7 +88,7 @@ check-lib: $(BUILD)/libglint.so
 	@$(MAKE) --no-print-directory install PREFIX=$(CURDIR)/$(BUILD)/stage >/dev/null
 	BUILD=$(BUILD) CC=$(CC) scripts/check-install $(CURDIR)/$(BUILD)/stage
 
-# `make install PREFIX=/usr/local DESTDIR=`: the command, both libraries,
+# `make install PREFIX=/usr/local DESTDIR=`: the command (and glint-mpi when built), both libraries,
 # the header, glint.pc, the example scenes and the documentation. glint.pc
 # names the static library's dependencies: the pkg-config packages, and
 # OpenEXR's C library directly (its package would add the C++ ones).
@@ -94,6 +104,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include \
 		$(DESTDIR)$(PREFIX)/share/glint $(INSTALL_DOC)
 	install -m 755 $(BUILD)/glint $(DESTDIR)$(PREFIX)/bin/glint
+	$(if $(MPI_BIN),install -m 755 $(MPI_BIN) $(DESTDIR)$(PREFIX)/bin/glint-mpi)
 	install -m 644 $(BUILD)/libglint.a $(INSTALL_LIB)/libglint.a
 	install -m 755 $(BUILD)/libglint.so $(INSTALL_LIB)/libglint.so.$(VERSION)
 	ln -sf libglint.so.$(VERSION) $(INSTALL_LIB)/libglint.so.$(SOVERSION)
@@ -124,10 +135,16 @@ $(APP_OBJ): CPPFLAGS += $(SDL_CFLAGS)
 $(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(SDL_LIBS)
 
+$(BUILD)/glint-mpi: $(DIST_OBJ) $(BUILD)/libglint.a
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)
+
+$(DIST_OBJ): CPPFLAGS += $(MPI_CFLAGS)
+
 # The library's allocations pass through tests/test_alloc.c, which makes
-# each fail in turn.
+# each fail in turn. The tests take the scheduler of glint-mpi too (it has
+# no MPI in it).
 TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
-$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/libglint.a
+$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
@@ -218,3 +235,16 @@ clean:
 	rm -rf build glint.png
 
 -include $(DEPS)
+
+# Scaling across processes (bench/README.md, "Across processes"): the
+# scheduler simulator, then bench/mpi measures and simulates.
+$(BUILD)/bench/mpisim: bench/mpisim.c src/dist/sched.c src/dist/sched.h src/dist/job.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ bench/mpisim.c src/dist/sched.c
+
+.PHONY: bench-mpi
+bench-mpi:
+	@scripts/install-deps bench
+	@$(MAKE) --no-print-directory SAN=0 $(BUILD)/glint $(BUILD)/glint-mpi $(BUILD)/bench/mpisim \
+		scenes/textures/flag.png scenes/textures/globe.png
+	BUILD=$(BUILD) bench/mpi

@@ -24,7 +24,8 @@ static int run(int n, int threads)
     scene *s = scene_new();
     if (!s)
         return 1;
-    s->camera = (camera){v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60.0f};
+    s->camera = (camera){.eye = v3(0, 0, 0), .target = v3(0, 0, -1), .up = v3(0, 1, 0),
+                         .hfov = 60.0f};
     light l = {LIGHT_POINT, v3(30, 60, 20), v3s(1.0f)};
     scene_add_light(s, &l);
     material m = material_default();
@@ -51,7 +52,8 @@ static int run(int n, int threads)
         return 1;
     }
     double t1 = now();
-    glint_settings st = {640, 480, 1, 5, threads, GLINT_TRANSFER_NONE, 1.0 / 255};
+    glint_settings st = {640, 480, 1, 5, threads, GLINT_TRANSFER_NONE, 1.0 / 255,
+                         GLINT_SAMPLER_GRID, 0.05, 3, 0};
     glint_film film;
     glint_stats stats;
     if (glint_render(s, &st, NULL, &film, &stats, &err) != GLINT_OK) {

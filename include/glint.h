@@ -78,9 +78,19 @@ typedef enum glint_transfer {
     GLINT_TRANSFER_SRGB, /* the sRGB curve (IEC 61966-2-1): colours are linear */
 } glint_transfer;
 
+/* Where in a pixel its samples go (docs/scene-format.md, image.sampler). */
+typedef enum glint_sampler {
+    GLINT_SAMPLER_GRID,     /* N x N regular grid, at the centres of N x N cells */
+    GLINT_SAMPLER_JITTER,   /* one sample in each of the N x N cells, placed by a hash of
+                               the pixel and the sample: the same for any thread count */
+    GLINT_SAMPLER_ADAPTIVE, /* corners (shared with neighbours) and centre; a cell whose
+                               samples differ by more than threshold splits in four, down
+                               to adaptive_depth; samples is not used */
+} glint_sampler;
+
 typedef struct glint_settings {
     int width, height;     /* pixels, 1 to 32768 each, at most 2^27 in all */
-    int samples;           /* per pixel, 1 to 1024; a perfect square (N*N regular grid) */
+    int samples;           /* per pixel, 1 to 1024; a perfect square (N*N grid) */
     int max_depth;         /* reflection/refraction recursion limit, 0 to 64 */
     int threads;           /* 0: one per core; at most 1024 */
     glint_transfer transfer;
@@ -89,6 +99,12 @@ typedef struct glint_settings {
      * traced. 0 to 1; 0 never prunes (the tree of rays then grows as
      * 2^depth through glass). A scene's default is 1/255. */
     double adc_bailout;
+    glint_sampler sampler;
+    double threshold;      /* ADAPTIVE: largest difference of display values (0 to 1)
+                              left unsplit; 0 splits every cell */
+    int adaptive_depth;    /* ADAPTIVE: most times a cell splits, 0 to 5 (4^5 cells) */
+    int alpha;             /* non-zero: the film gets coverage (alpha), the share of a
+                              pixel's camera rays that hit something */
 } glint_settings;
 
 /* Checks settings for a render: sizes, sample counts, memory limits. */
@@ -150,7 +166,11 @@ GLINT_API glint_rc glint_scene_count(const glint_scene *scene, glint_scene_count
 /* ---- camera -------------------------------------------------------------- */
 
 typedef enum glint_projection {
-    GLINT_PROJECTION_PERSPECTIVE, /* a pinhole (or thin lens, with an aperture) */
+    GLINT_PROJECTION_PERSPECTIVE,     /* a pinhole (or thin lens, with an aperture) */
+    GLINT_PROJECTION_ORTHOGRAPHIC,    /* parallel rays from a window width wide */
+    GLINT_PROJECTION_EQUIRECTANGULAR, /* the whole sphere: 360 degrees across, 180 down */
+    GLINT_PROJECTION_FISHEYE,         /* equidistant: angle from the axis grows with the
+                                         distance from the centre; fov across the width */
 } glint_projection;
 
 /* Pixels are square: the vertical field of view follows from fov and the
@@ -159,10 +179,14 @@ typedef struct glint_camera {
     double eye[3];
     double look_at[3];          /* not equal to eye */
     double up[3];               /* not zero, not parallel to look_at - eye */
-    double fov;                 /* horizontal field of view, degrees, in (0, 180) */
-    double aperture;            /* lens diameter; 0 is a pinhole (the only kind today) */
+    double fov;                 /* horizontal field of view, degrees: perspective (0, 180),
+                                   fisheye (0, 360]; unused by the other two */
+    double aperture;            /* lens diameter (thin lens), >= 0; 0 is a pinhole */
     double focus_distance;      /* > 0, or 0: the distance from eye to look_at */
     glint_projection projection;
+    double width;               /* orthographic: width of the view, > 0 */
+    double shutter;             /* share of a frame the shutter is open, 0 to 1: motion
+                                   blur of animated scenes; 0 none */
 } glint_camera;
 
 GLINT_API glint_rc glint_scene_camera(const glint_scene *scene, glint_camera *out,
@@ -171,6 +195,29 @@ GLINT_API glint_rc glint_scene_camera(const glint_scene *scene, glint_camera *ou
  * value that is not finite, and leaves the scene's camera as it was. */
 GLINT_API glint_rc glint_scene_set_camera(glint_scene *scene, const glint_camera *cam,
                                           glint_error *err);
+
+/* ---- animation -------------------------------------------------------------
+ * A scene file's animation: block and keyed values (docs/scene-format.md)
+ * make the camera, lights, material colours and transforms functions of
+ * time. A scene is at one time at once: loading leaves it at frame 1. */
+
+typedef struct glint_animation {
+    int frames;   /* 1 for a still scene */
+    double fps;   /* frames per second (24 unless the scene says) */
+    double start; /* seconds: frame 1's time; frame k's is start + (k - 1) / fps */
+} glint_animation;
+
+GLINT_API glint_rc glint_scene_animation(const glint_scene *scene, glint_animation *out,
+                                         glint_error *err);
+/* Moves the scene to time seconds: animated values take their values then,
+ * and with camera.shutter > 0 the shutter stays open until seconds +
+ * shutter / fps, moving objects and the camera blurring over that interval.
+ * Rebuilds the scene (as glint_scene_build). Changes the scene: no render
+ * may run at the same time. A camera set by glint_scene_set_camera keeps
+ * its values only until an animated camera is moved in time. */
+GLINT_API glint_rc glint_scene_set_time(glint_scene *scene, double seconds, glint_error *err);
+/* glint_scene_set_time at frame's time; frame from 1 to the frame count. */
+GLINT_API glint_rc glint_scene_set_frame(glint_scene *scene, int frame, glint_error *err);
 
 /* ---- building a scene in code --------------------------------------------
  * The same scene as a YAML file renders to the same bytes when it gives the
@@ -357,7 +404,10 @@ GLINT_API glint_rc glint_scene_build(glint_scene *scene, glint_error *err);
 
 typedef struct glint_film {
     int width, height;
-    float *rgb; /* width*height*3 floats, row 0 at the top, linear values */
+    float *rgb;   /* width*height*3 floats, row 0 at the top, linear values */
+    float *alpha; /* NULL, or width*height coverage values in [0, 1]: glint_render
+                     fills it when settings.alpha is set; a region or tile render
+                     fills it when the caller allocated it */
 } glint_film;
 
 /* A rectangle of pixels: x0 <= x < x1, y0 <= y < y1, (0, 0) the top left. */
@@ -366,15 +416,17 @@ typedef struct glint_rect {
 } glint_rect;
 
 typedef struct glint_stats {
-    uint64_t primary_rays, secondary_rays, shadow_rays;
+    uint64_t primary_rays, secondary_rays, shadow_rays; /* primary: camera rays, one per
+                                                            pixel sample */
     double seconds; /* wall time of the render */
 } glint_stats;
 
 /* Where a render is, passed to the progress callback. */
 typedef struct glint_progress {
     double percent;          /* 0 to 100; exactly 100 when the last pixel is done */
-    uint64_t samples_done;   /* pixel samples finished so far */
-    uint64_t samples_total;  /* pixel samples this render traces */
+    uint64_t samples_done;   /* pixel samples finished so far (adaptive sampler: pixels,
+                                as its sample count is known only at the end) */
+    uint64_t samples_total;  /* pixel samples this render traces (adaptive: pixels) */
     uint64_t rays;           /* rays of every kind traced so far */
     double seconds;          /* since the render started */
 } glint_progress;
@@ -430,8 +482,11 @@ GLINT_API glint_rc glint_tile_count(const glint_settings *settings, int *count,
 GLINT_API glint_rc glint_tile_rect(const glint_settings *settings, int tile, glint_rect *out,
                                    glint_error *err);
 
-/* Renders the listed tiles (each index once, any order) into an image-sized
- * film, as glint_render_region does for a region. */
+/* Renders the listed tiles (each index once, any order) into a film the
+ * caller allocated either at the image's size or at the size of the
+ * smallest rectangle holding every listed tile (its top-left pixel at the
+ * film's top left: a batch of neighbouring tiles needs no image-sized film),
+ * as glint_render_region does for a region. */
 GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_settings *settings,
                                       const int *tiles, int ntiles,
                                       const glint_callbacks *callbacks, glint_film *film,
@@ -448,6 +503,9 @@ typedef struct glint_accum {
     int ntiles;        /* the image's tile grid (glint_tile_count) */
     int *tile_samples; /* per tile: samples per pixel summed so far */
     float *sum;        /* width*height*3: per pixel, the sum of those samples */
+    float *cover;      /* width*height: per pixel, the sum of their coverage (alpha) */
+    int *tile_div;     /* per tile: what sum is divided by (tile_samples, or 1 once
+                          the adaptive sampler's final pass left exact values) */
 } glint_accum;
 
 /* An accumulating film of width x height with no sample in it. */
@@ -552,8 +610,9 @@ typedef struct glint_write_options {
     int quality;             /* JPEG, 1..100; 0: 90 */
     int bits;                /* per channel; 0: the format's default (PNG, PPM 8; EXR 16);
                                 PNG and PPM take 8 or 16, EXR 16 or 32, PFM 32, JPEG 8 */
-    const float *alpha;      /* NULL, or width*height coverage values in [0, 1] (linear):
-                                PNG and EXR get an alpha channel; other formats ignore it */
+    const float *alpha;      /* NULL (the film's own alpha, if it has one), or width*height
+                                coverage values in [0, 1] (linear): PNG and EXR get an
+                                alpha channel; other formats ignore it */
 } glint_write_options;
 
 /* Writes the film to path ("-": standard output). Float formats (.hdr,
@@ -571,6 +630,32 @@ GLINT_API glint_rc glint_output_check(const char *path, const glint_write_option
 
 /* A format from its name or extension ("png", "jpg", "exr"...). */
 GLINT_API glint_rc glint_format_parse(const char *name, glint_format *out, glint_error *err);
+
+/* ---- frame sequences -----------------------------------------------------
+ * The pieces every front end that renders an animation shares (the command
+ * line, the MPI driver): which frames to render, what each is called, and
+ * whether a frame is already done. Frames are numbered from 1. */
+
+/* Parses a frame list against an animation of frames frames: "A:B" (A to B,
+ * both included) or "N" (one frame), with 1 <= A <= B <= frames. */
+GLINT_API glint_rc glint_frames_parse(const char *spec, int frames, int *first, int *last,
+                                      glint_error *err);
+
+/* The output name of frame number frame (>= 0) for pattern. A printf-style
+ * field in the pattern takes the number: %d, %Nd or %0Nd (N from 1 to 9);
+ * "%%" is a literal %. Without a field, "-%04d" goes before the extension
+ * (out.png: out-0001.png; out: out-0001). Refuses (GLINT_ERR_INPUT) a
+ * pattern with two fields or another % conversion, "-" (standard output),
+ * and a result that does not fit in size bytes. */
+GLINT_API glint_rc glint_frame_path(const char *pattern, int frame, char *out, size_t size,
+                                    glint_error *err);
+
+/* Whether path is a complete image: a regular file that decodes whole in
+ * its format (any format glint writes), of width x height pixels (0 for
+ * either: any). Files are written to a temporary name and renamed into
+ * place, so a frame interrupted mid-write is absent, not half there; this
+ * also catches a file cut short by other means. 1 yes, 0 no. */
+GLINT_API int glint_output_complete(const char *path, int width, int height);
 
 #ifdef __cplusplus
 }

@@ -80,9 +80,10 @@ static glint_scene *scene_in_code(void)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255};
+    glint_settings st = {64, 48, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255,
+                         GLINT_SAMPLER_GRID, 0.05, 3, 0};
     OK(glint_scene_set_settings(s, &st, &err));
-    glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    glint_camera cam = {{0, 2, 10}, {0, 0, 0}, {0, 1, 0}, 50, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
     OK(glint_scene_set_camera(s, &cam, &err));
     OK(glint_scene_set_background(s, (double[3]){0.1, 0.2, 0.3}, &err));
     OK(glint_scene_set_ambient(s, (double[3]){0.25, 0.2, 0.2}, &err));
@@ -266,6 +267,23 @@ Test(api, regions_and_tile_lists_assemble_into_the_whole_image)
     glint_rect r;
     OK(glint_tile_rect(&st, n - 1, &r, &err));
     cr_expect(r.x0 == 80 && r.y0 == 48 && r.x1 == 83 && r.y1 == 61, "last tile cut to the image");
+    /* Tiles 10, 11 (row 1) and 16 (row 2) into a film of their bounds:
+     * x [64, 83), y [16, 48), pixel (64, 16) at its top left. */
+    glint_film box = {0};
+    OK(glint_film_alloc(&box, 19, 32, &err));
+    int some[3] = {16, 10, 11};
+    OK(glint_render_tiles(s, &st, some, 3, NULL, &box, NULL, &err));
+    for (int y = 0; y < 32; y++)
+        for (int x = 0; x < 19; x++) {
+            const float *got = box.rgb + ((size_t)y * 19 + (size_t)x) * 3;
+            const float *want = whole.rgb + ((size_t)(16 + y) * 83 + (size_t)(64 + x)) * 3;
+            bool listed = y < 16 || x < 16; /* tile 17 (x >= 80, y >= 32) is not listed */
+            if (listed)
+                cr_assert_eq(memcmp(got, want, 3 * sizeof(float)), 0, "pixel (%d, %d)", 64 + x, 16 + y);
+            else
+                cr_assert(got[0] == 0 && got[1] == 0 && got[2] == 0, "unlisted pixel touched");
+        }
+    glint_film_free(&box);
     glint_film_free(&whole);
     glint_film_free(&parts);
     glint_film_free(&small);
@@ -378,7 +396,7 @@ Test(api, camera_round_trip_and_refusals)
 {
     glint_scene *s = NULL;
     OK(glint_scene_new(&s, &err));
-    glint_camera c = {{1, 2, 3}, {0, 0.5, -4}, {0, 1, 0}, 35.5, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    glint_camera c = {{1, 2, 3}, {0, 0.5, -4}, {0, 1, 0}, 35.5, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
     OK(glint_scene_set_camera(s, &c, &err));
     glint_camera got;
     OK(glint_scene_camera(s, &got, &err));
@@ -391,15 +409,18 @@ Test(api, camera_round_trip_and_refusals)
     cr_expect_float_eq(got.focus_distance, sqrt(1 + 2.25 + 49), 1e-5);
 
     struct { const char *what, *words; glint_camera cam; } bad[] = {
-        {"eye == look_at", "differ", {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 40, 0, 0, 0}},
-        {"fov 0", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 0, 0, 0, 0}},
-        {"fov 180", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180, 0, 0, 0}},
-        {"fov NaN", "finite", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, NAN, 0, 0, 0}},
-        {"up parallel", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 2}, 40, 0, 0, 0}},
-        {"up zero", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 0}, 40, 0, 0, 0}},
-        {"aperture", "aperture", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 1, 0, 0}},
-        {"focus", "focus", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, -1, 0}},
-        {"projection", "projection", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 7}},
+        {"eye == look_at", "differ", {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 40, 0, 0, 0, 0, 0}},
+        {"fov 0", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 0, 0, 0, 0, 0, 0}},
+        {"fov 180", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180, 0, 0, 0, 0, 0}},
+        {"fov NaN", "finite", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, NAN, 0, 0, 0, 0, 0}},
+        {"up parallel", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 2}, 40, 0, 0, 0, 0, 0}},
+        {"up zero", "parallel", {{0, 0, 0}, {0, 0, -1}, {0, 0, 0}, 40, 0, 0, 0, 0, 0}},
+        {"aperture", "aperture", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, -1, 0, 0, 0, 0}},
+        {"shutter", "shutter", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 0, 0, 1.5}},
+        {"width", "width", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 1, 0, 0}},
+        {"fisheye fov", "fov", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 361, 0, 0, 3, 0, 0}},
+        {"focus", "focus", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, -1, 0, 0, 0}},
+        {"projection", "projection", {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40, 0, 0, 7, 0, 0}},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err = (glint_error){0};
@@ -490,6 +511,17 @@ Test(api, null_arguments_are_refused)
     REFUSED(glint_film_write(&film, "x.png", NULL, &err), "film->rgb is NULL");
     REFUSED(glint_output_check(NULL, NULL, &err), "path is NULL");
     REFUSED(glint_format_parse(NULL, NULL, &err), "name is NULL");
+    glint_animation an;
+    char name[16];
+    REFUSED(glint_scene_animation(NULL, &an, &err), "scene is NULL");
+    REFUSED(glint_scene_animation(s, NULL, &err), "out is NULL");
+    REFUSED(glint_scene_set_time(NULL, 0, &err), "scene is NULL");
+    REFUSED(glint_scene_set_frame(NULL, 1, &err), "scene is NULL");
+    REFUSED(glint_frames_parse(NULL, 1, &n, &n, &err), "spec is NULL");
+    REFUSED(glint_frames_parse("1", 1, NULL, &n, &err), "first is NULL");
+    REFUSED(glint_frame_path(NULL, 1, name, sizeof name, &err), "pattern is NULL");
+    REFUSED(glint_frame_path("a.png", 1, NULL, 4, &err), "out is NULL");
+    cr_expect_eq(glint_output_complete(NULL, 0, 0), 0);
     cr_expect_eq(glint_scene_load(NULL, &s, NULL), GLINT_ERR_INPUT, "err may be NULL");
     glint_scene_free(NULL);
     glint_film_free(NULL);
@@ -504,6 +536,20 @@ Test(api, values_out_of_range_are_refused)
     glint_settings bad = st;
     bad.transfer = (glint_transfer)7;
     REFUSED(glint_settings_check(&bad, &err), "transfer");
+    bad = st;
+    bad.sampler = (glint_sampler)3;
+    REFUSED(glint_settings_check(&bad, &err), "sampler");
+    bad = st;
+    bad.threshold = 1.5;
+    REFUSED(glint_settings_check(&bad, &err), "threshold");
+    bad = st;
+    bad.adaptive_depth = 6;
+    REFUSED(glint_settings_check(&bad, &err), "max_depth");
+    REFUSED(glint_scene_set_time(s, NAN, &err), "finite");
+    REFUSED(glint_scene_set_frame(s, 2, &err), "frame 2 is out of range (1 to 1)");
+    REFUSED(glint_frame_path("a.png", -1, (char[8]){0}, 8, &err), "frame must be >= 0");
+    bad = st;
+    bad.transfer = (glint_transfer)7;
     glint_film film = {0};
     REFUSED(glint_render(s, &bad, NULL, &film, NULL, &err), "transfer");
     cr_expect_null(film.rgb);
@@ -522,6 +568,8 @@ Test(api, values_out_of_range_are_refused)
     REFUSED(glint_render_tiles(s, &st, twice, 2, NULL, &film, NULL, &err), "twice");
     REFUSED(glint_render_tiles(s, &st, far, 1, NULL, &film, NULL, &err), "out of range");
     REFUSED(glint_render_tiles(s, &st, far, -1, NULL, &film, NULL, &err), "ntiles");
+    int two[2] = {0, 5};
+    REFUSED(glint_render_tiles(s, &st, two, 2, NULL, &odd, NULL, &err), "tiles' bounds (40x30)");
     REFUSED(glint_tile_rect(&st, 6, &r, &err), "out of range");
     glint_film_free(&odd);
     glint_film_free(&film);

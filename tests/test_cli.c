@@ -67,7 +67,7 @@ Test(cli, help_and_version)
      * keeps, and the exit status rule */
     static const char *const says[] = {
         "samples per pixel, a perfect square from 1 to 1024",
-        "(default: the scene's, else 1)",
+        "(default: the scene's, else 1;",
         "recursion limit, 0 to 64",
         "render threads, 0 to 1024 (default 0: one per core)",
         "docs/scene-format.md",
@@ -334,6 +334,111 @@ Test(cli, every_output_format_by_extension)
         cr_expect_eq(img.height, 16, "%s", files[i]);
         image_free(&img);
     }
+}
+
+/* A small animated scene: 5 frames of a sphere moving right. */
+static const char moving[] =
+    "animation: {frames: 5, fps: 10}\n"
+    "image: {width: 12, height: 8}\n"
+    "camera: {eye: [0, 0, 5], look_at: [0, 0, 0]}\n"
+    "lights: [{type: point, position: [0, 5, 5]}]\n"
+    "objects:\n"
+    "  - type: sphere\n"
+    "    center: [0, 0, 0]\n"
+    "    radius: 1\n"
+    "    transform: [{translate: {keys: [[0, [-2, 0, 0]], [0.4, [2, 0, 0]]]}}]\n";
+
+static long mtime_ns(const char *name)
+{
+    char path[256];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    cr_assert_eq(stat(path, &st), 0, "%s is missing", name);
+    return (long)st.st_mtim.tv_sec * 1000000000L + st.st_mtim.tv_nsec;
+}
+
+Test(cli, frames_write_one_file_each_named_by_number)
+{
+    char out[4096];
+    put("anim.yaml", moving);
+    cr_assert_eq(run("-q anim.yaml --frames 2:4 -o f%02d.png", out, sizeof out), 0, "%s", out);
+    cr_expect(!exists("f01.png") && exists("f02.png") && exists("f03.png") &&
+              exists("f04.png") && !exists("f05.png"), "frames 2 to 4, named by %%02d");
+    cr_assert_eq(run("-q anim.yaml --frame 5 -o seq.ppm", out, sizeof out), 0, "%s", out);
+    cr_expect(exists("seq-0005.ppm"), "without a field: -%%04d before the extension");
+    /* the frames differ: the sphere moves */
+    char a[256];
+    snprintf(a, sizeof a, "cmp -s '%s/f02.png' '%s/f04.png'", tmpdir, tmpdir);
+    cr_expect_neq(system(a), 0, "frames 2 and 4 are the same picture");
+    /* no --frames: frame 1 to the name as given */
+    cr_assert_eq(run("-q anim.yaml -o still.png", out, sizeof out), 0, "%s", out);
+    cr_expect(exists("still.png"));
+}
+
+Test(cli, resume_skips_complete_frames_only)
+{
+    char out[4096];
+    put("anim.yaml", moving);
+    cr_assert_eq(run("-q anim.yaml --frames 1:5 -o f%d.png", out, sizeof out), 0, "%s", out);
+    long t1 = mtime_ns("f1.png"), t2 = mtime_ns("f2.png");
+    /* frame 3 cut short, frame 4 gone, frame 5 of another size */
+    char cmd[512];
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && head -c 40 f3.png > t && mv t f3.png && rm f4.png", tmpdir);
+    cr_assert_eq(system(cmd), 0);
+    cr_assert_eq(run("-q anim.yaml --frame 5 -r 6x4 -o f%d.png", out, sizeof out), 0, "%s", out);
+    usleep(20000);
+    cr_assert_eq(run("-q anim.yaml --frames 1:5 --resume -o f%d.png", out, sizeof out), 0, "%s",
+                 out);
+    cr_expect_eq(mtime_ns("f1.png"), t1, "a complete frame was rendered again");
+    cr_expect_eq(mtime_ns("f2.png"), t2, "a complete frame was rendered again");
+    for (int f = 3; f <= 5; f++) {
+        char path[256];
+        snprintf(path, sizeof path, "%s/f%d.png", tmpdir, f);
+        image img;
+        glint_error err = {0};
+        cr_assert_eq(image_load(path, &img, &err), GLINT_OK, "frame %d: %s", f, err.msg);
+        cr_expect(img.width == 12 && img.height == 8, "frame %d is %dx%d", f, img.width,
+                  img.height);
+        image_free(&img);
+    }
+}
+
+Test(cli, bad_frame_options_exit_2)
+{
+    char out[4096];
+    put("anim.yaml", moving);
+    cr_expect_eq(run("-q anim.yaml --frames 4:9", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: --frames: frame 9 is past the animation's last (5)\n");
+    cr_expect_eq(run("-q anim.yaml --frames 3:1", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: --frames: frames 3:1: the first is after the last\n");
+    cr_expect_eq(run("-q anim.yaml --frame 1:2", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: --frame: expected one frame number, got '1:2' (try 'glint "
+                          "--help')\n");
+    cr_expect_eq(run("-q anim.yaml --frames 1:2 -o -", out, sizeof out), 2);
+    cr_expect_str_eq(out, "glint: a sequence of frames cannot go to standard output ('-')\n");
+    cr_expect_eq(run("-q anim.yaml --frames 1:2 -o 'a%s.png'", out, sizeof out), 2);
+    cr_expect(strstr(out, "the only % field allowed is the frame number"), "%s", out);
+    cr_expect_eq(run("-q --frames 2", out, sizeof out), 2, "the built-in scene has one frame");
+    cr_expect(!exists("glint-0002.png") && !exists("glint.png"));
+}
+
+/* image.alpha makes an RGBA PNG whose alpha is 0 on the background. */
+Test(cli, alpha_writes_rgba)
+{
+    char out[4096];
+    put("a.yaml", "image: {width: 8, height: 8, alpha: true}\n"
+                  "camera: {eye: [0, 0, 5], look_at: [0, 0, 0], fov: 30}\n"
+                  "objects: [{type: sphere, center: [0, 0, 0], radius: 0.5}]\n");
+    cr_assert_eq(run("-q a.yaml -o a.png", out, sizeof out), 0, "%s", out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/a.png", tmpdir);
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f);
+    unsigned char head[26];
+    cr_assert_eq(fread(head, 1, sizeof head, f), sizeof head);
+    fclose(f);
+    cr_expect_eq(head[25], 6, "PNG colour type %d, want 6 (RGBA)", head[25]);
 }
 
 /* -t 0 is the library's "one thread per core"; it was refused. */

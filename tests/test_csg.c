@@ -219,12 +219,15 @@ static void check_ray(const csg *c, ray r, csg_tally *tl, const char *what)
     if (want >= 0 && fabs(h.t - want) <= tol) {
         tl->agree++;
     } else {
-        double e = 1e-4 / len;
         cr_assert(want < 0 || h.t < want, "%s: hit at t %.7g, membership first changes at %.7g",
                   what, (double)h.t, want);
-        cr_assert_neq(member_at(c, &r, h.t - e), member_at(c, &r, h.t + e),
-                      "%s: hit at t %.7g where membership does not change (first change %.7g)",
-                      what, (double)h.t, want);
+        /* A feature thinner than the step (a corner clipped by the ray over
+         * 1e-5, say): membership must change across the hit at some scale. */
+        bool changes = false;
+        for (double e = 1e-4 / len; e > 1e-7 / len && !changes; e *= 0.1)
+            changes = member_at(c, &r, h.t - e) != member_at(c, &r, h.t + e);
+        cr_assert(changes, "%s: hit at t %.7g where membership does not change (first change "
+                  "%.7g)", what, (double)h.t, want);
         tl->thin++;
     }
     /* The normal faces out of the result: against the ray where it enters. */
@@ -266,9 +269,9 @@ Test(csg, random_trees_agree_with_the_membership_oracle, .timeout = 300)
                               p.x <= c.bounds.hi.x && p.y <= c.bounds.hi.y && p.z <= c.bounds.hi.z,
                           "tree %d: a point inside lies outside the bounds", tree);
             /* Rays from anywhere around (many start inside operands or the
-             * result), half aimed at the middle, lengths not 1. */
+             * result), half aimed into the bounds, lengths not 1. */
             vec3 o = rand_vec(&g, -2.5f, 2.5f);
-            vec3 d = i % 2 ? v3_sub(rand_vec(&g, -1, 1), o) : rng_unit_dir(&g);
+            vec3 d = i % 2 ? v3_sub(rand_in_box(&g, c.bounds), o) : rng_unit_dir(&g);
             d = v3_scale(v3_norm(d), 0.5f + rng_float(&g));
             snprintf(what, sizeof what, "tree %d ray %d", tree, i);
             check_ray(&c, ray_make(o, d, INFINITY), &tl, what);
@@ -278,7 +281,7 @@ Test(csg, random_trees_agree_with_the_membership_oracle, .timeout = 300)
     }
     cr_log_info("csg: %d points (%d inside); %d rays, %d hits, %d agree, %d thin features",
                 points, inside, tl.rays, tl.hits, tl.agree, tl.thin);
-    cr_expect_gt(tl.hits, tl.rays / 5, "not vacuous");
+    cr_expect_gt(tl.hits, tl.rays / 8, "not vacuous");
     cr_expect_gt(inside, points / 200, "not vacuous");
     cr_expect_leq(tl.thin, tl.rays / 100);
 }

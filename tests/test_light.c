@@ -168,7 +168,8 @@ static scene *slab_scene(void)
     shape b = shape_box(v3(-1, -5, -5), v3(1, 5, 5));
     scene_add_object(s, &b, 0, -1);
     scene_set_background(s, v3s(1.0f));
-    scene_set_camera(s, &(camera){v3(-10, 0, 0), v3(0, 0, 0), v3(0, 1, 0), 10.0f});
+    scene_set_camera(s, &(camera){.eye = v3(-10, 0, 0), .target = v3(0, 0, 0), .up = v3(0, 1, 0),
+                             .hfov = 10.0f});
     glint_error err = {0};
     cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
     return s;
@@ -241,5 +242,48 @@ Test(light, area_lights_render_the_same_for_1_2_and_3_threads)
     cr_expect_eq(memcmp(ref.rgb, again.rgb, sizeof(float) * 48 * 30 * 3), 0);
     glint_film_free(&again);
     glint_film_free(&ref);
+    scene_free(s);
+}
+
+/* Secondary rays of a 3 x 3 render of s at one sample per pixel. */
+static uint64_t secondary_rays(const scene *s)
+{
+    glint_settings st = scene_settings(s);
+    st.width = st.height = 3;
+    st.samples = 1;
+    st.threads = 1;
+    glint_film f = {0};
+    glint_stats stats = {0};
+    glint_error err = {0};
+    cr_assert_eq(glint_render(s, &st, NULL, &f, &stats, &err), GLINT_OK, "%s", err.msg);
+    glint_film_free(&f);
+    return stats.secondary_rays;
+}
+
+Test(light, fresnel_off_and_emission)
+{
+    /* Straight through the slab of glass (ior 1.5): with Fresnel off and
+     * reflect 0 nothing is reflected, so each pixel traces just the two
+     * refracted rays and the background comes through whole; with it on,
+     * each face also sends a reflected ray. Emission adds at each face. */
+    scene *s = slab_scene();
+    material *m = &s->materials[0];
+    m->absorption = v3s(0.0f);
+    m->ior = 1.5f;
+    m->fresnel = false;
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    glint_film f = test_render(s, 3, 3, 1, 1);
+    ASSERT_NEAR(f.rgb[4 * 3], 1.0, 1e-5);
+    glint_film_free(&f);
+    cr_expect_eq(secondary_rays(s), 9 * 2, "refracted rays only");
+    m->fresnel = true;
+    cr_expect_geq(secondary_rays(s), 9 * 4, "and reflected rays at the faces");
+    m->fresnel = false;
+    m->emission = v3(0.25f, 0, 0);
+    f = test_render(s, 3, 3, 1, 1);
+    ASSERT_NEAR(f.rgb[4 * 3], 1.5, 1e-5); /* 0.25 at the front + 0.25 at the back + 1 */
+    ASSERT_NEAR(f.rgb[4 * 3 + 1], 1.0, 1e-5);
+    glint_film_free(&f);
     scene_free(s);
 }

@@ -408,7 +408,8 @@ Test(load_errors, unknown_keys_with_suggestions)
     /* Distant words get the list, not another word: 'type' is two edits
      * from 'eye', too many for four letters; a swap of two letters is one. */
     expect_error("camera: {type: thin_lens}\n",
-                 "scene.yaml:1:10: unknown key 'type' in camera (valid: eye, look_at, up, fov)");
+                 "scene.yaml:1:10: unknown key 'type' in camera (valid: eye, look_at, up, fov, "
+                 "aperture, focus_distance, width, shutter, projection)");
     expect_error("camera: {eey: [0, 0, 0]}\n",
                  "scene.yaml:1:10: unknown key 'eey' in camera (did you mean 'eye'?)");
     expect_error("objects: [{type: cyl, base: [0, 0, 0]}]\n",

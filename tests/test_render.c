@@ -147,7 +147,8 @@ static void expect_bad(glint_settings st, const char *needle)
 
 Test(render, settings_are_checked)
 {
-    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255};
+    glint_settings ok = {500, 500, 4, 5, 0, GLINT_TRANSFER_NONE, 1.0 / 255,
+                         GLINT_SAMPLER_GRID, 0.05, 3, 0};
     glint_error err = {0};
     cr_expect_eq(glint_settings_check(&ok, &err), GLINT_OK);
     glint_settings s = ok;
@@ -207,7 +208,8 @@ static glint_scene *nested_spheres(glint_material m)
     glint_scene *s = NULL;
     glint_error err = {0};
     cr_assert_eq(glint_scene_new(&s, &err), GLINT_OK, "%s", err.msg);
-    glint_camera cam = {{0, 0, 20}, {0, 0, 0}, {0, 1, 0}, 40, 0, 0, GLINT_PROJECTION_PERSPECTIVE};
+    glint_camera cam = {{0, 0, 20}, {0, 0, 0}, {0, 1, 0}, 40, 0, 0, GLINT_PROJECTION_PERSPECTIVE,
+                        0, 0};
     cr_assert_eq(glint_scene_set_camera(s, &cam, &err), GLINT_OK, "%s", err.msg);
     glint_light l = {.kind = GLINT_LIGHT_POINT, .position = {5, 10, 20}, .color = {1, 1, 1}};
     cr_assert_eq(glint_scene_add_light(s, &l, NULL, &err), GLINT_OK, "%s", err.msg);

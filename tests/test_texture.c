@@ -280,7 +280,7 @@ Test(texture, hdr_texels_are_linear_and_unclamped)
 {
     float rgb[2 * 2 * 3] = {0.25f, 0.25f, 0.25f, 7.5f, 7.5f, 7.5f,
                             1.0f / 64, 1.0f / 64, 1.0f / 64, 3.0f, 0.5f, 0.125f};
-    glint_film film = {2, 2, rgb};
+    glint_film film = {2, 2, rgb, NULL};
     char path[] = "/tmp/glint-hdr-XXXXXX.hdr";
     int fd = mkstemps(path, 4);
     cr_assert_geq(fd, 0);

@@ -30,7 +30,7 @@ int main(int argc, char **argv)
             for (int k = 0; k < 4; k++)
                 bytes[(y * W + x) * 4 + k] = (unsigned char)(x * 16 + y * 5 + k * 60);
         }
-    glint_film film = {W, H, rgb};
+    glint_film film = {W, H, rgb, NULL};
     struct {
         const char *name;
         glint_write_options o;
@@ -58,7 +58,7 @@ int main(int argc, char **argv)
         }
     }
     /* a Radiance file too narrow for run-length scanlines */
-    glint_film narrow = {4, 3, rgb};
+    glint_film narrow = {4, 3, rgb, NULL};
     snprintf(path, sizeof path, "%s/narrow.hdr", argv[1]);
     if (glint_film_write(&narrow, path, NULL, &err) != GLINT_OK) {
         fprintf(stderr, "fuzzseeds: %s\n", err.msg);

@@ -5,6 +5,7 @@
 #include "glint.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -87,6 +88,10 @@ int glint_default_threads(void) { return settings_default_threads(); }
 
 /* ---- camera ---------------------------------------------------------------- */
 
+/* In glint_projection order. */
+static const camera_projection projections[] = {CAMERA_PERSPECTIVE, CAMERA_ORTHOGRAPHIC,
+                                                CAMERA_EQUIRECTANGULAR, CAMERA_FISHEYE};
+
 glint_rc glint_scene_camera(const glint_scene *s, glint_camera *out, glint_error *err)
 {
     if (!s || !out)
@@ -100,9 +105,46 @@ glint_rc glint_scene_camera(const glint_scene *s, glint_camera *out, glint_error
         for (int a = 0; a < 3; a++)
             to[i][a] = (double)v3_at(*from[i], a);
     out->fov = (double)c->hfov;
-    out->aperture = 0.0;
-    out->focus_distance = (double)v3_len(v3_sub(c->target, c->eye));
-    out->projection = GLINT_PROJECTION_PERSPECTIVE;
+    out->aperture = (double)c->aperture;
+    out->focus_distance = c->focus_distance > 0.0f ? (double)c->focus_distance
+                                                   : (double)v3_len(v3_sub(c->target, c->eye));
+    for (int i = 0; i < 4; i++)
+        if (projections[i] == c->projection)
+            out->projection = (glint_projection)i;
+    out->width = (double)c->width;
+    out->shutter = (double)c->shutter;
+    return GLINT_OK;
+}
+
+/* The ranges of glint_camera's fields (include/glint.h). */
+static glint_rc camera_ranges(const glint_camera *in, glint_error *err)
+{
+    static const char fn[] = "glint_scene_set_camera";
+    if (!api_finite(in->eye, 3) || !api_finite(in->look_at, 3) || !api_finite(in->up, 3) ||
+        !api_finite(&in->fov, 1) || !api_finite(&in->aperture, 1) ||
+        !api_finite(&in->focus_distance, 1) || !api_finite(&in->width, 1) ||
+        !api_finite(&in->shutter, 1))
+        return api_bad(err, fn, "every camera value must be a finite number");
+    if ((unsigned)in->projection > GLINT_PROJECTION_FISHEYE)
+        return api_bad(err, fn, "projection must be %d to %d (got %d)",
+                       GLINT_PROJECTION_PERSPECTIVE, GLINT_PROJECTION_FISHEYE,
+                       (int)in->projection);
+    if (in->projection == GLINT_PROJECTION_PERSPECTIVE &&
+        !((float)in->fov > 0.0f && (float)in->fov < 180.0f))
+        return api_bad(err, fn, "fov must be > 0 and < 180 degrees (got %g)", in->fov);
+    if (in->projection == GLINT_PROJECTION_FISHEYE &&
+        !((float)in->fov > 0.0f && (float)in->fov <= 360.0f))
+        return api_bad(err, fn, "a fisheye's fov must be > 0 and <= 360 degrees (got %g)",
+                       in->fov);
+    if (in->projection == GLINT_PROJECTION_ORTHOGRAPHIC && !((float)in->width > 0.0f))
+        return api_bad(err, fn, "an orthographic camera's width must be > 0 (got %g)",
+                       in->width);
+    if (in->aperture < 0.0)
+        return api_bad(err, fn, "aperture must be >= 0 (got %g)", in->aperture);
+    if (in->focus_distance < 0.0)
+        return api_bad(err, fn, "focus_distance must be >= 0 (got %g)", in->focus_distance);
+    if (!(in->shutter >= 0.0 && in->shutter <= 1.0))
+        return api_bad(err, fn, "shutter must be 0 to 1 (got %g)", in->shutter);
     return GLINT_OK;
 }
 
@@ -111,27 +153,53 @@ glint_rc glint_scene_set_camera(glint_scene *s, const glint_camera *in, glint_er
     static const char fn[] = "glint_scene_set_camera";
     if (!s || !in)
         return api_null(err, fn, !s ? "scene" : "camera");
-    if (!api_finite(in->eye, 3) || !api_finite(in->look_at, 3) || !api_finite(in->up, 3) ||
-        !api_finite(&in->fov, 1) || !api_finite(&in->aperture, 1) ||
-        !api_finite(&in->focus_distance, 1))
-        return api_bad(err, fn, "every camera value must be a finite number");
-    if ((unsigned)in->projection > GLINT_PROJECTION_PERSPECTIVE)
-        return api_bad(err, fn, "projection must be perspective (%d) (got %d)",
-                       GLINT_PROJECTION_PERSPECTIVE, (int)in->projection);
-    if (!((float)in->fov > 0.0f && (float)in->fov < 180.0f))
-        return api_bad(err, fn, "fov must be > 0 and < 180 degrees (got %g)", in->fov);
-    if (in->aperture != 0.0)
-        return api_bad(err, fn, "aperture must be 0 (a pinhole camera) (got %g)", in->aperture);
-    if (in->focus_distance < 0.0)
-        return api_bad(err, fn, "focus_distance must be >= 0 (got %g)", in->focus_distance);
-    camera c = {api_vec3(in->eye), api_vec3(in->look_at), api_vec3(in->up), (float)in->fov};
+    glint_rc rc = camera_ranges(in, err);
+    if (rc != GLINT_OK)
+        return rc;
+    bool fisheye = in->projection == GLINT_PROJECTION_FISHEYE;
+    camera c = {.eye = api_vec3(in->eye), .target = api_vec3(in->look_at),
+                .up = api_vec3(in->up),
+                .hfov = in->projection == GLINT_PROJECTION_PERSPECTIVE || fisheye
+                            ? (float)in->fov : 90.0f,
+                .aperture = (float)in->aperture, .focus_distance = (float)in->focus_distance,
+                .width = (float)in->width, .shutter = (float)in->shutter,
+                .projection = projections[in->projection]};
     vec3 view = v3_sub(c.target, c.eye);
     if (v3_is_zero(view))
         return api_bad(err, fn, "camera look_at must differ from eye");
     if (v3_is_zero(v3_cross(view, c.up)))
         return api_bad(err, fn, "camera up must not be zero nor parallel to the view direction");
     scene_set_camera(s, &c);
+    return scene_camera_changed(s, err);
+}
+
+/* ---- animation -------------------------------------------------------------- */
+
+glint_rc glint_scene_animation(const glint_scene *s, glint_animation *out, glint_error *err)
+{
+    if (!s || !out)
+        return api_null(err, __func__, !s ? "scene" : "out");
+    *out = (glint_animation){s->anim.frames, (double)s->anim.fps, (double)s->anim.start};
     return GLINT_OK;
+}
+
+glint_rc glint_scene_set_time(glint_scene *s, double seconds, glint_error *err)
+{
+    if (!s)
+        return api_null(err, __func__, "scene");
+    if (!isfinite((float)seconds))
+        return api_bad(err, __func__, "time must be a finite number (got %g)", seconds);
+    return scene_set_time(s, (float)seconds, err);
+}
+
+glint_rc glint_scene_set_frame(glint_scene *s, int frame, glint_error *err)
+{
+    if (!s)
+        return api_null(err, __func__, "scene");
+    if (frame < 1 || frame > s->anim.frames)
+        return api_bad(err, __func__, "frame %d is out of range (1 to %d)", frame,
+                       s->anim.frames);
+    return scene_set_time(s, s->anim.start + (float)(frame - 1) / s->anim.fps, err);
 }
 
 /* ---- films and rendering ---------------------------------------------------- */
@@ -147,7 +215,7 @@ glint_rc glint_film_alloc(glint_film *film, int width, int height, glint_error *
     float *rgb = calloc((size_t)width * (size_t)height * 3, sizeof *rgb);
     if (!rgb)
         return err_nomem(err);
-    *film = (glint_film){width, height, rgb};
+    *film = (glint_film){width, height, rgb, NULL};
     return GLINT_OK;
 }
 
@@ -177,6 +245,14 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
     rc = glint_film_alloc(film, settings->width, settings->height, err);
     if (rc != GLINT_OK)
         return rc;
+    if (settings->alpha) {
+        film->alpha = calloc((size_t)settings->width * (size_t)settings->height,
+                             sizeof *film->alpha);
+        if (!film->alpha) {
+            render_film_free(film);
+            return err_nomem(err);
+        }
+    }
     render_work w = {.region = {0, 0, settings->width, settings->height}};
     rc = render_run(sc, settings, callbacks, &w, film, stats, err);
     if (rc != GLINT_OK)
@@ -256,6 +332,24 @@ static glint_rc check_tiles(const int *tiles, int ntiles, int count, glint_error
     return rc;
 }
 
+/* The smallest rectangle holding every listed tile (empty for none). */
+static glint_rect tiles_bounds(int w, int h, const int *tiles, int ntiles)
+{
+    glint_rect box = {0, 0, 0, 0};
+    for (int i = 0; i < ntiles; i++) {
+        glint_rect r = render_tile_rect(w, h, tiles[i]);
+        if (i == 0 || r.x0 < box.x0)
+            box.x0 = r.x0;
+        if (i == 0 || r.y0 < box.y0)
+            box.y0 = r.y0;
+        if (i == 0 || r.x1 > box.x1)
+            box.x1 = r.x1;
+        if (i == 0 || r.y1 > box.y1)
+            box.y1 = r.y1;
+    }
+    return box;
+}
+
 glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *settings,
                             const int *tiles, int ntiles, const glint_callbacks *callbacks,
                             glint_film *film, glint_stats *stats, glint_error *err)
@@ -269,13 +363,19 @@ glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *setting
     glint_rc rc = render_settings(sc, &settings, &own, err);
     if (rc != GLINT_OK)
         return rc;
-    if (film->width != settings->width || film->height != settings->height)
-        return api_bad(err, fn, "film is %dx%d; it must be the image's size (%dx%d)", film->width,
-                       film->height, settings->width, settings->height);
-    rc = check_tiles(tiles, ntiles, render_tile_count(settings->width, settings->height), err);
+    int w = settings->width, h = settings->height;
+    rc = check_tiles(tiles, ntiles, render_tile_count(w, h), err);
     if (rc != GLINT_OK)
         return rc;
     render_work work = {.tiles = tiles, .ntiles = ntiles};
+    glint_rect box = tiles_bounds(w, h, tiles, ntiles);
+    if (ntiles > 0 && film->width == box.x1 - box.x0 && film->height == box.y1 - box.y0) {
+        work.film_x0 = box.x0;
+        work.film_y0 = box.y0;
+    } else if (film->width != w || film->height != h) {
+        return api_bad(err, fn, "film is %dx%d; it must be the image's size (%dx%d) or the tiles' bounds (%dx%d)",
+                       film->width, film->height, w, h, box.x1 - box.x0, box.y1 - box.y0);
+    }
     if (ntiles == 0) {
         if (stats)
             *stats = (glint_stats){0};
@@ -291,7 +391,10 @@ glint_rc glint_film_write(const glint_film *film, const char *path,
         return api_null(err, __func__, !film ? "film" : !path ? "path" : "film->rgb");
     if (film->width <= 0 || film->height <= 0)
         return api_bad(err, __func__, "film is %dx%d", film->width, film->height);
-    return image_write_film(path, film->width, film->height, film->rgb, opts, err);
+    glint_write_options o = opts ? *opts : (glint_write_options){0};
+    if (!o.alpha)
+        o.alpha = film->alpha;
+    return image_write_film(path, film->width, film->height, film->rgb, &o, err);
 }
 
 glint_rc glint_output_check(const char *path, const glint_write_options *opts, glint_error *err)

@@ -26,7 +26,8 @@ void glint_accum_free(glint_accum *a) { progressive_free(a); }
 
 static bool accum_whole(const glint_accum *a)
 {
-    return a->sum && a->tile_samples && a->ntiles == render_tile_count(a->width, a->height);
+    return a->sum && a->tile_samples && a->cover && a->tile_div &&
+           a->ntiles == render_tile_count(a->width, a->height);
 }
 
 void glint_accum_clear(glint_accum *a)
@@ -34,6 +35,7 @@ void glint_accum_clear(glint_accum *a)
     if (!a || !accum_whole(a))
         return;
     memset(a->tile_samples, 0, (size_t)a->ntiles * sizeof *a->tile_samples);
+    memset(a->tile_div, 0, (size_t)a->ntiles * sizeof *a->tile_div);
     memset(a->sum, 0, (size_t)a->width * (size_t)a->height * 3 * sizeof *a->sum);
 }
 
@@ -61,7 +63,7 @@ glint_rc glint_render_pass(const glint_scene *sc, const glint_settings *settings
         return api_bad(err, fn, "upto must be 1 to %d (the samples per pixel), got %d",
                        settings->samples, upto);
     render_work w = {.region = {0, 0, settings->width, settings->height}, .accum = a, .upto = upto};
-    glint_film none = {settings->width, settings->height, NULL};
+    glint_film none = {.width = settings->width, .height = settings->height};
     return render_run(sc, settings, cb, &w, &none, stats, err);
 }
 

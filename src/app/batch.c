@@ -108,7 +108,7 @@ static glint_rc prepare(const struct cli *c, const glint_scene *scene, const gli
         *resumed = true;
         return set_note(rec, c, err);
     }
-    if (c->resume && !c->quiet)
+    if (c->resume && !c->quiet && !c->frames)
         fprintf(stderr, "glint: no resume file %s; rendering from the start\n",
                 rpath ? rpath : "for standard output");
     glint_rc rc = glint_resume_init(rec, scene, s, err);
@@ -193,105 +193,216 @@ typedef struct times {
     double load, render, write;
 } times;
 
-static void print_stats(const glint_scene *scene, const glint_settings *s, const glint_stats *st,
-                        const times *t)
+/* A batch run: the scene, its settings, and what its images add up. */
+typedef struct run {
+    const struct cli *c;
+    glint_scene *scene;
+    glint_settings s;
+    glint_stats stats;
+    times t;
+    int images;
+    watch w;
+} run;
+
+static void print_stats(const run *r)
 {
+    const glint_settings *s = &r->s;
+    const glint_stats *st = &r->stats;
     glint_scene_info info = {0};
-    glint_scene_describe(scene, &info, NULL);
+    glint_scene_describe(r->scene, &info, NULL);
     uint64_t total = st->primary_rays + st->secondary_rays + st->shadow_rays;
     int threads = s->threads > 0 ? s->threads : glint_default_threads();
+    double pixels = (double)s->width * (double)s->height * (r->images > 0 ? r->images : 1);
+    char how[96];
+    if (s->sampler == GLINT_SAMPLER_ADAPTIVE)
+        snprintf(how, sizeof how, "adaptive sampling (threshold %g, max_depth %d)", s->threshold,
+                 s->adaptive_depth);
+    else
+        snprintf(how, sizeof how, "%d samples/pixel%s", s->samples,
+                 s->sampler == GLINT_SAMPLER_JITTER ? " (jittered)" : "");
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     fprintf(stderr,
-            "image:   %dx%d, %d samples/pixel, depth %d, %d thread%s\n"
+            "image:   %dx%d, %s, depth %d, %d thread%s\n"
             "scene:   %d objects, %llu triangles, %d lights, %d meshes\n"
             "time:    load %.3f s (build %.3f s), render %.3f s, write %.3f s\n"
             "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
+            "samples: %.2f per pixel on average\n"
             "speed:   %.2f Mrays/s\n"
             "memory:  %.1f MiB peak\n",
-            s->width, s->height, s->samples, s->max_depth, threads, threads == 1 ? "" : "s",
-            info.objects, (unsigned long long)info.triangles, info.lights, info.meshes, t->load,
-            info.build_seconds, t->render, t->write, (unsigned long long)total,
+            s->width, s->height, how, s->max_depth, threads, threads == 1 ? "" : "s",
+            info.objects, (unsigned long long)info.triangles, info.lights, info.meshes,
+            r->t.load, info.build_seconds, r->t.render, r->t.write, (unsigned long long)total,
             (unsigned long long)st->primary_rays, (unsigned long long)st->secondary_rays,
-            (unsigned long long)st->shadow_rays,
+            (unsigned long long)st->shadow_rays, (double)st->primary_rays / pixels,
             st->seconds > 0 ? (double)total / st->seconds * 1e-6 : 0.0,
             (double)ru.ru_maxrss / 1024.0);
+    if (r->images > 1)
+        fprintf(stderr, "frames:  %d rendered\n", r->images);
 }
 
 /* Writes the finished image, with its phase on the progress line. */
-static glint_rc write_image(const struct cli *c, const glint_settings *s, const glint_film *film,
-                            progress *bar, double *seconds, glint_error *err)
+static glint_rc write_image(const struct cli *c, const char *path, const glint_settings *s,
+                            const glint_film *film, progress *bar, double *seconds,
+                            glint_error *err)
 {
     double t0 = cli_now();
     char what[600];
-    snprintf(what, sizeof what, "writing %s\xe2\x80\xa6", c->output);
+    snprintf(what, sizeof what, "writing %.500s\xe2\x80\xa6", path);
     progress_phase(bar, what);
     glint_write_options w = c->write;
     w.transfer = s->transfer;
-    glint_rc rc = glint_film_write(film, c->output, &w, err);
+    glint_rc rc = glint_film_write(film, path, &w, err);
     progress_clear(bar);
-    *seconds = cli_now() - t0;
+    *seconds += cli_now() - t0;
     return rc;
 }
 
-static int finish(glint_rc rc, const glint_error *err, glint_scene *scene, glint_resume *rec,
-                  char *rpath)
+static int finish(glint_rc rc, const glint_error *err, glint_resume *rec, char *rpath)
 {
     if (rc != GLINT_OK)
         fprintf(stderr, "glint: %s\n", err->msg);
-    glint_resume_free(rec);
-    glint_scene_free(scene);
+    if (rec)
+        glint_resume_free(rec);
     free(rpath);
     return glint_exit_code(rc);
+}
+
+static void add_stats(glint_stats *to, const glint_stats *st)
+{
+    to->primary_rays += st->primary_rays;
+    to->secondary_rays += st->secondary_rays;
+    to->shadow_rays += st->shadow_rays;
+    to->seconds += st->seconds;
+}
+
+/* --resume and path already a complete image, with no resume file beside
+ * it: nothing is left to render. */
+static bool done_before(const run *r, const char *path)
+{
+    if (!r->c->resume || strcmp(path, "-") == 0)
+        return false;
+    char *rpath = batch_resume_path(path);
+    bool kept = !rpath || access(rpath, F_OK) == 0;
+    free(rpath);
+    return !kept && glint_output_complete(path, r->s.width, r->s.height);
+}
+
+/* Renders the scene as it stands into path through a resume record:
+ * continued from path.resume with --resume, kept there when interrupted.
+ * Returns the exit code. */
+static int render_one(run *r, const char *path)
+{
+    const struct cli *c = r->c;
+    glint_error err = {0};
+    glint_resume rec = {0};
+    glint_stats st = {0};
+    bool resumed = false;
+    double t0 = cli_now();
+    char *rpath = batch_resume_path(path);
+    glint_rc rc = !rpath && strcmp(path, "-") != 0 ? GLINT_ERR_NOMEM : GLINT_OK;
+    if (rc == GLINT_OK)
+        rc = prepare(c, r->scene, &r->s, rpath, &rec, &resumed, &err);
+    if (rc != GLINT_OK)
+        return finish(rc, &err, &rec, rpath);
+    r->w.bar.base = record_percent(&rec);
+    glint_callbacks cb = {&r->w, on_tile, on_progress, on_cancel};
+    rc = glint_resume_render(r->scene, &r->s, &cb, &rec, &st, &err);
+    add_stats(&r->stats, &st);
+    r->t.render += st.seconds;
+    progress_end(&r->w.bar);
+    if (rc == GLINT_ERR_CANCELLED && signals_caught()) {
+        int code = keep(c, &rec, rpath);
+        finish(GLINT_OK, &err, &rec, rpath);
+        return code;
+    }
+    if (rc == GLINT_OK)
+        rc = write_image(c, path, &r->s, &rec.film, &r->w.bar, &r->t.write, &err);
+    if (rc == GLINT_OK && resumed)
+        unlink(rpath);
+    if (rc == GLINT_OK && !c->quiet)
+        fprintf(stderr, "wrote %s (%dx%d, %.1f s)\n", path, r->s.width, r->s.height,
+                cli_now() - t0);
+    r->images += rc == GLINT_OK;
+    return finish(rc, &err, &rec, rpath);
+}
+
+/* Frames first..last, each at its time, to its own file. Frames --resume
+ * skips are left out of the progress line's count. Returns the exit code. */
+static int render_frames(run *r, int first, int last)
+{
+    char path[4096];
+    glint_error err = {0};
+    int todo = 0, k = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        for (int f = first; f <= last; f++) {
+            glint_rc rc = glint_frame_path(r->c->output, f, path, sizeof path, &err);
+            if (rc == GLINT_OK && done_before(r, path))
+                continue;
+            if (rc == GLINT_OK && pass == 0) {
+                todo++;
+                continue;
+            }
+            progress_frame(&r->w.bar, ++k, todo);
+            if (rc == GLINT_OK)
+                rc = glint_scene_set_frame(r->scene, f, &err);
+            if (rc != GLINT_OK)
+                return finish(rc, &err, NULL, NULL);
+            int code = render_one(r, path);
+            if (code != 0)
+                return code;
+        }
+    }
+    return 0;
+}
+
+/* The frames to render: *first and *last, or 0 and 0 for a single image. */
+static glint_rc frames_for(const struct cli *c, const glint_scene *scene, int *first, int *last,
+                           glint_error *err)
+{
+    *first = *last = 0;
+    if (!c->frames)
+        return GLINT_OK;
+    glint_animation anim;
+    glint_rc rc = glint_scene_animation(scene, &anim, err);
+    if (rc == GLINT_OK)
+        rc = glint_frames_parse(c->frames, anim.frames, first, last, err);
+    if (rc != GLINT_OK && rc != GLINT_ERR_NOMEM) {
+        char msg[900];
+        snprintf(msg, sizeof msg, "%.899s", err->msg);
+        snprintf(err->msg, sizeof err->msg, "--frame%s: %.900s", c->one_frame ? "" : "s", msg);
+    }
+    return rc;
 }
 
 int batch_main(const struct cli *c)
 {
     glint_error err = {0};
-    glint_scene *scene = NULL;
-    glint_resume rec = {0};
-    glint_stats stats = {0};
-    glint_settings s;
-    times t = {0};
-    char *rpath = NULL;
-    bool resumed;
-    double t0 = cli_now();
-    glint_rc rc = glint_output_check(c->output, &c->write, &err);
+    run r = {.c = c};
+    char first_name[4096];
+    int first = 0, last = 0;
+    /* a bad output name (for a sequence: the first frame's) fails now, not
+     * after the render */
+    glint_rc rc = c->frames ? glint_frame_path(c->output, 1, first_name, sizeof first_name, &err)
+                            : GLINT_OK;
     if (rc == GLINT_OK)
-        rc = cli_load(c, &scene, &s, &t.load, &err);
+        rc = glint_output_check(c->frames ? first_name : c->output, &c->write, &err);
     if (rc == GLINT_OK)
-        cli_warn(scene, c->scene_path);
-    if (rc == GLINT_OK && !(rpath = batch_resume_path(c->output)) && strcmp(c->output, "-") != 0)
-        rc = GLINT_ERR_NOMEM;
+        rc = cli_load(c, &r.scene, &r.s, &r.t.load, &err);
     if (rc == GLINT_OK)
-        rc = prepare(c, scene, &s, rpath, &rec, &resumed, &err);
-    if (rc != GLINT_OK)
-        return finish(rc, &err, scene, &rec, rpath);
-
-    signals_install();
-    watch w = {0};
-    hook_parse(&w);
-    progress_begin(&w.bar, stderr, progress_choose(c->quiet, c->progress, stderr));
-    w.bar.base = record_percent(&rec);
-    glint_callbacks cb = {&w, on_tile, on_progress, on_cancel};
-    rc = glint_resume_render(scene, &s, &cb, &rec, &stats, &err);
-    t.render = stats.seconds;
-    progress_end(&w.bar);
-    if (rc == GLINT_ERR_CANCELLED && signals_caught()) {
-        int code = keep(c, &rec, rpath);
-        finish(GLINT_OK, &err, scene, &rec, rpath);
-        return code;
+        rc = frames_for(c, r.scene, &first, &last, &err);
+    if (rc != GLINT_OK) {
+        glint_scene_free(r.scene);
+        return finish(rc, &err, NULL, NULL);
     }
-    if (rc == GLINT_OK)
-        rc = write_image(c, &s, &rec.film, &w.bar, &t.write, &err);
-    if (rc != GLINT_OK)
-        return finish(rc, &err, scene, &rec, rpath);
-    if (resumed)
-        unlink(rpath);
-    if (!c->quiet)
-        fprintf(stderr, "wrote %s (%dx%d, %.1f s)\n", c->output, s.width, s.height,
-                cli_now() - t0);
-    if (c->stats)
-        print_stats(scene, &s, &stats, &t);
-    return finish(GLINT_OK, &err, scene, &rec, rpath);
+    cli_warn(r.scene, c->scene_path);
+    signals_install();
+    hook_parse(&r.w);
+    progress_begin(&r.w.bar, stderr, progress_choose(c->quiet, c->progress, stderr));
+    int code = first > 0 ? render_frames(&r, first, last)
+               : done_before(&r, c->output) ? 0 : render_one(&r, c->output);
+    if (code == 0 && c->stats)
+        print_stats(&r);
+    glint_scene_free(r.scene);
+    return code;
 }

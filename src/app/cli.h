@@ -18,6 +18,8 @@ struct cli {
     bool preview;       /* -p: the window */
     bool exit_when_done;/* --exit-when-done: close the window once the image is final */
     bool preview_bench; /* --preview-bench: a scripted camera path, frames per second */
+    const char *frames; /* --frames or --frame as given, or NULL: a single image */
+    bool one_frame;     /* it was --frame */
     glint_write_options write; /* format, quality, bits from the command line */
     int argc;           /* the arguments as given, kept in resume files */
     char **argv;

@@ -156,6 +156,30 @@ static int opt_bits(struct cli *c, const char *arg)
     return -1;
 }
 
+/* --frames A:B and --frame N; the range is checked against the scene's
+ * frames once it is loaded. */
+static int take_frames(struct cli *c, const char *arg, bool one)
+{
+    if (c->frames)
+        return usage_error("--frames and --frame given more than once");
+    if (one && strchr(arg, ':'))
+        return usage_error("--frame: expected one frame number, got '%s'", arg);
+    c->frames = arg;
+    c->one_frame = one;
+    return -1;
+}
+
+static int opt_frames(struct cli *c, const char *arg) { return take_frames(c, arg, false); }
+
+static int opt_frame(struct cli *c, const char *arg) { return take_frames(c, arg, true); }
+
+static int opt_resume(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->resume = true;
+    return -1;
+}
+
 static int opt_stats(struct cli *c, const char *arg)
 {
     (void)arg;
@@ -174,13 +198,6 @@ static int opt_progress(struct cli *c, const char *arg)
 {
     (void)arg;
     c->progress = true;
-    return -1;
-}
-
-static int opt_resume(struct cli *c, const char *arg)
-{
-    (void)arg;
-    c->resume = true;
     return -1;
 }
 
@@ -236,7 +253,8 @@ static const option_row options[] = {
      "500x500); the horizontal field of view is kept"},
     {"spp", 's', "N", opt_spp,
      "samples per pixel, a perfect square from 1 to 1024 on a\n"
-     "regular grid, 4 = 2x2 (default: the scene's, else 1)"},
+     "grid, 4 = 2x2 (default: the scene's, else 1; the adaptive\n"
+     "sampler chooses its own)"},
     {"depth", 'd', "N", opt_depth,
      "reflection/refraction recursion limit, 0 to 64\n"
      "(default: the scene's, else 5)"},
@@ -244,6 +262,11 @@ static const option_row options[] = {
     {"transfer", 0, "T", opt_transfer,
      "none or srgb: how film values become pixels\n"
      "(default: the scene's, else none)"},
+    {"frames", 0, "A:B", opt_frames,
+     "render frames A to B of an animated scene; the output\n"
+     "name takes the number in a %d field (out-%04d.png),\n"
+     "or gets -%04d before its extension"},
+    {"frame", 0, "N", opt_frame, "render frame N only (named as with --frames)"},
     {"preview", 'p', NULL, opt_preview,
      "a live window with an interactive camera (H there lists\n"
      "the keys); re-renders when the scene's files change"},
@@ -253,6 +276,8 @@ static const option_row options[] = {
      "time the preview along a scripted camera path (fps)"},
     {"resume", 0, NULL, opt_resume,
      "continue an interrupted render from OUTPUT.resume;\n"
+     "with --frames, skip frames whose output is complete and\n"
+     "continue each frame that has its own .resume file;\n"
      "'glint --resume OUT.resume' reruns its command line"},
     {"stats", 0, NULL, opt_stats,
      "print times, scene size, rays, Mrays/s and memory to stderr"},
@@ -413,6 +438,9 @@ int main(int argc, char **argv)
         code = resume_command(&c);
     if (code >= 0)
         return code;
+    if ((c.preview || c.preview_bench) && c.frames)
+        return usage_error("--frames and --frame render to files; they do not go with -p or "
+                           "--preview-bench");
     if (c.preview || c.preview_bench)
         return preview_main(&c);
     return batch_main(&c);

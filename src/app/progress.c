@@ -22,6 +22,13 @@ void progress_begin(progress *p, FILE *out, progress_mode mode)
     *p = (progress){out, mode, 0, 0, cli_now(), 0.0, -1, 0.0, false};
 }
 
+void progress_frame(progress *p, int k, int n)
+{
+    p->frame = k;
+    p->frames = n;
+    p->last_percent = -1;
+}
+
 void progress_duration(double s, char *buf, size_t size)
 {
     if (s < 60.0)
@@ -37,11 +44,17 @@ static void describe(const progress *p, const glint_progress *g, char *buf, size
 {
     char elapsed[32], left[48] = "";
     progress_duration(g->seconds, elapsed, sizeof elapsed);
-    /* the rate of this run: a resumed render starts part way */
-    double run = g->percent - p->base;
-    if (run >= PROGRESS_ETA_AFTER && g->percent < 100.0) {
+    /* the rate of this run: a resumed render starts part way; in a sequence,
+     * the time left is the sequence's, from its share done so far */
+    double done = g->percent, run = g->percent - p->base, spent = g->seconds;
+    if (p->frames > 1) {
+        done = (100.0 * (p->frame - 1) + g->percent) / p->frames;
+        run = done;
+        spent = cli_now() - p->start;
+    }
+    if (run >= PROGRESS_ETA_AFTER && done < 100.0) {
         char d[32];
-        progress_duration(g->seconds * (100.0 - g->percent) / run, d, sizeof d);
+        progress_duration(spent * (100.0 - done) / run, d, sizeof d);
         snprintf(left, sizeof left, ", %s left", d);
     }
     double mrays = g->seconds > 0 ? (double)g->rays / g->seconds * 1e-6 : 0.0;

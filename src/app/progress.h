@@ -39,6 +39,9 @@ progress_mode progress_choose(bool quiet, bool forced, FILE *out);
 void progress_begin(progress *p, FILE *out, progress_mode mode);
 void progress_update(progress *p, const glint_progress *g);
 /* Ends the bar's line (after the last update, or on interruption). */
+/* The next render is frame k (from 1) of a sequence of n: the line shows
+ * "frame k of n" and the sequence's share done and time left. */
+void progress_frame(progress *p, int k, int n);
 void progress_end(progress *p);
 /* A phase after rendering, such as "writing out.png…", on the bar's line. */
 void progress_phase(progress *p, const char *what);

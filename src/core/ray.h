@@ -18,6 +18,7 @@
 typedef struct ray {
     vec3 o, d;
     float tmin, tmax;
+    float time; /* seconds: where moving objects are for this ray (motion blur) */
 } ray;
 
 #define RAY_EPS_REL 1e-4f
@@ -39,7 +40,7 @@ static inline vec3 ray_offset(vec3 p, vec3 ng, vec3 d)
 
 static inline ray ray_make(vec3 o, vec3 d, float tmax)
 {
-    return (ray){o, d, 0.0f, tmax};
+    return (ray){o, d, 0.0f, tmax, 0.0f};
 }
 
 #endif

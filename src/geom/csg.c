@@ -135,7 +135,8 @@ static inline ray leaf_ray(const csg_leaf *l, const ray *r)
 {
     if (!l->moved)
         return *r;
-    return (ray){mat4_point(&l->x.inv, r->o), mat4_vector(&l->x.inv, r->d), r->tmin, r->tmax};
+    return (ray){mat4_point(&l->x.inv, r->o), mat4_vector(&l->x.inv, r->d), r->tmin, r->tmax,
+                 r->time};
 }
 
 /* Every leaf's crossings after t0, sorted by t (then leaf), and each leaf's

@@ -207,8 +207,7 @@ static float srgb_decode(float x)
     return x <= 0.04045f ? x / 12.92f : powf((x + 0.055f) / 1.055f, 2.4f);
 }
 
-/* x clamped to [0, 1] (NaN to 0), then through the transfer function. */
-static float display_value(float x, glint_transfer transfer)
+float image_display_value(float x, glint_transfer transfer)
 {
     if (!(x > 0.0f))
         x = 0.0f;
@@ -240,13 +239,13 @@ void image_quantize(const float *src, size_t count, glint_transfer transfer, uin
         break;
     }
     for (size_t i = 0; i < count; i++)
-        dst[i] = (uint8_t)lrintf(display_value(src[i], transfer) * 255.0f);
+        dst[i] = (uint8_t)lrintf(image_display_value(src[i], transfer) * 255.0f);
 }
 
 void image_quantize16(const float *src, size_t count, glint_transfer transfer, uint16_t *dst)
 {
     for (size_t i = 0; i < count; i++)
-        dst[i] = (uint16_t)lrintf(display_value(src[i], transfer) * 65535.0f);
+        dst[i] = (uint16_t)lrintf(image_display_value(src[i], transfer) * 65535.0f);
 }
 
 void image_decode_table(glint_transfer transfer, float table[256])

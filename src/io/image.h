@@ -43,6 +43,9 @@ glint_rc image_load_memory(const void *data, size_t size, const char *name, imag
                            glint_error *err);
 void image_free(image *img);
 
+/* A film value as shown: clamped to [0, 1] (NaN to 0), then through the
+ * transfer function. */
+float image_display_value(float x, glint_transfer transfer);
 /* Film to 8-bit: each value through the transfer function, clamped to
  * [0, 1], rounded to the nearest of 256 levels. */
 void image_quantize(const float *src, size_t count, glint_transfer transfer, uint8_t *dst);

@@ -3,6 +3,7 @@
 #include "loader.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 
 /* In light_kind order. */
@@ -110,7 +111,12 @@ static glint_rc read_light(loader *L, uint32_t map, light_kind kind, vec3 color,
     glint_rc rc = GLINT_OK;
     switch (kind) {
     case LIGHT_POINT:
-        rc = load_need_vec3(L, map, "position", "point light", &a);
+        /* a point light's position may be keyed */
+        rc = load_need(L, map, "position", "point light", &v);
+        if (rc == GLINT_OK)
+            rc = load_anim_value(L, v, "position", 3, load_read_vec3, &a.x,
+                                 (int)(offsetof(light, point.position) / sizeof(float)),
+                                 -INFINITY, INFINITY);
         if (rc == GLINT_OK)
             rc = read_attenuation(L, map, &att);
         if (rc == GLINT_OK)
@@ -149,11 +155,13 @@ glint_rc load_light(loader *L, uint32_t map)
     rc = load_check_keys(L, map, light_keys[type], where);
     vec3 color = v3s(1.0f);
     if (rc == GLINT_OK && (v = load_get(L, map, "color")) != YDOC_NONE)
-        rc = load_color(L, v, "color", &color);
+        rc = load_anim_value(L, v, "color", 3, load_read_color, &color.x,
+                             (int)(offsetof(light, color) / sizeof(float)), 0.0f, INFINITY);
     light l;
     if (rc == GLINT_OK)
         rc = read_light(L, map, (light_kind)type, color, &l);
     if (rc != GLINT_OK)
         return rc;
-    return scene_add_light(L->s, &l) < 0 ? err_nomem(L->err) : GLINT_OK;
+    int index = scene_add_light(L->s, &l);
+    return index < 0 ? err_nomem(L->err) : load_anim_bind(L, ANIM_LIGHT, index);
 }

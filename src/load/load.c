@@ -17,7 +17,7 @@
 
 static const char *const top_keys[] = {"image",    "camera",    "ambient", "fog",
                                        "lights",   "textures",  "materials", "objects",
-                                       "include",  NULL};
+                                       "include",  "animation", NULL};
 
 
 static glint_rc load_text(loader *L, const char *text, size_t len, char *data, const char *name,
@@ -105,6 +105,8 @@ static glint_rc load_top(loader *L, uint32_t root)
             rc = load_image_settings(L, v);
         } else if (strcmp(key, "camera") == 0) {
             rc = load_camera(L, v);
+        } else if (strcmp(key, "animation") == 0) {
+            rc = load_animation(L, v);
         } else if (strcmp(key, "ambient") == 0) {
             rc = load_color(L, v, "ambient", &c);
             if (rc == GLINT_OK && load_claim(L, SET_AMBIENT))
@@ -227,6 +229,19 @@ static glint_rc resolve(loader *L, const ref *refs, int n, const names *table, c
     return GLINT_OK;
 }
 
+/* What the projection needs of the rest of the camera. */
+static glint_rc check_projection(loader *L)
+{
+    const camera *c = &L->camera;
+    if (c->projection == CAMERA_PERSPECTIVE && !(c->hfov < 180.0f))
+        return load_fail_in(L, L->fov_file, L->fov_node,
+                            "fov must be > 0 and < 180 degrees (got %g)", (double)c->hfov);
+    if (c->projection == CAMERA_ORTHOGRAPHIC && L->width_node == YDOC_NONE)
+        return load_fail_in(L, L->camera_file, L->camera_node,
+                            "an orthographic camera needs 'width' (of the view, in scene units)");
+    return GLINT_OK;
+}
+
 static glint_rc finish(loader *L)
 {
     glint_rc rc = resolve(L, L->texture_refs, L->ntexture_refs, &L->texture_names, "texture",
@@ -254,12 +269,16 @@ static glint_rc finish(loader *L)
     if (L->camera_file >= 0 && v3_is_zero(v3_cross(view, c->up)))
         return load_fail_in(L, L->camera_file, L->camera_node,
                        "camera up must not be parallel to the view direction");
+    rc = check_projection(L);
+    if (rc != GLINT_OK)
+        return rc;
     scene_set_settings(L->s, &L->settings);
     scene_set_camera(L->s, &L->camera);
     scene_set_background(L->s, L->background);
     scene_set_ambient(L->s, L->ambient);
     scene_set_fog(L->s, &L->fog);
-    return scene_build(L->s, L->err);
+    /* every animated value at the first frame's time (this builds) */
+    return scene_set_time(L->s, L->s->anim.start, L->err);
 }
 
 static void loader_free(loader *L)
@@ -279,6 +298,7 @@ static void loader_free(loader *L)
     free(L->defs);
     free(L->texture_refs);
     free(L->material_refs);
+    free(L->pending);
     free(L->bump_refs);
     free(L->csg_refs);
 }
@@ -291,7 +311,8 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
                 .err = err,
                 .default_material = -1,
                 .size_file = -1,
-                .camera_file = -1};
+                .camera_file = -1,
+                .width_node = YDOC_NONE};
     glint_rc rc = GLINT_OK;
     char *key = path_join(NULL, name);
     L.s = scene_new();

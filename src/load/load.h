@@ -25,6 +25,7 @@ typedef struct glint_scene scene;
 #define LOAD_MAX_FILES 256        /* the scene and everything it includes */
 #define LOAD_MAX_INCLUDE_DEPTH 32 /* files open inside one another */
 #define LOAD_MAX_OBJECTS 10000000
+#define LOAD_MAX_FRAMES 1000000 /* frames of an animation */
 
 /* Reads the file at path (already resolved as above) into *data, a buffer
  * the caller frees with free(), and its length into *size. On failure it

@@ -8,8 +8,9 @@
  * at the node they are about.
  *
  * One file per part of the format: keys.c (reading keys and values, with
- * the messages), paths.c (paths and files named in a scene), settings.c
- * (image, camera and fog), lights.c, textures.c, materials.c,
+ * the messages), keyed.c (keyed values, which animate what they are read
+ * into), paths.c (paths and files named in a scene), settings.c (image,
+ * camera, animation and fog), lights.c, textures.c, materials.c,
  * transform.c, objects.c (shapes, meshes, objects), load.c (files,
  * includes, the second pass). Each section builds the scene only through
  * scene_add_* and the scene's setters.
@@ -70,6 +71,16 @@ enum {
     SET_AMBIENT = 1 << 10,
     SET_ADC_BAILOUT = 1 << 11,
     SET_FOG = 1 << 12,
+    SET_SAMPLER = 1 << 13,
+    SET_THRESHOLD = 1 << 14,
+    SET_ADAPTIVE_DEPTH = 1 << 15,
+    SET_ALPHA = 1 << 16,
+    SET_PROJECTION = 1 << 17,
+    SET_APERTURE = 1 << 18,
+    SET_FOCUS = 1 << 19,
+    SET_VIEW_WIDTH = 1 << 20,
+    SET_SHUTTER = 1 << 21,
+    SET_ANIMATION = 1 << 22,
 };
 
 typedef struct loader {
@@ -103,6 +114,11 @@ typedef struct loader {
     fog fog;
     int size_file, camera_file; /* where the image size and camera were set; -1: nowhere */
     uint32_t size_node, camera_node;
+    uint32_t width_node;  /* the camera's width, or YDOC_NONE (checked at the end) */
+    int fov_file;         /* where the camera's fov was set (checked at the end) */
+    uint32_t fov_node;
+    anim_channel *pending; /* keyed values read, waiting for what they animate */
+    int npending, cap_pending;
 } loader;
 
 
@@ -166,6 +182,31 @@ glint_rc load_need_vec3(loader *L, uint32_t map, const char *key, const char *wh
 glint_rc load_need_positive(loader *L, uint32_t map, const char *key, const char *what,
                             float *out);
 
+/* ---- keyed values (keyed.c) ------------------------------------------- */
+
+/* Reads one plain value of key at v into out (as many floats as it has). */
+typedef glint_rc (*load_value_fn)(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_read_number(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_read_nonneg(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_read_positive(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_read_vec3(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_read_nonzero_vec3(loader *L, uint32_t v, const char *key, float *out);
+glint_rc load_read_color(loader *L, uint32_t v, const char *key, float *out);
+
+/* Whether v is a keyed value: a mapping with 'keys'. */
+bool load_is_keyed(const loader *L, uint32_t v);
+/* A value that may be keyed ({keys: [[t, v], ...], interpolation: ...}).
+ * Plain, it is read into out (dim floats). Keyed, each key's value is read
+ * by read, the track joins the scene, out gets the first key's value, and
+ * a channel writing dim floats at offset (in floats into the animated
+ * structure), clamped to [lo, hi], waits for load_anim_bind. */
+glint_rc load_anim_value(loader *L, uint32_t v, const char *key, int dim, load_value_fn read,
+                         float *out, int offset, float lo, float hi);
+/* Aims the waiting channels at (target, index) and adds them. */
+glint_rc load_anim_bind(loader *L, anim_target target, int index);
+/* Forgets the waiting channels (a value another file already set). */
+void load_anim_drop(loader *L);
+
 /* ---- paths and files (paths.c) ---------------------------------------- */
 
 /* dir joined to rel (unless rel is absolute or dir is empty), tidied
@@ -190,6 +231,7 @@ glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char
 
 glint_rc load_image_settings(loader *L, uint32_t map); /* settings.c: image: */
 glint_rc load_camera(loader *L, uint32_t map);         /* settings.c: camera: */
+glint_rc load_animation(loader *L, uint32_t map);      /* settings.c: animation: */
 glint_rc load_light(loader *L, uint32_t map);          /* lights.c: one item of lights: */
 /* textures.c and materials.c: a texture or material mapping, added;
  * *index gets it. */

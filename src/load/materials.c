@@ -2,6 +2,8 @@
  * expected, and textures: (through textures.c). */
 #include "loader.h"
 
+#include <math.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -79,8 +81,9 @@ static glint_rc read_colors(loader *L, uint32_t map, material *m)
     glint_rc rc = GLINT_OK;
     for (int i = 0; rc == GLINT_OK && i < 4; i++) {
         uint32_t v = load_get(L, map, keys[i]);
-        if (v != YDOC_NONE)
-            rc = load_color(L, v, keys[i], at[i]);
+        if (v != YDOC_NONE) /* each may be keyed */
+            rc = load_anim_value(L, v, keys[i], 3, load_read_color, &at[i]->x,
+                                 (int)((float *)at[i] - (float *)m), 0.0f, INFINITY);
     }
     return rc;
 }
@@ -106,7 +109,8 @@ glint_rc load_material(loader *L, uint32_t map, int *index)
     *index = scene_add_material(L->s, &m);
     if (*index < 0)
         return err_nomem(L->err);
-    if (tex != YDOC_NONE)
+    rc = load_anim_bind(L, ANIM_MATERIAL, *index);
+    if (rc == GLINT_OK && tex != YDOC_NONE)
         rc = load_add_ref(L, &L->texture_refs, &L->ntexture_refs, &L->cap_texture_refs, *index, tex);
     if (rc == GLINT_OK && bump != YDOC_NONE)
         rc = load_add_ref(L, &L->bump_refs, &L->nbump_refs, &L->cap_bump_refs, *index, bump);

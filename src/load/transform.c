@@ -4,6 +4,9 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+
+#include "core/array.h"
 
 /* ---- transforms ------------------------------------------------------- */
 
@@ -37,31 +40,9 @@ static bool xform_is_finite(const xform *x)
     return true;
 }
 
-static glint_rc step_rotate(loader *L, uint32_t v, const char *key, xform *out)
+/* A number (uniform) or [sx, sy, sz], no factor 0, as three floats. */
+static glint_rc read_scale(loader *L, uint32_t v, const char *key, float *f)
 {
-    uint32_t axis, angle;
-    vec3 a;
-    float deg;
-    glint_rc rc = load_want_map(L, v, key);
-    if (rc == GLINT_OK)
-        rc = load_check_keys(L, v, rotate_keys, "in rotate");
-    if (rc == GLINT_OK)
-        rc = load_need(L, v, "axis", "rotate", &axis);
-    if (rc == GLINT_OK)
-        rc = load_need(L, v, "angle", "rotate", &angle);
-    if (rc == GLINT_OK)
-        rc = load_nonzero_vec3(L, axis, "axis", &a);
-    if (rc == GLINT_OK)
-        rc = load_number(L, angle, "angle", &deg);
-    if (rc == GLINT_OK)
-        *out = xform_rotate(a, deg);
-    return rc;
-}
-
-/* A number (uniform) or [sx, sy, sz], no factor 0. */
-static glint_rc step_scale(loader *L, uint32_t v, const char *key, xform *out)
-{
-    float f[3];
     glint_rc rc;
     if (load_node(L, v)->kind == YNODE_NUMBER) {
         rc = load_nonzero(L, v, key, &f[0]);
@@ -73,31 +54,49 @@ static glint_rc step_scale(loader *L, uint32_t v, const char *key, xform *out)
     } else {
         rc = load_expected(L, v, "a number or [sx, sy, sz]", key);
     }
-    if (rc == GLINT_OK)
-        *out = xform_scale(v3(f[0], f[1], f[2]));
     return rc;
 }
 
-/* {xy: k, ...}: the first axis moves by k times the second. */
-static glint_rc step_shear(loader *L, uint32_t v, const char *key, xform *out)
+/* {axis: [x, y, z], angle: degrees}; either may be keyed. */
+static glint_rc step_rotate(loader *L, uint32_t v, const char *key, anim_step *out)
 {
-    static const int at[6][2] = {{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}};
+    uint32_t axis, angle;
+    glint_rc rc = load_want_map(L, v, key);
+    if (rc == GLINT_OK)
+        rc = load_check_keys(L, v, rotate_keys, "in rotate");
+    if (rc == GLINT_OK)
+        rc = load_need(L, v, "axis", "rotate", &axis);
+    if (rc == GLINT_OK)
+        rc = load_need(L, v, "angle", "rotate", &angle);
+    if (rc == GLINT_OK)
+        rc = load_anim_value(L, axis, "axis", 3, load_read_nonzero_vec3, out->v, 0, -INFINITY,
+                             INFINITY);
+    if (rc == GLINT_OK)
+        rc = load_anim_value(L, angle, "angle", 1, load_read_number, &out->v[3], 3, -INFINITY,
+                             INFINITY);
+    out->kind = ANIM_STEP_ROTATE;
+    return rc;
+}
+
+/* {xy: k, ...}: the first axis moves by k times the second; each may be
+ * keyed. */
+static glint_rc step_shear(loader *L, uint32_t v, const char *key, anim_step *out)
+{
     glint_rc rc = load_want_map(L, v, key);
     if (rc == GLINT_OK)
         rc = load_check_keys(L, v, shear_keys, "in shear");
-    mat4 sm = mat4_identity();
+    out->kind = ANIM_STEP_SHEAR;
     for (int i = 0; rc == GLINT_OK && i < 6; i++) {
         uint32_t c = load_get(L, v, shear_keys[i]);
         if (c != YDOC_NONE)
-            rc = load_number(L, c, shear_keys[i], &sm.m[at[i][0]][at[i][1]]);
+            rc = load_anim_value(L, c, shear_keys[i], 1, load_read_number, &out->v[i], i,
+                                 -INFINITY, INFINITY);
     }
-    if (rc == GLINT_OK && !xform_from_matrix(&sm, out))
-        rc = load_fail(L, v, "shear is not invertible (it flattens space)");
     return rc;
 }
 
 /* 12 numbers (three rows) or 16 with the affine last row. */
-static glint_rc step_matrix(loader *L, uint32_t v, const char *key, xform *out)
+static glint_rc step_matrix(loader *L, uint32_t v, const char *key, anim_step *out)
 {
     const ynode *s = load_node(L, v);
     float f[16];
@@ -117,37 +116,34 @@ static glint_rc step_matrix(loader *L, uint32_t v, const char *key, xform *out)
     mat4 mm = mat4_identity();
     for (int i = 0; i < 12; i++)
         mm.m[i / 4][i % 4] = f[i];
-    if (!xform_from_matrix(&mm, out))
+    out->kind = ANIM_STEP_FIXED;
+    if (!xform_from_matrix(&mm, &out->fixed))
         return load_fail(L, v, "matrix is not invertible");
     return GLINT_OK;
 }
 
-/* The value of one step of kind, as a transform. */
-static glint_rc step_value(loader *L, step_kind kind, uint32_t v, xform *out)
+/* The value of one step of kind (keyed values at their first key). */
+static glint_rc step_value(loader *L, step_kind kind, uint32_t v, anim_step *out)
 {
     const char *key = transform_keys[kind];
-    glint_rc rc = GLINT_OK;
-    vec3 a;
-    float deg;
+    *out = (anim_step){.kind = ANIM_STEP_TRANSLATE};
     switch (kind) {
     case STEP_TRANSLATE:
-        rc = load_vec3(L, v, key, &a);
-        if (rc == GLINT_OK)
-            *out = xform_translate(a);
-        return rc;
+        return load_anim_value(L, v, key, 3, load_read_vec3, out->v, 0, -INFINITY, INFINITY);
     case STEP_ROTATE_X:
     case STEP_ROTATE_Y:
     case STEP_ROTATE_Z:
-        rc = load_number(L, v, key, &deg);
-        if (rc == GLINT_OK)
-            *out = xform_rotate(v3(kind == STEP_ROTATE_X, kind == STEP_ROTATE_Y,
-                                   kind == STEP_ROTATE_Z),
-                                deg);
-        return rc;
+        out->kind = ANIM_STEP_ROTATE;
+        out->v[0] = kind == STEP_ROTATE_X;
+        out->v[1] = kind == STEP_ROTATE_Y;
+        out->v[2] = kind == STEP_ROTATE_Z;
+        return load_anim_value(L, v, key, 1, load_read_number, &out->v[3], 3, -INFINITY,
+                               INFINITY);
     case STEP_ROTATE:
         return step_rotate(L, v, key, out);
     case STEP_SCALE:
-        return step_scale(L, v, key, out);
+        out->kind = ANIM_STEP_SCALE;
+        return load_anim_value(L, v, key, 3, read_scale, out->v, 0, -INFINITY, INFINITY);
     case STEP_SHEAR:
         return step_shear(L, v, key, out);
     case STEP_MATRIX:
@@ -155,11 +151,35 @@ static glint_rc step_value(loader *L, step_kind kind, uint32_t v, xform *out)
     case STEP_COUNT:
         break;
     }
-    return rc;
+    return GLINT_OK;
+}
+
+/* A transform's steps as read, for a motion when some are keyed. */
+typedef struct step_list {
+    anim_step *steps;
+    int n, cap;
+    anim_channel *channels; /* index: the step */
+    int nchannels, cap_channels;
+} step_list;
+
+/* The step as a transform; a shear that flattens space is refused. */
+static glint_rc step_xform(loader *L, uint32_t v, const anim_step *st, xform *out)
+{
+    if (st->kind == ANIM_STEP_SHEAR) {
+        static const int at[6][2] = {{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}};
+        mat4 sm = mat4_identity();
+        for (int i = 0; i < 6; i++)
+            sm.m[at[i][0]][at[i][1]] = st->v[i];
+        if (!xform_from_matrix(&sm, out))
+            return load_fail(L, v, "shear is not invertible (it flattens space)");
+        return GLINT_OK;
+    }
+    *out = anim_step_xform(st);
+    return GLINT_OK;
 }
 
 /* One step: a mapping with one key naming its kind. */
-static glint_rc load_step(loader *L, uint32_t step, xform *out)
+static glint_rc load_step(loader *L, uint32_t step, step_list *list, xform *out)
 {
     const ynode *m = load_node(L, step);
     if (m->kind != YNODE_MAP || m->count != 1) {
@@ -174,32 +194,51 @@ static glint_rc load_step(loader *L, uint32_t step, xform *out)
     }
     uint32_t k = ydoc_key(load_doc(L), m, 0), v = ydoc_value(load_doc(L), m, 0);
     int kind;
+    anim_step st;
     glint_rc rc = load_enum(L, k, "transform", "transform", transform_keys, &kind);
     if (rc == GLINT_OK)
-        rc = step_value(L, (step_kind)kind, v, out);
+        rc = step_value(L, (step_kind)kind, v, &st);
+    if (rc == GLINT_OK)
+        rc = step_xform(L, v, &st, out);
     if (rc == GLINT_OK && !xform_is_finite(out))
         rc = load_fail(L, v, "%s makes the transform degenerate (not invertible in floats)",
                        transform_keys[kind]);
-    return rc;
+    if (rc != GLINT_OK)
+        return rc;
+    int i = array_push((void **)&list->steps, &list->n, &list->cap, sizeof *list->steps);
+    if (i < 0)
+        return err_nomem(L->err);
+    list->steps[i] = st;
+    for (int c = 0; c < L->npending; c++) {
+        int j = array_push((void **)&list->channels, &list->nchannels, &list->cap_channels,
+                           sizeof *list->channels);
+        if (j < 0)
+            return err_nomem(L->err);
+        list->channels[j] = L->pending[c];
+        list->channels[j].target = ANIM_STEP;
+        list->channels[j].index = i;
+    }
+    load_anim_drop(L);
+    return GLINT_OK;
 }
 
 /* Composes the steps of list onto *acc (*any: whether acc holds any step
  * yet). A step may itself be a list of steps, so that a transform written
  * once under an anchor can be used inside others. */
-static glint_rc load_steps(loader *L, uint32_t list, xform *acc, bool *any)
+static glint_rc load_steps(loader *L, uint32_t list, step_list *steps, xform *acc, bool *any)
 {
     const ynode *s = load_node(L, list);
     for (uint32_t i = 0; i < s->count; i++) {
         uint32_t item = ydoc_item(load_doc(L), s, i);
         glint_rc rc;
         if (load_node(L, item)->kind == YNODE_SEQ) {
-            rc = load_steps(L, item, acc, any);
+            rc = load_steps(L, item, steps, acc, any);
             if (rc != GLINT_OK)
                 return rc;
             continue;
         }
         xform step;
-        rc = load_step(L, item, &step);
+        rc = load_step(L, item, steps, &step);
         if (rc != GLINT_OK)
             return rc;
         *acc = *any ? xform_then(acc, &step) : step;
@@ -211,28 +250,51 @@ static glint_rc load_steps(loader *L, uint32_t list, xform *acc, bool *any)
     return GLINT_OK;
 }
 
-/* A list of steps, first applied first, composed into *out; *any says
- * whether there was a step. */
-glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
+/* The steps of list, composed into *out (*any: whether there was a step),
+ * and read into steps for a motion. */
+static glint_rc read_steps(loader *L, uint32_t list, step_list *steps, xform *out, bool *any)
 {
     *out = xform_identity();
     *any = false;
     if (load_node(L, list)->kind != YNODE_SEQ)
         return load_expected(L, list, "a list of steps", "transform");
-    return load_steps(L, list, out, any);
+    return load_steps(L, list, steps, out, any);
+}
+
+/* A list of steps, first applied first, composed into *out; *any says
+ * whether there was a step. Only an object's own transform may be keyed. */
+glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
+{
+    step_list steps = {0};
+    glint_rc rc = read_steps(L, list, &steps, out, any);
+    if (rc == GLINT_OK && steps.nchannels > 0)
+        rc = load_fail(L, list, "only an object's own transform may be keyed, not this one");
+    free(steps.steps);
+    free(steps.channels);
+    return rc;
 }
 
 /* A list of steps, first applied first; *index gets the scene's xform, or
- * -1 when there are no steps. */
+ * -1 when there are no steps. With keyed steps the xform is driven by a
+ * motion (scene/anim.h) and holds the transform at the first keys until
+ * the scene is set to a time. */
 glint_rc load_transform(loader *L, uint32_t list, int *index)
 {
     *index = -1;
     xform acc;
     bool any;
-    glint_rc rc = load_xform(L, list, &acc, &any);
-    if (rc != GLINT_OK || !any)
-        return rc;
-    *index = scene_add_xform(L->s, &acc);
-    return *index < 0 ? err_nomem(L->err) : GLINT_OK;
+    step_list steps = {0};
+    glint_rc rc = read_steps(L, list, &steps, &acc, &any);
+    if (rc == GLINT_OK && any) {
+        *index = scene_add_xform(L->s, &acc);
+        if (*index < 0)
+            rc = err_nomem(L->err);
+    }
+    if (rc == GLINT_OK && steps.nchannels > 0 &&
+        anim_add_motion(&L->s->anim, *index, steps.steps, steps.n, steps.channels,
+                        steps.nchannels) < 0)
+        rc = err_nomem(L->err);
+    free(steps.steps);
+    free(steps.channels);
+    return rc;
 }
-

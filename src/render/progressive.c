@@ -7,10 +7,13 @@
 
 glint_rc progressive_alloc(glint_accum *a, int width, int height, glint_error *err)
 {
-    *a = (glint_accum){width, height, render_tile_count(width, height), NULL, NULL};
+    *a = (glint_accum){width, height, render_tile_count(width, height), NULL, NULL,
+                        NULL, NULL};
     a->tile_samples = calloc((size_t)a->ntiles, sizeof *a->tile_samples);
+    a->tile_div = calloc((size_t)a->ntiles, sizeof *a->tile_div);
     a->sum = calloc((size_t)width * (size_t)height * 3, sizeof *a->sum);
-    if (!a->tile_samples || !a->sum) {
+    a->cover = calloc((size_t)width * (size_t)height, sizeof *a->cover);
+    if (!a->tile_samples || !a->tile_div || !a->sum || !a->cover) {
         progressive_free(a);
         return err_nomem(err);
     }
@@ -23,6 +26,8 @@ void progressive_free(glint_accum *a)
         return;
     free(a->tile_samples);
     free(a->sum);
+    free(a->cover);
+    free(a->tile_div);
     *a = (glint_accum){0};
 }
 
@@ -41,28 +46,10 @@ uint64_t progressive_samples_left(const glint_accum *a, int upto)
     return n;
 }
 
-uint64_t progressive_tile(glint_accum *a, int tile, int upto, const camera_frame *f, int n,
-                          trace_ctx *ctx, glint_rect r)
-{
-    int k0 = a->tile_samples[tile];
-    if (k0 >= upto)
-        return 0;
-    for (int y = r.y0; y < r.y1; y++)
-        for (int x = r.x0; x < r.x1; x++) {
-            float *px = a->sum + ((size_t)y * (size_t)a->width + (size_t)x) * 3;
-            vec3 sum = render_samples(f, n, ctx, x, y, k0, upto, v3(px[0], px[1], px[2]));
-            px[0] = sum.x;
-            px[1] = sum.y;
-            px[2] = sum.z;
-        }
-    a->tile_samples[tile] = upto;
-    return (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(upto - k0);
-}
-
 void progressive_resolve(const glint_accum *a, glint_rect g, glint_film *film)
 {
     for (int t = 0; t < a->ntiles; t++) {
-        int m = a->tile_samples[t];
+        int m = a->tile_div[t];
         if (m == 0)
             continue;
         float inv = 1.0f / (float)m;
@@ -76,6 +63,8 @@ void progressive_resolve(const glint_accum *a, glint_rect g, glint_film *film)
                 size_t at = ((size_t)y * (size_t)a->width + (size_t)x) * 3;
                 for (int c = 0; c < 3; c++)
                     film->rgb[at + (size_t)c] = a->sum[at + (size_t)c] * inv;
+                if (film->alpha)
+                    film->alpha[at / 3] = a->cover[at / 3] * inv;
             }
     }
 }

@@ -19,10 +19,6 @@ glint_rc progressive_alloc(glint_accum *a, int width, int height, glint_error *e
 void progressive_free(glint_accum *a);
 /* Samples a pass up to upto per pixel would trace. */
 uint64_t progressive_samples_left(const glint_accum *a, int upto);
-/* Brings tile r (number tile) up to upto samples per pixel of the n x n
- * grid; returns the samples traced. */
-uint64_t progressive_tile(glint_accum *a, int tile, int upto, const camera_frame *f, int n,
-                          trace_ctx *ctx, glint_rect r);
 /* film = sum / samples over rect, per tile; tiles with no sample yet are
  * left as they are. */
 void progressive_resolve(const glint_accum *a, glint_rect rect, glint_film *film);

@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdbool.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <time.h>
@@ -14,6 +15,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "trace/whitted.h"
+#include "render/sampler.h"
 
 typedef struct job {
     const scene *scene;
@@ -21,18 +23,28 @@ typedef struct job {
     const glint_callbacks *cb;
     const render_work *work;
     glint_film *film;
-    camera_frame frame;
+    camera_frame frame; /* the camera when the shutter opens */
+    sampler smp;
     float decode[256];
-    int grid; /* samples per pixel = grid * grid */
+    int lattice; /* adaptive: finest lattice points per pixel side, 2^(depth + 1) */
     int tx0, ty0, tiles_x; /* a region's first tile and its width in tiles */
     int items;             /* tiles to render */
     atomic_int next_item;
     atomic_int cancelled;
+    atomic_int nomem; /* a thread could not get its scratch memory */
     double start;
     pthread_mutex_t lock; /* serialises callbacks and the counts below */
     uint64_t samples_done, samples_total;
-    uint64_t secondary_rays, shadow_rays;
+    uint64_t primary_rays, secondary_rays, shadow_rays;
 } job;
+
+/* A render thread's own state. */
+typedef struct worker_state {
+    trace_ctx ctx;
+    uint64_t primary_rays;
+    struct lattice_point *points; /* adaptive: one pixel's lattice */
+    struct lattice_point *corners; /* adaptive: a tile's pixel corners */
+} worker_state;
 
 static double now_seconds(void)
 {
@@ -73,73 +85,301 @@ static glint_rect item_rect(const job *j, int i)
 
 /* Counts the finished tile and tells the front end, in one critical
  * section so that the counts each callback sees only grow. */
-static void tile_finished(job *j, const trace_ctx *ctx, const trace_ctx *before, glint_rect r,
+static void tile_finished(job *j, worker_state *w, const worker_state *before, glint_rect r,
                           uint64_t samples)
 {
     pthread_mutex_lock(&j->lock);
     j->samples_done += samples;
-    j->secondary_rays += ctx->secondary_rays - before->secondary_rays;
-    j->shadow_rays += ctx->shadow_rays - before->shadow_rays;
+    j->primary_rays += w->primary_rays - before->primary_rays;
+    j->secondary_rays += w->ctx.secondary_rays - before->ctx.secondary_rays;
+    j->shadow_rays += w->ctx.shadow_rays - before->ctx.shadow_rays;
     const glint_callbacks *cb = j->cb;
     if (cb && cb->tile_done)
         cb->tile_done(cb->user, j->film, r.x0, r.y0, r.x1, r.y1);
     if (cb && cb->progress) {
         glint_progress p = {100.0 * (double)j->samples_done / (double)j->samples_total,
                             j->samples_done, j->samples_total,
-                            j->samples_done + j->secondary_rays + j->shadow_rays,
+                            j->primary_rays + j->secondary_rays + j->shadow_rays,
                             now_seconds() - j->start};
         cb->progress(cb->user, &p);
     }
     pthread_mutex_unlock(&j->lock);
 }
 
-/* The N x N regular grid: sample k = b * N + a at ((a + 0.5) / N,
- * (b + 0.5) / N) of the pixel, so 2 x 2 gives the quarter points 0.25 and
- * 0.75. Samples are added in the order of k, so a sum built in several
- * passes (progressive.h) is the same float as one built at once. */
-vec3 render_samples(const camera_frame *f, int n, trace_ctx *ctx, int x, int y, int k0, int k1,
-                    vec3 sum)
+/* Traces one camera sample at image position (x, y): lens and time from s.
+ * *cover gets whether it hit something (only when the film keeps alpha). */
+static vec3 trace_sample(const job *j, worker_state *w, float x, float y, pixel_sample s,
+                         const uint32_t id[3], float *cover)
 {
-    float inv_n = 1.0f / (float)n;
-    for (int k = k0; k < k1; k++) {
-        int a = k % n, b = k / n;
-        trace_begin_sample(ctx, (uint32_t)x, (uint32_t)y, (uint32_t)k);
-        ray ry = camera_ray(f, (float)x + ((float)a + 0.5f) * inv_n,
-                            (float)y + ((float)b + 0.5f) * inv_n);
-        sum = v3_add(sum, whitted_trace(ctx, &ry, 0));
+    /* light samples hash the sample's identity: pixel and index, or for
+     * the adaptive lattice the point's own coordinates */
+    trace_begin_sample(&w->ctx, id[0], id[1], id[2]);
+    const scene *sc = j->scene;
+    float t = sc->time + s.time * sc->shutter_seconds;
+    camera_frame moved;
+    const camera_frame *f = &j->frame;
+    if (sc->camera_moves) {
+        camera c = scene_camera_at(sc, t);
+        moved = camera_frame_make(&c, j->settings->width, j->settings->height);
+        f = &moved;
     }
-    return sum;
+    ray r;
+    *cover = 0.0f;
+    if (!camera_ray(f, x, y, s.lu, s.lv, &r))
+        return v3s(0.0f); /* outside a fisheye's circle: black, uncovered */
+    r.time = t;
+    w->ctx.time = t;
+    w->primary_rays++;
+    if (j->film->alpha || (j->work->accum && j->settings->alpha))
+        return whitted_camera(&w->ctx, &r, cover);
+    return whitted_trace(&w->ctx, &r, 0);
 }
 
-static void render_tile(job *j, trace_ctx *ctx, int item, glint_rect r)
+static void put_pixel(const job *j, int x, int y, vec3 c, float cover)
 {
-    trace_ctx before = *ctx;
-    int n = j->grid;
-    const render_work *w = j->work;
-    if (w->accum) {
-        uint64_t traced = progressive_tile(w->accum, item, w->upto, &j->frame, n, ctx, r);
-        tile_finished(j, ctx, &before, r, traced);
+    const render_work *wk = j->work;
+    if (wk->accum) { /* the adaptive sampler's final progressive pass */
+        size_t i = (size_t)y * (size_t)wk->accum->width + (size_t)x;
+        wk->accum->sum[i * 3] = c.x;
+        wk->accum->sum[i * 3 + 1] = c.y;
+        wk->accum->sum[i * 3 + 2] = c.z;
+        wk->accum->cover[i] = cover;
         return;
     }
-    float inv_count = 1.0f / (float)(n * n);
+    size_t at = (size_t)(y - wk->film_y0) * (size_t)j->film->width + (size_t)(x - wk->film_x0);
+    float *px = j->film->rgb + at * 3;
+    px[0] = c.x;
+    px[1] = c.y;
+    px[2] = c.z;
+    if (j->film->alpha)
+        j->film->alpha[at] = cover;
+}
+
+/* Adds samples k0 <= k < k1 of pixel (x, y) (grid or jitter) to *sum and
+ * their coverage to *cover, in the order of k: a sum built in several
+ * progressive passes is the same float as one built at once. */
+static void sample_range(const job *j, worker_state *w, int x, int y, int k0, int k1, vec3 *sum,
+                         float *cover)
+{
+    for (int k = k0; k < k1; k++) {
+        float c;
+        pixel_sample s = sampler_get(&j->smp, x, y, k);
+        const uint32_t id[3] = {(uint32_t)x, (uint32_t)y, (uint32_t)k};
+        *sum = v3_add(*sum, trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, id, &c));
+        *cover += c;
+    }
+}
+
+/* grid and jitter: every sample of each pixel, averaged. */
+static void render_tile_fixed(job *j, worker_state *w, glint_rect r)
+{
+    int count = sampler_count(&j->smp);
+    float inv_count = 1.0f / (float)count;
     for (int y = r.y0; y < r.y1; y++)
         for (int x = r.x0; x < r.x1; x++) {
-            vec3 sum = render_samples(&j->frame, n, ctx, x, y, 0, n * n, v3s(0.0f));
-            size_t at = (size_t)(y - w->film_y0) * (size_t)j->film->width + (size_t)(x - w->film_x0);
-            float *px = j->film->rgb + at * 3;
-            px[0] = sum.x * inv_count;
-            px[1] = sum.y * inv_count;
-            px[2] = sum.z * inv_count;
+            vec3 sum = v3s(0.0f);
+            float cover = 0.0f;
+            sample_range(j, w, x, y, 0, count, &sum, &cover);
+            put_pixel(j, x, y, v3_scale(sum, inv_count), cover * inv_count);
         }
-    tile_finished(j, ctx, &before, r,
-                  (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0) * (uint64_t)(n * n));
+}
+
+/* ---- adaptive sampling ----------------------------------------------------
+ * Like POV-Ray's adaptive method 2, made deterministic. A pixel's corners
+ * (shared with its neighbours) and centre are traced; when they differ by
+ * more than the threshold in display value, the pixel splits into four
+ * cells, each traced at its corners (most already known) and centre, and
+ * so on down to the depth limit. A cell that needs no split takes its
+ * centre's value; a split one, the mean of its four. The points lie on a
+ * lattice of `lattice` x `lattice` steps per pixel; at threshold 0 every
+ * cell splits and the pixel is exactly the 2^depth x 2^depth grid. */
+
+typedef struct lattice_point {
+    vec3 c;
+    float cover;
+    float shown[3]; /* display values, for the comparison */
+    bool done;
+} lattice_point;
+
+/* Traces lattice point (i, j) of pixel (x, y) into p unless done. */
+static void lattice_trace(const job *j, worker_state *w, int x, int y, int i, int k,
+                          lattice_point *p)
+{
+    if (p->done)
+        return;
+    int n = j->lattice;
+    float fx = (float)i / (float)n, fy = (float)k / (float)n;
+    const uint32_t id[3] = {(uint32_t)x * (uint32_t)n + (uint32_t)i,
+                            (uint32_t)y * (uint32_t)n + (uint32_t)k, 0x80000000u};
+    pixel_sample s = sampler_point(id[0], id[1], fx, fy);
+    p->c = trace_sample(j, w, (float)x + fx, (float)y + fy, s, id, &p->cover);
+    glint_transfer tf = j->settings->transfer;
+    p->shown[0] = image_display_value(p->c.x, tf);
+    p->shown[1] = image_display_value(p->c.y, tf);
+    p->shown[2] = image_display_value(p->c.z, tf);
+    p->done = true;
+}
+
+/* Whether the points differ by more than the threshold in some channel. */
+static bool points_differ(const lattice_point *const *p, int n, float threshold)
+{
+    if (!(threshold > 0.0f))
+        return true;
+    for (int ch = 0; ch < 3; ch++) {
+        float lo = p[0]->shown[ch], hi = lo;
+        for (int i = 1; i < n; i++) {
+            lo = fminf(lo, p[i]->shown[ch]);
+            hi = fmaxf(hi, p[i]->shown[ch]);
+        }
+        if (hi - lo > threshold)
+            return true;
+    }
+    return false;
+}
+
+/* The cell of pixel (x, y) with top-left lattice point (i, k) and side
+ * size (in lattice steps), its colour into *c and coverage into *cover. */
+static void adaptive_cell(const job *j, worker_state *w, int x, int y, int i, int k, int size,
+                          vec3 *c, float *cover)
+{
+    int n = j->lattice, h = size / 2;
+    lattice_point *pt = w->points;
+#define AT(a, b) (&pt[(b) * (n + 1) + (a)])
+    lattice_point *q[5] = {AT(i, k), AT(i + size, k), AT(i, k + size), AT(i + size, k + size),
+                           AT(i + h, k + h)};
+    for (int m = 0; m < 5; m++)
+        lattice_trace(j, w, x, y, m == 4 ? i + h : i + (m & 1) * size,
+                      m == 4 ? k + h : k + (m >> 1) * size, q[m]);
+    if (h < 2 || !points_differ((const lattice_point *const *)q, 5, (float)j->settings->threshold)) {
+        *c = q[4]->c;
+        *cover = q[4]->cover;
+        return;
+    }
+    vec3 sum = v3s(0.0f);
+    float csum = 0.0f;
+    for (int m = 0; m < 4; m++) {
+        vec3 cc;
+        float cv;
+        adaptive_cell(j, w, x, y, i + (m & 1) * h, k + (m >> 1) * h, h, &cc, &cv);
+        sum = v3_add(sum, cc);
+        csum += cv;
+    }
+    *c = v3_scale(sum, 0.25f);
+    *cover = 0.25f * csum;
+#undef AT
+}
+
+static void render_tile_adaptive(job *j, worker_state *w, glint_rect r)
+{
+    int n = j->lattice, tw = r.x1 - r.x0 + 1;
+    lattice_point *corner = w->corners;
+    for (int y = r.y0; y <= r.y1; y++)
+        for (int x = r.x0; x <= r.x1; x++) {
+            lattice_point *p = &corner[(y - r.y0) * tw + (x - r.x0)];
+            p->done = false;
+            lattice_trace(j, w, x, y, 0, 0, p);
+        }
+    size_t npoints = (size_t)(n + 1) * (size_t)(n + 1);
+    for (int y = r.y0; y < r.y1; y++)
+        for (int x = r.x0; x < r.x1; x++) {
+            for (size_t i = 0; i < npoints; i++)
+                w->points[i].done = false;
+            const lattice_point *c = &corner[(y - r.y0) * tw + (x - r.x0)];
+            w->points[0] = c[0];
+            w->points[n] = c[1];
+            w->points[(size_t)n * (size_t)(n + 1)] = c[tw];
+            w->points[npoints - 1] = c[tw + 1];
+            vec3 col;
+            float cover;
+            adaptive_cell(j, w, x, y, 0, 0, n, &col, &cover);
+            put_pixel(j, x, y, col, cover);
+        }
+}
+
+/* The adaptive sampler's quick look: one sample at the pixel's centre, a
+ * point of its finest lattice. */
+static void centre_sample(const job *j, worker_state *w, int x, int y, vec3 *sum, float *cover)
+{
+    int n = j->lattice, h = n / 2;
+    const uint32_t id[3] = {(uint32_t)x * (uint32_t)n + (uint32_t)h,
+                            (uint32_t)y * (uint32_t)n + (uint32_t)h, 0x80000000u};
+    pixel_sample s = sampler_point(id[0], id[1], 0.5f, 0.5f);
+    *sum = trace_sample(j, w, (float)x + 0.5f, (float)y + 0.5f, s, id, cover);
+}
+
+/* A progressive pass over tile `item` (render_work.accum): grid and jitter
+ * add samples up to upto; the adaptive sampler cannot be split by sample
+ * index, so its passes are one sample at each pixel's corner point, then,
+ * at upto = settings.samples, the whole adaptive tile, kept exactly
+ * (tile_div 1), so the final image is the batch image. Returns the samples
+ * traced. */
+static uint64_t render_tile_pass(job *j, worker_state *w, int item, glint_rect r)
+{
+    glint_accum *a = j->work->accum;
+    int k0 = a->tile_samples[item], upto = j->work->upto;
+    if (k0 >= upto)
+        return 0;
+    uint64_t area = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+    bool adaptive = j->smp.kind == GLINT_SAMPLER_ADAPTIVE;
+    if (adaptive && upto >= j->settings->samples) {
+        render_tile_adaptive(j, w, r); /* put_pixel writes into the accumulator */
+        a->tile_samples[item] = upto;
+        a->tile_div[item] = 1;
+        return area;
+    }
+    for (int y = r.y0; y < r.y1; y++)
+        for (int x = r.x0; x < r.x1; x++) {
+            size_t at = (size_t)y * (size_t)a->width + (size_t)x;
+            float *px = a->sum + at * 3;
+            vec3 sum = v3(px[0], px[1], px[2]);
+            if (adaptive)
+                sum = v3s(0.0f), a->cover[at] = 0.0f;
+            if (adaptive)
+                centre_sample(j, w, x, y, &sum, &a->cover[at]);
+            else
+                sample_range(j, w, x, y, k0, upto, &sum, &a->cover[at]);
+            px[0] = sum.x;
+            px[1] = sum.y;
+            px[2] = sum.z;
+        }
+    a->tile_samples[item] = adaptive ? 1 : upto;
+    a->tile_div[item] = a->tile_samples[item];
+    return area * (uint64_t)(adaptive ? 1 : upto - k0);
+}
+
+static void render_tile(job *j, worker_state *w, int item, glint_rect r)
+{
+    worker_state before = *w;
+    if (j->work->accum) {
+        tile_finished(j, w, &before, r, render_tile_pass(j, w, item, r));
+        return;
+    }
+    uint64_t pixels = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+    if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE)
+        render_tile_adaptive(j, w, r);
+    else
+        render_tile_fixed(j, w, r);
+    tile_finished(j, w, &before, r,
+                  j->smp.kind == GLINT_SAMPLER_ADAPTIVE ? pixels
+                                                         : pixels * (uint64_t)sampler_count(&j->smp));
 }
 
 static void *worker(void *arg)
 {
     job *j = arg;
-    trace_ctx ctx = {.scene = j->scene, .decode = j->decode, .max_depth = j->settings->max_depth,
-                     .bailout = (float)j->settings->adc_bailout, .weight = 1.0f};
+    worker_state w = {{.scene = j->scene, .decode = j->decode,
+                       .max_depth = j->settings->max_depth,
+                       .bailout = (float)j->settings->adc_bailout, .weight = 1.0f},
+                      0, NULL, NULL};
+    if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE) {
+        size_t side = (size_t)j->lattice + 1;
+        w.points = malloc(sizeof *w.points * side * side);
+        w.corners = malloc(sizeof *w.corners * (RENDER_TILE + 1) * (RENDER_TILE + 1));
+        if (!w.points || !w.corners) {
+            atomic_store(&j->nomem, 1);
+            atomic_store(&j->cancelled, 1);
+        }
+    }
     const glint_callbacks *cb = j->cb;
     for (;;) {
         if (atomic_load(&j->cancelled))
@@ -151,8 +391,10 @@ static void *worker(void *arg)
         int i = atomic_fetch_add(&j->next_item, 1);
         if (i >= j->items)
             break;
-        render_tile(j, &ctx, i, item_rect(j, i));
+        render_tile(j, &w, i, item_rect(j, i));
     }
+    free(w.points);
+    free(w.corners);
     return NULL;
 }
 
@@ -160,7 +402,8 @@ static void *worker(void *arg)
 static void job_plan(job *j)
 {
     const render_work *w = j->work;
-    uint64_t spp = (uint64_t)(j->grid * j->grid), pixels = 0;
+    uint64_t spp = j->smp.kind == GLINT_SAMPLER_ADAPTIVE ? 1 : (uint64_t)sampler_count(&j->smp);
+    uint64_t pixels = 0;
     if (w->tiles) {
         j->items = w->ntiles;
         for (int i = 0; i < w->ntiles; i++) {
@@ -216,16 +459,21 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     j->film = film;
     j->frame = camera_frame_make(&sc->camera, settings->width, settings->height);
     image_decode_table(settings->transfer, j->decode);
-    j->grid = settings_grid_side(settings->samples);
+    j->smp = sampler_make(settings, sc->camera.aperture > 0.0f || sc->camera_moves,
+                          sc->shutter_seconds > 0.0f);
+    j->lattice = 2 << settings->adaptive_depth;
     job_plan(j);
     atomic_init(&j->next_item, 0);
     atomic_init(&j->cancelled, 0);
+    atomic_init(&j->nomem, 0);
     pthread_mutex_init(&j->lock, NULL);
     job_run(j);
-    if (atomic_load(&j->cancelled))
+    if (atomic_load(&j->nomem))
+        rc = err_nomem(err);
+    else if (atomic_load(&j->cancelled))
         rc = err_set(err, GLINT_ERR_CANCELLED, "render cancelled");
     if (stats) {
-        stats->primary_rays = j->samples_done;
+        stats->primary_rays = j->primary_rays;
         stats->secondary_rays = j->secondary_rays;
         stats->shadow_rays = j->shadow_rays;
         stats->seconds = now_seconds() - j->start;
@@ -240,6 +488,8 @@ void render_film_free(glint_film *film)
     if (!film)
         return;
     free(film->rgb);
+    free(film->alpha);
     film->rgb = NULL;
+    film->alpha = NULL;
     film->width = film->height = 0;
 }

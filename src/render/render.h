@@ -28,11 +28,6 @@ typedef struct render_work {
     int upto;
 } render_work;
 
-/* Adds the primary samples k0 <= k < k1 of pixel (x, y), of the n x n
- * grid, to sum in the order of k. */
-vec3 render_samples(const camera_frame *f, int n, trace_ctx *ctx, int x, int y, int k0, int k1,
-                    vec3 sum);
-
 /* The tile grid of a width x height image. */
 int render_tile_count(int width, int height);
 glint_rect render_tile_rect(int width, int height, int tile);

@@ -29,7 +29,7 @@ uint64_t resume_fingerprint(const scene *sc, const glint_settings *s)
     probe.samples = 1;
     probe.threads = 1;
     float rgb[PROBE_W * PROBE_H * 3] = {0};
-    glint_film film = {PROBE_W, PROBE_H, rgb};
+    glint_film film = {.width = PROBE_W, .height = PROBE_H, .rgb = rgb};
     render_work w = {.region = {0, 0, PROBE_W, PROBE_H}};
     glint_error err;
     glint_rc rc = render_run(sc, &probe, NULL, &w, &film, NULL, &err);
@@ -50,7 +50,9 @@ glint_rc resume_init(glint_resume *r, const scene *sc, const glint_settings *s, 
     r->ntiles = render_tile_count(s->width, s->height);
     r->done = calloc((size_t)r->ntiles, 1);
     r->film.rgb = calloc((size_t)s->width * (size_t)s->height * 3, sizeof(float));
-    if (!r->done || !r->film.rgb) {
+    if (s->alpha)
+        r->film.alpha = calloc((size_t)s->width * (size_t)s->height, sizeof(float));
+    if (!r->done || !r->film.rgb || (s->alpha && !r->film.alpha)) {
         resume_free(r);
         return err_nomem(err);
     }
@@ -65,6 +67,7 @@ void resume_free(glint_resume *r)
         return;
     free(r->done);
     free(r->film.rgb);
+    free(r->film.alpha);
     free(r->note);
     *r = (glint_resume){0};
 }
@@ -121,9 +124,13 @@ static void put_tile(buf *b, const glint_resume *r, int tile)
     const glint_settings *s = &r->settings;
     glint_rect t = render_tile_rect(s->width, s->height, tile);
     for (int y = t.y0; y < t.y1; y++)
-        for (int x = t.x0; x < t.x1; x++)
+        for (int x = t.x0; x < t.x1; x++) {
+            size_t at = (size_t)y * (size_t)s->width + (size_t)x;
             for (int c = 0; c < 3; c++)
-                put_f32(b, r->film.rgb[((size_t)y * (size_t)s->width + (size_t)x) * 3 + (size_t)c]);
+                put_f32(b, r->film.rgb[at * 3 + (size_t)c]);
+            if (r->film.alpha) /* coverage follows its pixel (image.alpha) */
+                put_f32(b, r->film.alpha[at]);
+        }
 }
 
 glint_rc resume_write(const glint_resume *r, const char *path, glint_error *err)
@@ -132,15 +139,16 @@ glint_rc resume_write(const glint_resume *r, const char *path, glint_error *err)
     size_t size = HEADER_BYTES + r->note_len + (size_t)r->ntiles + 8;
     for (int i = 0; i < r->ntiles; i++)
         if (r->done[i])
-            size += tile_pixels(s, i) * 12;
+            size += tile_pixels(s, i) * (r->film.alpha ? 16 : 12);
     buf b = {malloc(size), 0, size};
     if (!b.p)
         return err_nomem(err);
     put(&b, magic, sizeof magic);
     put_u32(&b, RESUME_VERSION);
     put_u32(&b, RENDER_TILE);
-    const int32_t v[6] = {s->width, s->height, s->samples, s->max_depth, (int32_t)s->transfer,
-                          s->threads};
+    /* the transfer's word carries the alpha flag in bit 8 */
+    const int32_t v[6] = {s->width, s->height, s->samples, s->max_depth,
+                          (int32_t)s->transfer | (s->alpha ? 0x100 : 0), s->threads};
     for (int i = 0; i < 6; i++)
         put_u32(&b, (uint32_t)v[i]);
     uint64_t bailout;
@@ -251,10 +259,12 @@ static glint_rc read_header(reader *rd, const char *path, glint_resume *r, glint
         return err_set(err, GLINT_ERR_INPUT, "%s: resume file is cut short", path);
     r->settings = (glint_settings){.width = (int32_t)v[0], .height = (int32_t)v[1],
                                    .samples = (int32_t)v[2], .max_depth = (int32_t)v[3],
-                                   .threads = (int32_t)v[5], .transfer = (glint_transfer)v[4]};
+                                   .threads = (int32_t)v[5],
+                                   .transfer = (glint_transfer)(v[4] & 0xff),
+                                   .alpha = (int)(v[4] >> 8)};
     memcpy(&r->settings.adc_bailout, &bailout, 8);
     glint_error inner;
-    if (v[4] > GLINT_TRANSFER_SRGB || settings_check(&r->settings, &inner) != GLINT_OK)
+    if ((v[4] & 0xff) > GLINT_TRANSFER_SRGB || v[4] >> 9 || settings_check(&r->settings, &inner) != GLINT_OK)
         return err_set(err, GLINT_ERR_INPUT, "%s: resume file holds bad settings", path);
     if (!get_u64(rd, &r->fingerprint) || !get_u32(rd, &ntiles) || !get_u32(rd, &note_len))
         return err_set(err, GLINT_ERR_INPUT, "%s: resume file is cut short", path);
@@ -276,14 +286,17 @@ static bool get_tile(reader *rd, glint_resume *r, int tile)
     const glint_settings *s = &r->settings;
     glint_rect t = render_tile_rect(s->width, s->height, tile);
     for (int y = t.y0; y < t.y1; y++)
-        for (int x = t.x0; x < t.x1; x++)
-            for (int c = 0; c < 3; c++) {
+        for (int x = t.x0; x < t.x1; x++) {
+            size_t at = (size_t)y * (size_t)s->width + (size_t)x;
+            for (int c = 0; c < 4; c++) {
                 uint32_t u;
+                if (c == 3 && !r->film.alpha)
+                    break;
                 if (!get_u32(rd, &u))
                     return false;
-                memcpy(&r->film.rgb[((size_t)y * (size_t)s->width + (size_t)x) * 3 + (size_t)c],
-                       &u, 4);
+                memcpy(c == 3 ? &r->film.alpha[at] : &r->film.rgb[at * 3 + (size_t)c], &u, 4);
             }
+        }
     return true;
 }
 
@@ -293,7 +306,9 @@ static glint_rc read_body(reader *rd, const char *path, glint_resume *r, glint_e
     const glint_settings *s = &r->settings;
     r->done = calloc((size_t)r->ntiles, 1);
     r->film.rgb = calloc((size_t)s->width * (size_t)s->height * 3, sizeof(float));
-    if (!r->done || !r->film.rgb)
+    if (s->alpha)
+        r->film.alpha = calloc((size_t)s->width * (size_t)s->height, sizeof(float));
+    if (!r->done || !r->film.rgb || (s->alpha && !r->film.alpha))
         return err_nomem(err);
     r->film.width = s->width;
     r->film.height = s->height;
@@ -354,6 +369,9 @@ glint_rc resume_check(const glint_resume *r, const scene *sc, const glint_settin
                        w->max_depth, s->max_depth);
     if (w->transfer != s->transfer)
         return err_set(err, GLINT_ERR_INPUT, "resume file is for another transfer function");
+    if ((w->alpha != 0) != (s->alpha != 0))
+        return err_set(err, GLINT_ERR_INPUT, "resume file is for an image %s alpha",
+                       w->alpha ? "with" : "without");
     if (w->adc_bailout != s->adc_bailout)
         return err_set(err, GLINT_ERR_INPUT, "resume file is for adc_bailout %g, this render has %g",
                        w->adc_bailout, s->adc_bailout);

@@ -29,6 +29,10 @@ static uint64_t hash_settings(uint64_t h, const glint_settings *st)
     h = hash_int(h, st->samples);
     h = hash_int(h, st->max_depth);
     h = hash_int(h, (int64_t)st->transfer);
+    h = hash_int(h, (int64_t)st->sampler);
+    h = fingerprint_bytes(h, &st->threshold, sizeof st->threshold);
+    h = hash_int(h, st->adaptive_depth);
+    h = hash_int(h, st->alpha != 0);
     return fingerprint_bytes(h, &st->adc_bailout, sizeof st->adc_bailout);
 }
 
@@ -76,6 +80,10 @@ uint64_t scene_fingerprint(const scene *s, const glint_settings *settings)
     h = hash_settings(h, settings);
     const camera *c = &s->camera;
     h = hash_float(hash_vec(hash_vec(hash_vec(h, c->eye), c->target), c->up), c->hfov);
+    /* the projection, the lens, the shutter and the frame's time */
+    h = hash_int(h, (int64_t)c->projection);
+    h = hash_float(hash_float(hash_float(h, c->aperture), c->focus_distance), c->width);
+    h = hash_float(hash_float(hash_float(h, c->shutter), s->time), s->shutter_seconds);
     h = hash_vec(hash_vec(h, s->background), s->ambient);
     const int counts[] = {s->nobjects, s->nlights, s->nmaterials, s->ntextures,
                           s->nimages,  s->nmeshes, s->nxforms};

@@ -14,12 +14,17 @@ scene *scene_new(void)
     scene *s = calloc(1, sizeof *s);
     if (!s)
         return NULL;
-    s->camera = (camera){v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 90.0f};
+    s->camera = (camera){.eye = v3(0, 0, 0), .target = v3(0, 0, -1), .up = v3(0, 1, 0),
+                         .hfov = 90.0f, .projection = CAMERA_PERSPECTIVE};
     s->background = v3s(0.0f);
     s->ambient = v3s(0.2f);
     s->settings = (glint_settings){.width = 500, .height = 500, .samples = 1, .max_depth = 5,
                                    .threads = 0, .transfer = GLINT_TRANSFER_NONE,
-                                   .adc_bailout = SETTINGS_ADC_BAILOUT};
+                                   .adc_bailout = SETTINGS_ADC_BAILOUT,
+                                   .sampler = GLINT_SAMPLER_GRID, .threshold = 0.05,
+                                   .adaptive_depth = 3, .alpha = 0};
+    s->anim.frames = 1;
+    s->anim.fps = 24.0f;
     return s;
 }
 
@@ -46,6 +51,7 @@ void scene_free(scene *s)
     for (int i = 0; i < s->nsources; i++)
         free(s->sources[i]);
     free(s->sources);
+    anim_free(&s->anim);
     for (int i = 0; i < s->npolyhedra; i++) {
         polyhedron_free(s->polyhedra[i]);
         free(s->polyhedra[i]);
@@ -100,7 +106,7 @@ int scene_add_image(scene *s, image *img)
 
 int scene_add_object(scene *s, const shape *sh, int mat, int xf)
 {
-    object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}};
+    object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}, -1, false};
     s->built = false;
     PUSH(s->objects, s->nobjects, s->cap_objects, o);
 }
@@ -173,18 +179,6 @@ int scene_texture_count(const scene *s) { return s->ntextures; }
 int scene_mesh_count(const scene *s) { return s->nmeshes; }
 
 const struct mesh *scene_mesh(const scene *s, int index) { return s->meshes[index]; }
-
-static aabb xform_bounds(const xform *x, aabb b)
-{
-    if (aabb_is_empty(b))
-        return b;
-    aabb r = aabb_empty();
-    for (int i = 0; i < 8; i++) {
-        vec3 c = v3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
-        r = aabb_grow(r, mat4_point(&x->fwd, c));
-    }
-    return r;
-}
 
 /* The BVH over bounded objects; unbounded ones are listed apart. */
 static glint_rc build_accel(scene *s, glint_error *err)
@@ -291,6 +285,8 @@ static vec3 texture_origin(const shape *sh)
 static glint_rc build(scene *s, glint_error *err)
 {
     glint_rc rc = check_shading(s, err);
+    if (rc == GLINT_OK)
+        rc = scene_link_motions(s, err);
     if (rc != GLINT_OK)
         return rc;
     free(s->bounds);
@@ -304,8 +300,7 @@ static glint_rc build(scene *s, glint_error *err)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
-        aabb b = shape_bounds(&o->shape);
-        s->bounds[i] = o->xform >= 0 ? xform_bounds(&s->xforms[o->xform], b) : b;
+        s->bounds[i] = scene_object_bounds(s, i);
         o->origin = texture_origin(&o->shape);
     }
     rc = build_accel(s, err);
@@ -324,8 +319,14 @@ static inline ray object_ray(const scene *s, const object *o, const ray *r)
 {
     if (o->xform < 0)
         return *r;
+    if (__builtin_expect(o->moving, 0)) {
+        xform x = scene_object_xform_at(s, o, r->time);
+        return (ray){mat4_point(&x.inv, r->o), mat4_vector(&x.inv, r->d), r->tmin, r->tmax,
+                     r->time};
+    }
     const xform *x = &s->xforms[o->xform];
-    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax};
+    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
+                 r->time};
 }
 
 typedef struct leaf_ctx {
@@ -411,7 +412,12 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
         shape_surface(&o->shape, r, &hit->h, out);
         return;
     }
+    xform moved;
     const xform *x = &s->xforms[o->xform];
+    if (o->moving) {
+        moved = scene_object_xform_at(s, o, r->time);
+        x = &moved;
+    }
     ray lr = object_ray(s, o, r);
     shape_surface(&o->shape, &lr, &hit->h, out);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */

@@ -16,6 +16,7 @@
 #include "geom/polyhedron.h"
 #include "geom/shape.h"
 #include "io/image.h"
+#include "scene/anim.h"
 #include "scene/camera.h"
 #include "shade/fog.h"
 #include "shade/light.h"
@@ -28,6 +29,9 @@ typedef struct object {
     int xform;      /* -1: the shape is in world space */
     bool transmits; /* some material it uses has transmit > 0 (by scene_build) */
     vec3 origin;    /* of object-space textures, in the shape's space (by scene_build) */
+    int motion;     /* the anim motion driving its transform, or -1 (by scene_build) */
+    bool moving;    /* moves while the shutter is open: its transform is the motion's
+                       at each ray's time, not xforms[xform] (by scene_build) */
 } object;
 
 struct glint_scene {
@@ -64,6 +68,11 @@ struct glint_scene {
     double build_seconds; /* wall time of the last scene_build */
     char **sources;       /* files the scene was read from, each once (front ends add them) */
     int nsources, cap_sources;
+
+    anim anim;             /* tracks, channels and motions; frames and fps */
+    float time;            /* seconds: when the shutter opens (scene_set_time) */
+    float shutter_seconds; /* how long it stays open: camera.shutter / fps */
+    bool camera_moves;     /* the camera changes while the shutter is open */
 };
 
 typedef struct glint_scene scene;
@@ -115,8 +124,28 @@ const struct mesh *scene_mesh(const scene *s, int index);
  * texture, a mesh), once however often it is added; -1 when out of memory. */
 int scene_add_source(scene *s, const char *path);
 
-/* Checks indices and computes derived data; call after the last add. */
+/* Checks indices and computes derived data; call after the last add. A
+ * moving object's bounds hold it over the whole shutter interval. */
 glint_rc scene_build(scene *s, glint_error *err);
+
+/* Sets the scene to time t (seconds): the camera, lights, materials and
+ * transforms take their animated values at t, the shutter interval becomes
+ * [t, t + camera.shutter / fps], and the scene is built again. Errors: a
+ * transform that is not invertible at t. */
+glint_rc scene_set_time(scene *s, float t, glint_error *err);
+/* After scene_set_camera: the shutter interval follows the camera's
+ * shutter, and a built scene whose objects start or stop moving is built
+ * again. */
+glint_rc scene_camera_changed(scene *s, glint_error *err);
+/* The camera at time t (its animated values evaluated at t). */
+camera scene_camera_at(const scene *s, float t);
+/* Bounds of object i over the shutter interval (scene_build's rule). */
+aabb scene_object_bounds(const scene *s, int i);
+/* scene_build's first step: which objects have a motion, and which of
+ * them move while the shutter is open. */
+glint_rc scene_link_motions(scene *s, glint_error *err);
+/* A moving object's transform at time t (object -> world, with inverse). */
+xform scene_object_xform_at(const scene *s, const object *o, float t);
 
 typedef struct scene_hit {
     shape_hit h;

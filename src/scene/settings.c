@@ -47,6 +47,17 @@ glint_rc settings_check(const glint_settings *s, glint_error *err)
     if (s->transfer != GLINT_TRANSFER_NONE && s->transfer != GLINT_TRANSFER_SRGB)
         return err_set(err, GLINT_ERR_INPUT, "transfer must be none (%d) or srgb (%d) (got %d)",
                        GLINT_TRANSFER_NONE, GLINT_TRANSFER_SRGB, (int)s->transfer);
+    if ((unsigned)s->sampler > GLINT_SAMPLER_ADAPTIVE)
+        return err_set(err, GLINT_ERR_INPUT,
+                       "sampler must be grid (%d), jitter (%d) or adaptive (%d) (got %d)",
+                       GLINT_SAMPLER_GRID, GLINT_SAMPLER_JITTER, GLINT_SAMPLER_ADAPTIVE,
+                       (int)s->sampler);
+    if (!(s->threshold >= 0.0 && s->threshold <= 1.0))
+        return err_set(err, GLINT_ERR_INPUT, "adaptive threshold must be 0 to 1 (got %g)",
+                       s->threshold);
+    if (s->adaptive_depth < 0 || s->adaptive_depth > SETTINGS_MAX_ADAPTIVE_DEPTH)
+        return err_set(err, GLINT_ERR_INPUT, "adaptive max_depth must be 0 to %d (got %d)",
+                       SETTINGS_MAX_ADAPTIVE_DEPTH, s->adaptive_depth);
     if (!(s->adc_bailout >= 0.0 && s->adc_bailout <= 1.0))
         return err_set(err, GLINT_ERR_INPUT, "adc_bailout must be 0 (never prune) to 1 (got %g)",
                        s->adc_bailout);

@@ -12,6 +12,7 @@
 #define SETTINGS_MAX_SAMPLES 1024      /* 32 x 32 */
 #define SETTINGS_MAX_DEPTH 64
 #define SETTINGS_MAX_THREADS 1024
+#define SETTINGS_MAX_ADAPTIVE_DEPTH 5 /* 32 x 32 cells, as many as SETTINGS_MAX_SAMPLES */
 /* A scene's adaptive depth control threshold unless it says otherwise:
  * one step of an 8-bit pixel, POV-Ray's adc_bailout default. */
 #define SETTINGS_ADC_BAILOUT (1.0 / 255.0)

@@ -28,6 +28,7 @@ vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
     vec3 o = ray_offset(p, ng, lr->dir);
     ray sr = isinf(lr->dist) ? ray_make(o, lr->dir, INFINITY)
                              : ray_make(o, v3_sub(lr->pos, o), 1.0f);
+    sr.time = ctx->time;
     ctx->shadow_rays++;
     if (scene_occluded_opaque(s, &sr))
         return v3s(0.0f);

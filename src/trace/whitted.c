@@ -64,15 +64,24 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
         if (adc_keep(ctx, share, kr, kr + gt)) {
             vec3 rd = v3_reflect(sp.d, sp.n);
             ray rr = ray_make(ray_offset(sp.p, sp.ng, rd), rd, INFINITY);
+            rr.time = r->time;
             ctx->secondary_rays++;
             c = v3_madd(c, whitted_trace(ctx, &rr, depth + 1), kr);
         }
         if (kt > 0.0f && adc_keep(ctx, share, gt, kr + gt)) {
             ray tr = ray_make(ray_offset(sp.p, sp.ng, tdir), tdir, INFINITY);
+            tr.time = r->time;
             ctx->secondary_rays++;
             c = v3_add(c, v3_scale(v3_mul(whitted_trace(ctx, &tr, depth + 1), sp.m->tint), kt));
         }
         ctx->weight = share;
     }
     return shade_segment(s, r, hit.h.t, &sp, c);
+}
+
+vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage)
+{
+    scene_hit hit;
+    *coverage = scene_intersect(ctx->scene, r, &hit) ? 1.0f : 0.0f;
+    return whitted_trace(ctx, r, 0);
 }

@@ -27,6 +27,7 @@ typedef struct trace_ctx {
      * events since it began: each event draws its light samples from a hash
      * of the two, so they depend on the pixel and sample alone. */
     uint32_t sample, events;
+    float time; /* the camera ray's time, which every ray it leads to shares */
 } trace_ctx;
 
 /* Names the camera sample about to be traced by three numbers that
@@ -40,5 +41,9 @@ static inline void trace_begin_sample(trace_ctx *ctx, uint32_t x, uint32_t y, ui
 /* Radiance arriving along r; depth counts the bounces so far (0 for a
  * primary ray). */
 vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth);
+
+/* whitted_trace for a camera ray, also saying whether it hit something:
+ * *coverage 1 when it did, 0 when it saw the background. */
+vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage);
 
 #endif

@@ -1,0 +1,34 @@
+/* report: what rank 0 shows: the progress bar, the statistics of
+ * --stats with each rank's share, and the tile costs of --tile-costs. */
+#ifndef GLINT_DIST_REPORT_H
+#define GLINT_DIST_REPORT_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "job.h"
+
+/* A one-line bar on standard error when the job runs at a terminal, as
+ * glint's. */
+typedef struct dist_bar {
+    bool on;
+    int last_percent;
+    double start;
+} dist_bar;
+
+void dist_bar_begin(dist_bar *b, bool wanted);
+void dist_bar_update(dist_bar *b, int done, int total);
+void dist_bar_end(dist_bar *b);
+
+/* --stats: the image, rays, time and speed as glint prints them, then each
+ * rank's share (unit: "tiles" or "frames"), busy time and efficiency (busy
+ * time / time); images: how many the time covers. */
+void dist_print_stats(FILE *out, const dist_job *job, const dist_rank *ranks, double seconds,
+                      const char *unit, int images);
+
+/* --tile-costs FILE: one line per tile, "tile x0 y0 x1 y1 seconds rank",
+ * after a header of comments naming the image and the settings. */
+glint_rc dist_write_costs(const char *path, const dist_job *job, const double *costs,
+                          const int *owner, glint_error *err);
+
+#endif
