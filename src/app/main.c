@@ -441,7 +441,7 @@ int main(int argc, char **argv)
     if ((c.preview || c.preview_bench) && c.frames)
         return usage_error("--frames and --frame render to files; they do not go with -p or "
                            "--preview-bench");
-    if (c.preview || c.preview_bench)
-        return preview_main(&c);
-    return batch_main(&c);
+    code = c.preview || c.preview_bench ? preview_main(&c) : batch_main(&c);
+    free(kept_argv); /* c pointed into it */
+    return code;
 }
