@@ -28,6 +28,11 @@ CFLAGS   += -O2
 endif
 LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthread
 
+# The command line links SDL2 for its preview window (-p), a core option:
+# only src/app includes it, and the library does not depend on it.
+SDL_CFLAGS := $(shell pkg-config --cflags sdl2 2>/dev/null)
+SDL_LIBS   := $(or $(shell pkg-config --libs sdl2 2>/dev/null),-lSDL2)
+
 LIB_SRC  := $(shell find src -name '*.c' -not -path 'src/app/*' -not -path 'src/dist/*' | sort)
 APP_SRC  := $(wildcard src/app/*.c)
 TEST_SRC := $(wildcard tests/test_*.c)
@@ -137,8 +142,10 @@ $(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
 	$(CC) $(CFLAGS) $(LDFLAGS) -shared -Wl,-soname,libglint.so.$(SOVERSION) \
 		-Wl,--version-script=src/api/glint.map -Wl,--no-undefined -o $@ $(LIB_OBJ) $(LDLIBS)
 
+$(APP_OBJ): CPPFLAGS += $(SDL_CFLAGS)
+
 $(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(SDL_LIBS)
 
 $(BUILD)/glint-mpi: $(DIST_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)

@@ -140,6 +140,25 @@ GLINT_API glint_rc glint_scene_settings(const glint_scene *scene, glint_settings
 GLINT_API glint_rc glint_scene_set_settings(glint_scene *scene, const glint_settings *s,
                                             glint_error *err);
 
+/* What a scene holds, for reports such as glint --stats. */
+typedef struct glint_scene_info {
+    int objects, lights, materials, textures, meshes;
+    uint64_t triangles;   /* placed: a mesh's triangles once per object placing it,
+                             and each triangle object */
+    double build_seconds; /* wall time of the scene's last build (bounds, BVH) */
+} glint_scene_info;
+
+GLINT_API glint_rc glint_scene_describe(const glint_scene *scene, glint_scene_info *out,
+                                        glint_error *err);
+
+/* The files on disk a loaded scene was read from: the scene file, the files
+ * it includes, texture images and meshes, each once, as the loader opened
+ * them (relative to the working folder when the scene's path was). A
+ * watcher re-loads when one changes. None for the built-in scene. */
+GLINT_API int glint_scene_source_count(const glint_scene *scene);
+/* Source i (0 <= i < count), owned by the scene; NULL when out of range. */
+GLINT_API const char *glint_scene_source(const glint_scene *scene, int i);
+
 /* What a scene holds, so that a front end can say when something is
  * missing (no lights: only the ambient term shows; no objects: only the
  * background). Meshes count the files, objects their instances. */
@@ -477,6 +496,106 @@ GLINT_API glint_rc glint_render_tiles(const glint_scene *scene, const glint_sett
                                       const int *tiles, int ntiles,
                                       const glint_callbacks *callbacks, glint_film *film,
                                       glint_stats *stats, glint_error *err);
+
+/* ---- progressive rendering -------------------------------------------------
+ * An image rendered in passes that converge to exactly glint_render's film:
+ * a first pass of 1 sample per pixel, later passes adding the rest of each
+ * pixel's samples in the batch order. The accumulating film keeps, per
+ * pixel, the sum of the samples so far, counted per tile. */
+
+typedef struct glint_accum {
+    int width, height;
+    int ntiles;        /* the image's tile grid (glint_tile_count) */
+    int *tile_samples; /* per tile: samples per pixel summed so far */
+    float *sum;        /* width*height*3: per pixel, the sum of those samples */
+    float *cover;      /* width*height: per pixel, the sum of their coverage (alpha) */
+    int *tile_div;     /* per tile: what sum is divided by (tile_samples, or 1 once
+                          the adaptive sampler's final pass left exact values) */
+} glint_accum;
+
+/* An accumulating film of width x height with no sample in it. */
+GLINT_API glint_rc glint_accum_alloc(glint_accum *a, int width, int height, glint_error *err);
+/* Frees it and empties it; NULL is fine. */
+GLINT_API void glint_accum_free(glint_accum *a);
+/* Forgets every sample (after the camera or the scene changed). */
+GLINT_API void glint_accum_clear(glint_accum *a);
+
+/* Brings every tile of the accumulating film (of the settings' size) up to
+ * upto samples per pixel (1 to settings.samples), tracing only the samples
+ * each lacks. Tiles are handed out and reported as in glint_render
+ * (tile_done's film is NULL: resolve to see the pixels); a cancelled pass
+ * leaves every tile whole, either as it was or brought up to upto. */
+GLINT_API glint_rc glint_render_pass(const glint_scene *scene, const glint_settings *settings,
+                                     int upto, const glint_callbacks *callbacks, glint_accum *a,
+                                     glint_stats *stats, glint_error *err);
+/* Writes the mean of each pixel's samples into film (image-sized,
+ * allocated by the caller), for the pixels of rect (NULL: all); pixels of
+ * tiles with no sample are not touched. Once every tile has
+ * settings.samples, film is byte-identical to glint_render's. *min_samples
+ * (may be NULL) is the fewest samples per pixel of any tile. */
+GLINT_API glint_rc glint_accum_resolve(const glint_accum *a, const glint_rect *rect,
+                                       glint_film *film, int *min_samples, glint_error *err);
+
+/* The 8-bit RGB pixels glint_film_write puts in an 8-bit file, for the
+ * pixels of rect (NULL: all): dst holds film.width * film.height * 3 bytes,
+ * row 0 at the top, and only rect's are written. For showing a film. */
+GLINT_API glint_rc glint_film_quantize(const glint_film *film, const glint_rect *rect,
+                                       glint_transfer transfer, uint8_t *dst, glint_error *err);
+
+/* ---- resume files ----------------------------------------------------------
+ * An interrupted render kept on disk, to be finished later into the
+ * byte-identical image. The record is tile by tile (the grid of
+ * glint_tile_count): which tiles are final, and their pixels, with the
+ * settings and a fingerprint of the scene and settings so that a render of
+ * anything else refuses it. The format is described in src/render/resume.h;
+ * files are written atomically. */
+
+typedef struct glint_resume {
+    glint_settings settings; /* of the render (threads is kept but never compared) */
+    uint64_t fingerprint;    /* glint_fingerprint of the scene and settings */
+    int ntiles;              /* the image's tile count */
+    unsigned char *done;     /* ntiles flags: non-zero, tile i is final in film */
+    glint_film film;         /* image-sized; final tiles hold their pixels */
+    char *note;              /* the caller's bytes, kept verbatim (NUL-terminated; may be NULL) */
+    size_t note_len;
+} glint_resume;
+
+/* A 64-bit hash of everything in a built scene a pixel depends on (camera,
+ * shapes, transforms, materials, textures with their pixels, lights, meshes)
+ * and of the settings but the thread count. */
+GLINT_API glint_rc glint_fingerprint(const glint_scene *scene, const glint_settings *settings,
+                                     uint64_t *out, glint_error *err);
+
+/* A record with no tile final, for this scene and settings (NULL: the
+ * scene's). Free it with glint_resume_free. */
+GLINT_API glint_rc glint_resume_init(glint_resume *r, const glint_scene *scene,
+                                     const glint_settings *settings, glint_error *err);
+/* Frees what the record holds and empties it; NULL is fine. */
+GLINT_API void glint_resume_free(glint_resume *r);
+/* Replaces the note with a copy of len bytes (at most 1 MiB). */
+GLINT_API glint_rc glint_resume_set_note(glint_resume *r, const void *data, size_t len,
+                                         glint_error *err);
+/* Writes the record to path (atomically: the file is whole or not changed). */
+GLINT_API glint_rc glint_resume_write(const glint_resume *r, const char *path, glint_error *err);
+/* Reads a record written by glint_resume_write. A file that is not one, is
+ * cut short or damaged is GLINT_ERR_INPUT naming it. */
+GLINT_API glint_rc glint_resume_read(const char *path, glint_resume *out, glint_error *err);
+/* GLINT_OK when the record belongs to a render of this scene with these
+ * settings (NULL: the scene's); otherwise GLINT_ERR_INPUT naming the first
+ * difference (size, samples, depth, transfer, or the scene and camera). */
+GLINT_API glint_rc glint_resume_check(const glint_resume *r, const glint_scene *scene,
+                                      const glint_settings *settings, glint_error *err);
+/* Renders the tiles not yet final into r->film, marking each final as it
+ * is finished (before callbacks->tile_done sees it). Progress counts the
+ * whole image, tiles final before the call included. Checks the record
+ * first (glint_resume_check). On cancellation r holds exactly the tiles
+ * whose pixels are in its film, ready for glint_resume_write; when every
+ * tile is final, r->film is the image glint_render makes. */
+GLINT_API glint_rc glint_resume_render(const glint_scene *scene, const glint_settings *settings,
+                                       const glint_callbacks *callbacks, glint_resume *r,
+                                       glint_stats *stats, glint_error *err);
+/* Tiles final in the record. */
+GLINT_API int glint_resume_done(const glint_resume *r);
 
 /* Image file formats for glint_film_write. */
 typedef enum glint_format {

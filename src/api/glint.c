@@ -255,7 +255,7 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
             return err_nomem(err);
         }
     }
-    render_work w = {{0, 0, settings->width, settings->height}, NULL, 0, 0, 0};
+    render_work w = {.region = {0, 0, settings->width, settings->height}};
     rc = render_run(sc, settings, callbacks, &w, film, stats, err);
     if (rc != GLINT_OK)
         render_film_free(film);
@@ -277,7 +277,7 @@ glint_rc glint_render_region(const glint_scene *sc, const glint_settings *settin
     if (g->x0 < 0 || g->y0 < 0 || g->x1 > w || g->y1 > h || g->x0 >= g->x1 || g->y0 >= g->y1)
         return api_bad(err, fn, "region [%d, %d) x [%d, %d) is empty or not inside the %dx%d image",
                        g->x0, g->x1, g->y0, g->y1, w, h);
-    render_work work = {*g, NULL, 0, 0, 0};
+    render_work work = {.region = *g};
     if (film->width == g->x1 - g->x0 && film->height == g->y1 - g->y0) {
         work.film_x0 = g->x0;
         work.film_y0 = g->y0;
@@ -369,7 +369,7 @@ glint_rc glint_render_tiles(const glint_scene *sc, const glint_settings *setting
     rc = check_tiles(tiles, ntiles, render_tile_count(w, h), err);
     if (rc != GLINT_OK)
         return rc;
-    render_work work = {{0, 0, 0, 0}, tiles, ntiles, 0, 0};
+    render_work work = {.tiles = tiles, .ntiles = ntiles};
     glint_rect box = tiles_bounds(w, h, tiles, ntiles);
     if (ntiles > 0 && film->width == box.x1 - box.x0 && film->height == box.y1 - box.y0) {
         work.film_x0 = box.x0;

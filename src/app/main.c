@@ -16,7 +16,8 @@
 #include <unistd.h>
 
 #include "glint.h"
-#include "progress.h"
+#include "batch.h"
+#include "cli.h"
 
 static const char usage_head[] =
     "usage: glint [options] [SCENE.yaml | -]\n"
@@ -30,18 +31,9 @@ static const char usage_tail[] =
     "Options override the scene's image settings; the rest come from the scene.\n"
     "Exit status: 0 success; 1 the render or the output failed (out of memory,\n"
     "a write error); 2 bad usage or bad input: an option, the scene or a file it\n"
-    "names, an unreadable one included.\n";
+    "names, an unreadable one included.\n"
+    "130 or 143 after Ctrl-C or SIGTERM: the render so far is kept in OUTPUT.resume.\n";
 
-struct cli {
-    const char *output;
-    const char *scene_path;
-    int width, height, samples, depth, threads; /* -1: not given */
-    int transfer;
-    bool stats, quiet, resume;
-    const char *frames; /* --frames or --frame as given, or NULL: a single image */
-    bool one_frame;     /* it was --frame */
-    glint_write_options write; /* format, quality, bits from the command line */
-};
 
 __attribute__((format(printf, 1, 2))) static int usage_error(const char *fmt, ...)
 {
@@ -202,6 +194,34 @@ static int opt_quiet(struct cli *c, const char *arg)
     return -1;
 }
 
+static int opt_progress(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->progress = true;
+    return -1;
+}
+
+static int opt_preview(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->preview = true;
+    return -1;
+}
+
+static int opt_exit_when_done(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->exit_when_done = true;
+    return -1;
+}
+
+static int opt_preview_bench(struct cli *c, const char *arg)
+{
+    (void)arg;
+    c->preview_bench = true;
+    return -1;
+}
+
 static int opt_help(struct cli *c, const char *arg);
 
 static int opt_version(struct cli *c, const char *arg)
@@ -247,12 +267,23 @@ static const option_row options[] = {
      "name takes the number in a %d field (out-%04d.png),\n"
      "or gets -%04d before its extension"},
     {"frame", 0, "N", opt_frame, "render frame N only (named as with --frames)"},
+    {"preview", 'p', NULL, opt_preview,
+     "a live window with an interactive camera (H there lists\n"
+     "the keys); re-renders when the scene's files change"},
+    {"exit-when-done", 0, NULL, opt_exit_when_done,
+     "with -p: write the output and close once the image is final"},
+    {"preview-bench", 0, NULL, opt_preview_bench,
+     "time the preview along a scripted camera path (fps)"},
     {"resume", 0, NULL, opt_resume,
-     "skip frames (or an image) whose output file is already\n"
-     "a complete image of the right size"},
+     "continue an interrupted render from OUTPUT.resume;\n"
+     "with --frames, skip frames whose output is complete and\n"
+     "continue each frame that has its own .resume file;\n"
+     "'glint --resume OUT.resume' reruns its command line"},
     {"stats", 0, NULL, opt_stats,
-     "print rays, samples per pixel, time and Mrays/s to stderr"},
-    {"quiet", 'q', NULL, opt_quiet, "no progress bar"},
+     "print times, scene size, rays, Mrays/s and memory to stderr"},
+    {"progress", 0, NULL, opt_progress,
+     "progress lines on stderr even when it is not a terminal"},
+    {"quiet", 'q', NULL, opt_quiet, "no progress bar and no 'wrote' line"},
     {"help", 'h', NULL, opt_help, "show this help"},
     {"version", 'V', NULL, opt_version, "show the version"},
 };
@@ -346,8 +377,9 @@ static int option_error(int opt, char **argv)
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, struct cli *c)
 {
-    *c = (struct cli){"glint.png", NULL, -1, -1, -1, -1, -1, -1, false, false, false, NULL,
-                      false, {0}};
+    *c = (struct cli){.output = "glint.png", .width = -1, .height = -1, .samples = -1,
+                      .depth = -1, .threads = -1, .transfer = -1, .argc = argc, .argv = argv};
+    optind = 0; /* parsing may run twice: again for a resume file's arguments */
     char shorts[2 * NOPTIONS + 2];
     struct option longs[NOPTIONS + 1];
     option_tables(shorts, longs);
@@ -369,215 +401,47 @@ static int parse_args(int argc, char **argv, struct cli *c)
     return -1;
 }
 
-/* ---- the render ------------------------------------------------------------ */
+/* ---- running --------------------------------------------------------------- */
 
-/* The scene's settings with the command line's on top. */
-static glint_rc settings_for(const glint_scene *scene, const struct cli *c, glint_settings *s,
-                             glint_error *err)
+static char **kept_argv;
+
+/* 'glint --resume OUT.resume': the command line the file keeps, with
+ * --resume, run from the folder it was run in. Returns -1 to go on. */
+static int resume_command(struct cli *c)
 {
-    glint_rc rc = glint_scene_settings(scene, s, err);
-    if (rc != GLINT_OK)
-        return rc;
-    if (c->width > 0) {
-        s->width = c->width;
-        s->height = c->height;
-    }
-    if (c->samples > 0)
-        s->samples = c->samples;
-    if (c->depth >= 0)
-        s->max_depth = c->depth;
-    if (c->threads >= 0)
-        s->threads = c->threads;
-    if (c->transfer >= 0)
-        s->transfer = (glint_transfer)c->transfer;
-    return glint_settings_check(s, err);
-}
-
-/* One line on stderr for each thing the scene's files left to say (dropped
- * triangles, textures left out), and for a scene that will render but
- * probably not as meant: nothing in it, or nothing lighting it. */
-static void warn_about(const glint_scene *scene, const char *path)
-{
-    for (const char *w = glint_scene_warnings(scene); *w;) {
-        const char *end = strchr(w, '\n');
-        int len = end ? (int)(end - w) : (int)strlen(w);
-        fprintf(stderr, "glint: warning: %.*s\n", len, w);
-        w += len + (end != NULL);
-    }
-    glint_scene_counts n;
-    if (glint_scene_count(scene, &n, NULL) != GLINT_OK)
-        return;
-    const char *name = !path ? "the built-in scene" : strcmp(path, "-") == 0 ? "<stdin>" : path;
-    if (n.objects == 0)
-        fprintf(stderr, "glint: warning: %s has no objects: the image is the background\n",
-                name);
-    else if (n.lights == 0)
-        fprintf(stderr,
-                "glint: warning: %s has no lights: only ambient light shows (add a 'lights' "
-                "list)\n",
-                name);
-}
-
-static void on_progress(void *user, const glint_progress *p)
-{
-    progress_update(user, p->percent);
-}
-
-/* What a run adds up, for --stats. */
-typedef struct totals {
-    glint_stats stats;
-    int images;
-} totals;
-
-/* Renders the scene as it stands into path (unless --resume finds it
- * complete) and adds to the totals. */
-static glint_rc render_to(const struct cli *c, glint_scene *scene, const glint_settings *s,
-                          const char *path, progress *bar, totals *t, glint_error *err)
-{
-    if (c->resume && glint_output_complete(path, s->width, s->height))
-        return GLINT_OK;
-    glint_callbacks cb = {0};
-    if (bar) {
-        cb.progress = on_progress;
-        cb.user = bar;
-    }
-    glint_film film = {0};
-    glint_stats st = {0};
-    glint_rc rc = glint_render(scene, s, &cb, &film, &st, err);
-    glint_write_options w = c->write;
-    w.transfer = s->transfer;
-    if (rc == GLINT_OK)
-        rc = glint_film_write(&film, path, &w, err);
-    glint_film_free(&film);
-    t->stats.primary_rays += st.primary_rays;
-    t->stats.secondary_rays += st.secondary_rays;
-    t->stats.shadow_rays += st.shadow_rays;
-    t->stats.seconds += st.seconds;
-    t->images += rc == GLINT_OK;
-    return rc;
-}
-
-/* Frames first..last, each at its time, to its own file. Frames --resume
- * will skip are left out of the progress bar's count. */
-static glint_rc render_frames(const struct cli *c, glint_scene *scene, const glint_settings *s,
-                              int first, int last, progress *bar, totals *t, glint_error *err)
-{
-    char path[4096];
-    int todo = 0, k = 0;
-    for (int f = first; f <= last; f++) {
-        glint_rc rc = glint_frame_path(c->output, f, path, sizeof path, err);
-        if (rc != GLINT_OK)
-            return rc;
-        todo += !(c->resume && glint_output_complete(path, s->width, s->height));
-    }
-    for (int f = first; f <= last; f++) {
-        glint_rc rc = glint_frame_path(c->output, f, path, sizeof path, err);
-        if (rc != GLINT_OK)
-            return rc;
-        if (c->resume && glint_output_complete(path, s->width, s->height))
-            continue;
-        if (bar)
-            progress_frame(bar, ++k, todo);
-        rc = glint_scene_set_frame(scene, f, err);
-        if (rc == GLINT_OK)
-            rc = render_to(c, scene, s, path, bar, t, err);
-        if (rc != GLINT_OK)
-            return rc;
-    }
-    return GLINT_OK;
-}
-
-static void print_stats(const glint_settings *s, const totals *t)
-{
-    const glint_stats *st = &t->stats;
-    uint64_t total = st->primary_rays + st->secondary_rays + st->shadow_rays;
-    int threads = s->threads > 0 ? s->threads : glint_default_threads();
-    double pixels = (double)s->width * (double)s->height * (t->images > 0 ? t->images : 1);
-    char how[96];
-    if (s->sampler == GLINT_SAMPLER_ADAPTIVE)
-        snprintf(how, sizeof how, "adaptive sampling (threshold %g, max_depth %d)", s->threshold,
-                 s->adaptive_depth);
-    else
-        snprintf(how, sizeof how, "%d samples/pixel%s", s->samples,
-                 s->sampler == GLINT_SAMPLER_JITTER ? " (jittered)" : "");
-    fprintf(stderr,
-            "image:   %dx%d, %s, depth %d, %d thread%s%s\n"
-            "rays:    %llu (%llu primary, %llu secondary, %llu shadow)\n"
-            "samples: %.2f per pixel on average\n"
-            "time:    %.3f s\n"
-            "speed:   %.2f Mrays/s\n",
-            s->width, s->height, how, s->max_depth, threads, threads == 1 ? "" : "s",
-            t->images > 1 ? ", per frame" : "", (unsigned long long)total,
-            (unsigned long long)st->primary_rays, (unsigned long long)st->secondary_rays,
-            (unsigned long long)st->shadow_rays, (double)st->primary_rays / pixels, st->seconds,
-            st->seconds > 0 ? (double)total / st->seconds * 1e-6 : 0.0);
-    if (t->images > 1)
-        fprintf(stderr, "frames:  %d rendered\n", t->images);
-}
-
-/* The frames to render: *first and *last, or 0 and 0 for a single image. */
-static glint_rc frames_for(const struct cli *c, const glint_scene *scene, int *first, int *last,
-                           glint_error *err)
-{
-    *first = *last = 0;
-    if (!c->frames)
-        return GLINT_OK;
-    glint_animation anim;
-    glint_rc rc = glint_scene_animation(scene, &anim, err);
-    if (rc == GLINT_OK)
-        rc = glint_frames_parse(c->frames, anim.frames, first, last, err);
-    if (rc != GLINT_OK && rc != GLINT_ERR_NOMEM) {
-        char msg[900];
-        snprintf(msg, sizeof msg, "%.899s", err->msg);
-        snprintf(err->msg, sizeof err->msg, "--frame%s: %.900s", c->one_frame ? "" : "s", msg);
-    }
-    return rc;
-}
-
-/* Loads, renders and writes; returns the exit code. */
-static int run(struct cli *c)
-{
+    const char *p = c->scene_path;
+    size_t n = p ? strlen(p) : 0;
+    if (!c->resume || n < 7 || strcmp(p + n - 7, ".resume") != 0)
+        return -1;
     glint_error err = {0};
-    glint_scene *scene = NULL;
-    glint_settings s;
-    totals t = {{0}, 0};
-    char first_name[4096];
-    int first = 0, last = 0;
-    /* a bad output name (for a sequence: the first frame's) fails now, not
-     * after the render */
-    glint_rc rc = c->frames ? glint_frame_path(c->output, 1, first_name, sizeof first_name, &err)
-                            : GLINT_OK;
-    if (rc == GLINT_OK)
-        rc = glint_output_check(c->frames ? first_name : c->output, &c->write, &err);
-    if (rc == GLINT_OK)
-        rc = c->scene_path ? glint_scene_load(c->scene_path, &scene, &err)
-                           : glint_scene_builtin(&scene, &err);
-    if (rc == GLINT_OK)
-        rc = settings_for(scene, c, &s, &err);
-    if (rc == GLINT_OK)
-        rc = frames_for(c, scene, &first, &last, &err);
-    if (rc == GLINT_OK) {
-        warn_about(scene, c->scene_path);
-        progress bar;
-        bool show = !c->quiet && isatty(STDERR_FILENO);
-        if (show)
-            progress_begin(&bar, stderr);
-        rc = first > 0 ? render_frames(c, scene, &s, first, last, show ? &bar : NULL, &t, &err)
-                       : render_to(c, scene, &s, c->output, show ? &bar : NULL, &t, &err);
-        if (show)
-            progress_end(&bar);
-    }
-    if (rc == GLINT_OK && c->stats)
-        print_stats(&s, &t);
-    if (rc != GLINT_OK)
+    int argc;
+    char **argv;
+    if (batch_resume_args(p, &argc, &argv, &err) != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.msg);
-    glint_scene_free(scene);
-    return glint_exit_code(rc);
+        return glint_exit_code(err.code);
+    }
+    int code = parse_args(argc, argv, c);
+    c->resume = true;
+    if (code >= 0) {
+        free(argv);
+        return code;
+    }
+    kept_argv = argv; /* lives as long as the process: c points into it */
+    return -1;
 }
 
 int main(int argc, char **argv)
 {
     struct cli c;
     int code = parse_args(argc, argv, &c);
-    return code >= 0 ? code : run(&c);
+    if (code < 0)
+        code = resume_command(&c);
+    if (code >= 0)
+        return code;
+    if ((c.preview || c.preview_bench) && c.frames)
+        return usage_error("--frames and --frame render to files; they do not go with -p or "
+                           "--preview-bench");
+    code = c.preview || c.preview_bench ? preview_main(&c) : batch_main(&c);
+    free(kept_argv); /* c pointed into it */
+    return code;
 }

@@ -321,6 +321,11 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
         rc = err_nomem(err);
         goto out;
     }
+    if (L.reader == scene_read_file && scene_add_source(L.s, name) < 0) {
+        free(data);
+        rc = err_nomem(err);
+        goto out;
+    }
     L.settings = scene_settings(L.s);
     L.camera = scene_camera(L.s);
     L.background = scene_background(L.s);

@@ -135,7 +135,8 @@ static glint_rc load_mesh_file(loader *L, uint32_t v, const mesh_options *opts, 
             goto out;
         }
         close(probe);
-        rc = mesh_import(resolved, opts, &mf, &merr);
+        rc = scene_add_source(L->s, resolved) < 0 ? err_nomem(&merr)
+                                                  : mesh_import(resolved, opts, &mf, &merr);
     } else {
         size_t size;
         rc = load_named_file(L, v, written, resolved, "mesh", &data, &size);

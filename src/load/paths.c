@@ -119,6 +119,8 @@ glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char
 {
     glint_error rerr = {0};
     *data = NULL;
+    if (L->reader == scene_read_file && scene_add_source(L->s, resolved) < 0)
+        return err_nomem(L->err);
     glint_rc rc = L->reader(L->user, resolved, data, size, &rerr);
     if (rc == GLINT_OK && *size <= LOAD_MAX_FILE_BYTES)
         return GLINT_OK;

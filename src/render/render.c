@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/image.h"
+#include "render/progressive.h"
 #include "scene/settings.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -84,12 +85,9 @@ static glint_rect item_rect(const job *j, int i)
 
 /* Counts the finished tile and tells the front end, in one critical
  * section so that the counts each callback sees only grow. */
-static void tile_finished(job *j, worker_state *w, const worker_state *before, glint_rect r)
+static void tile_finished(job *j, worker_state *w, const worker_state *before, glint_rect r,
+                          uint64_t samples)
 {
-    uint64_t pixels = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
-    uint64_t samples = j->smp.kind == GLINT_SAMPLER_ADAPTIVE
-                           ? pixels
-                           : pixels * (uint64_t)sampler_count(&j->smp);
     pthread_mutex_lock(&j->lock);
     j->samples_done += samples;
     j->primary_rays += w->primary_rays - before->primary_rays;
@@ -132,7 +130,7 @@ static vec3 trace_sample(const job *j, worker_state *w, float x, float y, pixel_
     r.time = t;
     w->ctx.time = t;
     w->primary_rays++;
-    if (j->film->alpha)
+    if (j->film->alpha || (j->work->accum && j->settings->alpha))
         return whitted_camera(&w->ctx, &r, cover);
     return whitted_trace(&w->ctx, &r, 0);
 }
@@ -140,6 +138,14 @@ static vec3 trace_sample(const job *j, worker_state *w, float x, float y, pixel_
 static void put_pixel(const job *j, int x, int y, vec3 c, float cover)
 {
     const render_work *wk = j->work;
+    if (wk->accum) { /* the adaptive sampler's final progressive pass */
+        size_t i = (size_t)y * (size_t)wk->accum->width + (size_t)x;
+        wk->accum->sum[i * 3] = c.x;
+        wk->accum->sum[i * 3 + 1] = c.y;
+        wk->accum->sum[i * 3 + 2] = c.z;
+        wk->accum->cover[i] = cover;
+        return;
+    }
     size_t at = (size_t)(y - wk->film_y0) * (size_t)j->film->width + (size_t)(x - wk->film_x0);
     float *px = j->film->rgb + at * 3;
     px[0] = c.x;
@@ -147,6 +153,21 @@ static void put_pixel(const job *j, int x, int y, vec3 c, float cover)
     px[2] = c.z;
     if (j->film->alpha)
         j->film->alpha[at] = cover;
+}
+
+/* Adds samples k0 <= k < k1 of pixel (x, y) (grid or jitter) to *sum and
+ * their coverage to *cover, in the order of k: a sum built in several
+ * progressive passes is the same float as one built at once. */
+static void sample_range(const job *j, worker_state *w, int x, int y, int k0, int k1, vec3 *sum,
+                         float *cover)
+{
+    for (int k = k0; k < k1; k++) {
+        float c;
+        pixel_sample s = sampler_get(&j->smp, x, y, k);
+        const uint32_t id[3] = {(uint32_t)x, (uint32_t)y, (uint32_t)k};
+        *sum = v3_add(*sum, trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, id, &c));
+        *cover += c;
+    }
 }
 
 /* grid and jitter: every sample of each pixel, averaged. */
@@ -157,14 +178,8 @@ static void render_tile_fixed(job *j, worker_state *w, glint_rect r)
     for (int y = r.y0; y < r.y1; y++)
         for (int x = r.x0; x < r.x1; x++) {
             vec3 sum = v3s(0.0f);
-            float cover = 0.0f, c;
-            for (int k = 0; k < count; k++) {
-                pixel_sample s = sampler_get(&j->smp, x, y, k);
-                const uint32_t id[3] = {(uint32_t)x, (uint32_t)y, (uint32_t)k};
-                sum = v3_add(sum,
-                             trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, id, &c));
-                cover += c;
-            }
+            float cover = 0.0f;
+            sample_range(j, w, x, y, 0, count, &sum, &cover);
             put_pixel(j, x, y, v3_scale(sum, inv_count), cover * inv_count);
         }
 }
@@ -281,14 +296,72 @@ static void render_tile_adaptive(job *j, worker_state *w, glint_rect r)
         }
 }
 
-static void render_tile(job *j, worker_state *w, glint_rect r)
+/* The adaptive sampler's quick look: one sample at the pixel's centre, a
+ * point of its finest lattice. */
+static void centre_sample(const job *j, worker_state *w, int x, int y, vec3 *sum, float *cover)
+{
+    int n = j->lattice, h = n / 2;
+    const uint32_t id[3] = {(uint32_t)x * (uint32_t)n + (uint32_t)h,
+                            (uint32_t)y * (uint32_t)n + (uint32_t)h, 0x80000000u};
+    pixel_sample s = sampler_point(id[0], id[1], 0.5f, 0.5f);
+    *sum = trace_sample(j, w, (float)x + 0.5f, (float)y + 0.5f, s, id, cover);
+}
+
+/* A progressive pass over tile `item` (render_work.accum): grid and jitter
+ * add samples up to upto; the adaptive sampler cannot be split by sample
+ * index, so its passes are one sample at each pixel's corner point, then,
+ * at upto = settings.samples, the whole adaptive tile, kept exactly
+ * (tile_div 1), so the final image is the batch image. Returns the samples
+ * traced. */
+static uint64_t render_tile_pass(job *j, worker_state *w, int item, glint_rect r)
+{
+    glint_accum *a = j->work->accum;
+    int k0 = a->tile_samples[item], upto = j->work->upto;
+    if (k0 >= upto)
+        return 0;
+    uint64_t area = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+    bool adaptive = j->smp.kind == GLINT_SAMPLER_ADAPTIVE;
+    if (adaptive && upto >= j->settings->samples) {
+        render_tile_adaptive(j, w, r); /* put_pixel writes into the accumulator */
+        a->tile_samples[item] = upto;
+        a->tile_div[item] = 1;
+        return area;
+    }
+    for (int y = r.y0; y < r.y1; y++)
+        for (int x = r.x0; x < r.x1; x++) {
+            size_t at = (size_t)y * (size_t)a->width + (size_t)x;
+            float *px = a->sum + at * 3;
+            vec3 sum = v3(px[0], px[1], px[2]);
+            if (adaptive)
+                sum = v3s(0.0f), a->cover[at] = 0.0f;
+            if (adaptive)
+                centre_sample(j, w, x, y, &sum, &a->cover[at]);
+            else
+                sample_range(j, w, x, y, k0, upto, &sum, &a->cover[at]);
+            px[0] = sum.x;
+            px[1] = sum.y;
+            px[2] = sum.z;
+        }
+    a->tile_samples[item] = adaptive ? 1 : upto;
+    a->tile_div[item] = a->tile_samples[item];
+    return area * (uint64_t)(adaptive ? 1 : upto - k0);
+}
+
+static void render_tile(job *j, worker_state *w, int item, glint_rect r)
 {
     worker_state before = *w;
+    if (j->work->accum) {
+        tile_finished(j, w, &before, r, render_tile_pass(j, w, item, r));
+        return;
+    }
+    uint64_t pixels = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
     if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE)
         render_tile_adaptive(j, w, r);
     else
         render_tile_fixed(j, w, r);
-    tile_finished(j, w, &before, r);
+    tile_finished(j, w, &before, r,
+                  j->smp.kind == GLINT_SAMPLER_ADAPTIVE ? pixels
+                                                         : pixels * (uint64_t)sampler_count(&j->smp));
 }
 
 static void *worker(void *arg)
@@ -318,7 +391,7 @@ static void *worker(void *arg)
         int i = atomic_fetch_add(&j->next_item, 1);
         if (i >= j->items)
             break;
-        render_tile(j, &w, item_rect(j, i));
+        render_tile(j, &w, i, item_rect(j, i));
     }
     free(w.points);
     free(w.corners);
@@ -345,7 +418,7 @@ static void job_plan(job *j)
         j->items = j->tiles_x * ((g->y1 - 1) / RENDER_TILE + 1 - j->ty0);
         pixels = (uint64_t)(g->x1 - g->x0) * (uint64_t)(g->y1 - g->y0);
     }
-    j->samples_total = pixels * spp;
+    j->samples_total = w->accum ? progressive_samples_left(w->accum, w->upto) : pixels * spp;
 }
 
 /* Runs the job on settings.threads threads, the calling one included. */

@@ -8,6 +8,8 @@
 #define GLINT_RENDER_RENDER_H
 
 #include "glint.h"
+#include "scene/camera.h"
+#include "trace/whitted.h"
 
 #define RENDER_TILE 16
 
@@ -21,6 +23,9 @@ typedef struct render_work {
     const int *tiles;
     int ntiles;
     int film_x0, film_y0;
+    glint_accum *accum; /* non-NULL: a progressive pass over the whole image
+                           (region, no list) adding samples up to upto into it */
+    int upto;
 } render_work;
 
 /* The tile grid of a width x height image. */

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/array.h"
 #include "core/error.h"
@@ -49,6 +50,9 @@ void scene_free(scene *s)
         free(s->meshes[i]);
     }
     free(s->meshes);
+    for (int i = 0; i < s->nsources; i++)
+        free(s->sources[i]);
+    free(s->sources);
     anim_free(&s->anim);
     for (int i = 0; i < s->npolyhedra; i++) {
         polyhedron_free(s->polyhedra[i]);
@@ -75,6 +79,22 @@ int scene_add_material(scene *s, const material *m) { PUSH(s->materials, s->nmat
 int scene_add_texture(scene *s, const texture *t) { PUSH(s->textures, s->ntextures, s->cap_textures, *t); }
 int scene_add_light(scene *s, const light *l) { PUSH(s->lights, s->nlights, s->cap_lights, *l); }
 int scene_add_xform(scene *s, const xform *x) { PUSH(s->xforms, s->nxforms, s->cap_xforms, *x); }
+
+int scene_add_source(scene *s, const char *path)
+{
+    for (int i = 0; i < s->nsources; i++)
+        if (strcmp(s->sources[i], path) == 0)
+            return i;
+    char *copy = strdup(path);
+    if (!copy)
+        return -1;
+    int i = array_push((void **)&s->sources, &s->nsources, &s->cap_sources, sizeof *s->sources);
+    if (i < 0)
+        free(copy);
+    else
+        s->sources[i] = copy;
+    return i;
+}
 
 int scene_add_image(scene *s, image *img)
 {
@@ -264,7 +284,7 @@ static vec3 texture_origin(const shape *sh)
     return v3_scale(v3_add(b.lo, b.hi), 0.5f);
 }
 
-glint_rc scene_build(scene *s, glint_error *err)
+static glint_rc build(scene *s, glint_error *err)
 {
     glint_rc rc = check_shading(s, err);
     if (rc == GLINT_OK)
@@ -381,3 +401,14 @@ bool scene_add_warnings(scene *s, const char *lines)
 }
 
 const char *scene_warnings(const scene *s) { return s->warnings ? s->warnings : ""; }
+
+/* Times the build for --stats (glint_scene_describe). */
+glint_rc scene_build(scene *s, glint_error *err)
+{
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    glint_rc rc = build(s, err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    s->build_seconds = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    return rc;
+}

@@ -66,6 +66,9 @@ struct glint_scene {
     char *warnings; /* lines for the user from building the scene, or NULL */
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
+    double build_seconds; /* wall time of the last scene_build */
+    char **sources;       /* files the scene was read from, each once (front ends add them) */
+    int nsources, cap_sources;
 
     anim anim;             /* tracks, channels and motions; frames and fps */
     float time;            /* seconds: when the shutter opens (scene_set_time) */
@@ -122,6 +125,10 @@ int scene_material_count(const scene *s);
 int scene_texture_count(const scene *s);
 int scene_mesh_count(const scene *s);
 const struct mesh *scene_mesh(const scene *s, int index);
+
+/* Records a file the scene was read from (a scene file, an include, a
+ * texture, a mesh), once however often it is added; -1 when out of memory. */
+int scene_add_source(scene *s, const char *path);
 
 /* Checks indices and computes derived data; call after the last add. A
  * moving object's bounds hold it over the whole shutter interval. */

@@ -1,0 +1,72 @@
+#include "cli.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+double cli_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+void cli_warn(const glint_scene *scene, const char *path)
+{
+    /* one line for each thing the scene's files left to say (dropped
+     * triangles, textures left out) */
+    for (const char *w = glint_scene_warnings(scene); *w;) {
+        const char *end = strchr(w, '\n');
+        int len = end ? (int)(end - w) : (int)strlen(w);
+        fprintf(stderr, "glint: warning: %.*s\n", len, w);
+        w += len + (end != NULL);
+    }
+    glint_scene_counts n;
+    if (glint_scene_count(scene, &n, NULL) != GLINT_OK)
+        return;
+    const char *name = !path ? "the built-in scene" : strcmp(path, "-") == 0 ? "<stdin>" : path;
+    if (n.objects == 0)
+        fprintf(stderr, "glint: warning: %s has no objects: the image is the background\n",
+                name);
+    else if (n.lights == 0)
+        fprintf(stderr,
+                "glint: warning: %s has no lights: only ambient light shows (add a 'lights' "
+                "list)\n",
+                name);
+}
+
+glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
+                  double *load_seconds, glint_error *err)
+{
+    double t0 = cli_now();
+    *scene = NULL;
+    glint_rc rc = c->scene_path ? glint_scene_load(c->scene_path, scene, err)
+                                : glint_scene_builtin(scene, err);
+    if (rc == GLINT_OK)
+        rc = glint_scene_settings(*scene, s, err);
+    if (rc != GLINT_OK) {
+        glint_scene_free(*scene);
+        *scene = NULL;
+        return rc;
+    }
+    if (c->width > 0) {
+        s->width = c->width;
+        s->height = c->height;
+    }
+    if (c->samples > 0)
+        s->samples = c->samples;
+    if (c->depth >= 0)
+        s->max_depth = c->depth;
+    if (c->threads >= 0)
+        s->threads = c->threads;
+    if (c->transfer >= 0)
+        s->transfer = (glint_transfer)c->transfer;
+    rc = glint_settings_check(s, err);
+    if (rc != GLINT_OK) {
+        glint_scene_free(*scene);
+        *scene = NULL;
+    }
+    if (load_seconds)
+        *load_seconds = cli_now() - t0;
+    return rc;
+}

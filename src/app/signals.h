@@ -1,0 +1,16 @@
+/* signals: Ctrl-C (SIGINT) and SIGTERM while glint works. The first asks
+ * the work to stop: the render's cancel callback polls signals_caught, the
+ * render stops within one tile, and glint keeps what it has (a resume
+ * file) and exits with 128 + the signal (130, 143). A second one exits at
+ * once, with the same code. The flag is the one piece of process-wide state
+ * in glint, as a signal handler can reach nothing else. */
+#ifndef GLINT_APP_SIGNALS_H
+#define GLINT_APP_SIGNALS_H
+
+void signals_install(void);
+/* The signal caught since signals_install, or 0. */
+int signals_caught(void);
+/* 128 + sig: the shell's convention for a process ended by sig. */
+int signals_exit_code(int sig);
+
+#endif

@@ -1,0 +1,93 @@
+#include "fingerprint.h"
+
+#include <stdio.h>
+
+#include "scene.h"
+
+uint64_t fingerprint_bytes(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+static uint64_t hash_int(uint64_t h, int64_t v) { return fingerprint_bytes(h, &v, sizeof v); }
+static uint64_t hash_float(uint64_t h, float v) { return fingerprint_bytes(h, &v, sizeof v); }
+
+static uint64_t hash_vec(uint64_t h, vec3 v)
+{
+    return hash_float(hash_float(hash_float(h, v.x), v.y), v.z);
+}
+
+static uint64_t hash_settings(uint64_t h, const glint_settings *st)
+{
+    h = hash_int(h, st->width);
+    h = hash_int(h, st->height);
+    h = hash_int(h, st->samples);
+    h = hash_int(h, st->max_depth);
+    h = hash_int(h, (int64_t)st->transfer);
+    h = hash_int(h, (int64_t)st->sampler);
+    h = fingerprint_bytes(h, &st->threshold, sizeof st->threshold);
+    h = hash_int(h, st->adaptive_depth);
+    h = hash_int(h, st->alpha != 0);
+    return fingerprint_bytes(h, &st->adc_bailout, sizeof st->adc_bailout);
+}
+
+static uint64_t hash_data(uint64_t h, const scene *s)
+{
+    for (int i = 0; i < s->nimages; i++) {
+        const image *im = &s->images[i];
+        size_t n = (size_t)im->width * (size_t)im->height * 3;
+        h = hash_int(hash_int(h, im->width), im->height);
+        if (im->rgb)
+            h = fingerprint_bytes(h, im->rgb, n);
+        if (im->linear)
+            h = fingerprint_bytes(h, im->linear, n * sizeof *im->linear);
+    }
+    for (int i = 0; i < s->nmeshes; i++) {
+        const mesh *m = s->meshes[i];
+        size_t nv = (size_t)m->nverts, nt = (size_t)m->ntris;
+        h = hash_int(hash_int(h, m->nverts), m->ntris);
+        h = fingerprint_bytes(h, m->pos, nv * sizeof *m->pos);
+        h = fingerprint_bytes(h, m->tri, nt * sizeof *m->tri);
+    }
+    for (int i = 0; i < s->nxforms; i++)
+        h = fingerprint_bytes(h, s->xforms[i].fwd.m, sizeof s->xforms[i].fwd.m);
+    return h;
+}
+
+/* The bytes of each file the scene was read from, as they are now. */
+static uint64_t hash_sources(uint64_t h, const scene *s)
+{
+    for (int i = 0; i < s->nsources; i++) {
+        FILE *f = fopen(s->sources[i], "rb");
+        h = hash_int(h, f != NULL);
+        unsigned char buf[1 << 14];
+        for (size_t n; f && (n = fread(buf, 1, sizeof buf, f)) > 0;)
+            h = fingerprint_bytes(h, buf, n);
+        if (f)
+            fclose(f);
+    }
+    return h;
+}
+
+uint64_t scene_fingerprint(const scene *s, const glint_settings *settings)
+{
+    uint64_t h = fingerprint_bytes(FINGERPRINT_SEED, GLINT_VERSION, sizeof GLINT_VERSION);
+    h = hash_settings(h, settings);
+    const camera *c = &s->camera;
+    h = hash_float(hash_vec(hash_vec(hash_vec(h, c->eye), c->target), c->up), c->hfov);
+    /* the projection, the lens, the shutter and the frame's time */
+    h = hash_int(h, (int64_t)c->projection);
+    h = hash_float(hash_float(hash_float(h, c->aperture), c->focus_distance), c->width);
+    h = hash_float(hash_float(hash_float(h, c->shutter), s->time), s->shutter_seconds);
+    h = hash_vec(hash_vec(h, s->background), s->ambient);
+    const int counts[] = {s->nobjects, s->nlights, s->nmaterials, s->ntextures,
+                          s->nimages,  s->nmeshes, s->nxforms};
+    for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
+        h = hash_int(h, counts[i]);
+    return hash_sources(hash_data(h, s), s);
+}

@@ -1,0 +1,28 @@
+/* fingerprint: a 64-bit hash of a built scene and the settings of a render,
+ * for resume files (render/resume.h), which refuse to continue a render of
+ * anything else. It covers the settings but the thread count (which never
+ * changes a pixel), the camera, background and ambient light, the counts
+ * of everything in the scene, the pixels of its images, the vertices and
+ * triangles of its meshes, and the bytes of every file the scene was read
+ * from (scene, includes, textures, meshes), read again now. The renderer
+ * adds a small probe render of the scene (resume_fingerprint), which covers
+ * what a scene built in code holds in no file. Values are hashed field by
+ * field, never as structures, whose padding bytes are undefined. */
+#ifndef GLINT_SCENE_FINGERPRINT_H
+#define GLINT_SCENE_FINGERPRINT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "glint.h"
+
+struct glint_scene;
+
+/* FNV-1a, 64-bit (Fowler, Noll, Vo): good enough to tell renders apart,
+ * not meant to resist someone forging a collision. */
+#define FINGERPRINT_SEED 0xcbf29ce484222325ULL
+
+uint64_t fingerprint_bytes(uint64_t h, const void *data, size_t n);
+
+uint64_t scene_fingerprint(const struct glint_scene *s, const glint_settings *settings);
+
+#endif
