@@ -32,8 +32,7 @@
  * while another thread is inside assimp. The library's only shared state. */
 static pthread_mutex_t import_lock = PTHREAD_MUTEX_INITIALIZER;
 
-static void warn(mesh_file *f, const char *fmt, ...) GLINT_PRINTF(2, 3);
-static void warn(mesh_file *f, const char *fmt, ...)
+void mesh_file_warn(mesh_file *f, const char *fmt, ...)
 {
     size_t used = strlen(f->warnings);
     if (used + 2 >= sizeof f->warnings)
@@ -94,7 +93,7 @@ static void drop_warning(mesh_file *f, const char *name, const drops *d, int dro
                          uint32_t total, uint32_t bad_faces)
 {
     if (bad_faces > 0)
-        warn(f, "%s: %u faces with bad indices left out", name, bad_faces);
+        mesh_file_warn(f, "%s: %u faces with bad indices left out", name, bad_faces);
     if (dropped <= 0)
         return;
     char why[256] = "";
@@ -107,7 +106,7 @@ static void drop_warning(mesh_file *f, const char *name, const drops *d, int dro
     if (d->huge)
         snprintf(why + strlen(why), sizeof why - strlen(why),
                  ", %d too large for single precision (overflow)", d->huge);
-    warn(f, "%s: %d of %u triangles dropped (%s)", name, dropped, total, why + 2);
+    mesh_file_warn(f, "%s: %d of %u triangles dropped (%s)", name, dropped, total, why + 2);
 }
 
 static material to_material(const mesh_mat *mm)
@@ -190,7 +189,7 @@ glint_rc mesh_file_from_data(mesh_data *md, const char *name, mesh_file *out, gl
     out->mesh = m;
     drop_warning(out, name, &d, out->dropped, total, md->dropped);
     if (md->skinned)
-        warn(out, "%s: %u skinned mesh%s shown in the rest pose of the file's skeleton", name,
+        mesh_file_warn(out, "%s: %u skinned mesh%s shown in the rest pose of the file's skeleton", name,
              md->skinned, md->skinned == 1 ? "" : "es");
     out->textures = md->texs;
     out->ntextures = (int)md->ntexs;
@@ -257,7 +256,7 @@ static void check_count(mesh_file *out, const char *name, const void *data, size
         got = missing < faces ? faces - missing : 0;
     }
     if (got < faces)
-        warn(out, "%s: the header declares %llu faces but the file holds %llu (truncated file?)",
+        mesh_file_warn(out, "%s: the header declares %llu faces but the file holds %llu (truncated file?)",
              name, (unsigned long long)faces, (unsigned long long)got);
 }
 

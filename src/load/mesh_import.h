@@ -13,6 +13,7 @@
 #define GLINT_LOAD_MESH_IMPORT_H
 
 #include "glint.h"
+#include "core/error.h"
 #include "geom/mesh.h"
 #include "load/mesh_data.h"
 #include "shade/material.h"
@@ -52,6 +53,8 @@ glint_rc mesh_import_memory(const void *data, size_t size, const char *name,
  * triangles' materials to the scene's; the scene takes the mesh (f->mesh
  * becomes NULL). *index gets the mesh's place among the scene's meshes. */
 glint_rc mesh_file_add(struct glint_scene *s, mesh_file *f, int *index, glint_error *err);
+/* Adds one line to f->warnings (dropped when the buffer is full). */
+void mesh_file_warn(mesh_file *f, const char *fmt, ...) GLINT_PRINTF(2, 3);
 /* Frees what mesh_import returned and the caller did not take. */
 void mesh_file_free(mesh_file *f);
 

@@ -18,19 +18,6 @@
 #include "scene/scene.h"
 #include "shade/texture.h"
 
-static void note(mesh_file *f, const char *fmt, ...) GLINT_PRINTF(2, 3);
-static void note(mesh_file *f, const char *fmt, ...)
-{
-    size_t used = strlen(f->warnings);
-    if (used + 2 >= sizeof f->warnings)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(f->warnings + used, sizeof f->warnings - used - 1, fmt, ap);
-    va_end(ap);
-    strcat(f->warnings, "\n");
-}
-
 /* The file in dir whose name matches name but for case ("EarthCylindric.jpg"
  * written, "earthCylindric.jpg" on disk), or NULL. */
 static char *match_case(const char *dir, const char *name)
@@ -125,7 +112,7 @@ static glint_rc add_texture(scene *s, mesh_file *f, int i, int *tex, glint_error
     if (rc == GLINT_ERR_NOMEM)
         return err_nomem(err);
     if (rc != GLINT_OK) {
-        note(f, "%s: texture not used: %s", f->name, e.msg);
+        mesh_file_warn(f, "%s: texture not used: %s", f->name, e.msg);
         return GLINT_OK;
     }
     int im = scene_add_image(s, &img);
