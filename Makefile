@@ -75,6 +75,7 @@ check: $(BUILD)/glint $(MPI_BIN) $(BUILD)/tests scenes/textures/flag.png scenes/
 	scripts/check-layers
 	scripts/check-size
 	GLINT_BIN=$(BUILD)/glint GLINT_MPI_BIN=$(MPI_BIN) ASAN_OPTIONS=detect_leaks=1 \
+		LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp \
 		UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/tests --jobs 2
 ifeq ($(SAN),0)
 	@$(MAKE) --no-print-directory check-lib
