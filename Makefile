@@ -10,7 +10,7 @@
 BUILD    ?= build
 SAN      ?= 0
 CC       ?= cc
-PKGS     := yaml-0.1 stb assimp spng libjpeg libisal
+PKGS     := yaml-0.1 stb assimp spng libjpeg libdeflate
 # OpenEXR's C library alone (OpenEXRCore), not its C++ ones
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 EXR_LIBS   := $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore-3_1)

@@ -1,7 +1,7 @@
 /* output: PNG writing speed and size (bench/README.md, row 5). The image is
  * row 1's: the built-in scene at 1920x1080 with 2x2 samples, rendered once.
- * glint's encoder (src/io/png.c: float film to 8-bit, Up filter, ISA-L
- * deflate level 1) against libpng with its default settings (adaptive
+ * glint's encoder (src/io/png.c: float film to 8-bit, Up filter, libdeflate
+ * level 2) against libpng with its default settings (adaptive
  * filters, zlib level 6) on the same 8-bit pixels, both into memory on one
  * thread, alternating, median of --runs. glint's time includes turning the
  * float film into bytes; libpng's does not. Throughput is counted in raw
