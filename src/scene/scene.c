@@ -341,6 +341,34 @@ bool scene_occluded_opaque(const scene *s, const ray *r)
     return isa == ACCEL_SCALAR ? scene_occluded_scalar(s, r) : scene_occluded_sse(s, r);
 }
 
+bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
+{
+    accel_isa isa = s->bvh.isa;
+    bool blocked;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512)
+        blocked = scene_shadow_walk_avx512(s, r, out);
+    else if (isa == ACCEL_AVX2)
+        blocked = scene_shadow_walk_avx2(s, r, out);
+    else
+#endif
+        blocked = isa == ACCEL_SCALAR ? scene_shadow_walk_scalar(s, r, out)
+                                      : scene_shadow_walk_sse(s, r, out);
+    if (blocked)
+        return true;
+    /* few entries, mostly in order already: insertion sort */
+    for (int i = 1; i < out->n; i++) {
+        scene_hit h = out->hit[i];
+        int j = i;
+        for (; j > 0 && (out->hit[j - 1].h.t > h.h.t ||
+                         (out->hit[j - 1].h.t == h.h.t && out->hit[j - 1].object > h.object));
+             j--)
+            out->hit[j] = out->hit[j - 1];
+        out->hit[j] = h;
+    }
+    return false;
+}
+
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)
 {
     const object *o = &s->objects[hit->object];

@@ -163,6 +163,21 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 
+/* A shadow ray's crossings of transmitting objects, nearest first. */
+#define SCENE_SHADOW_MAX 64
+typedef struct scene_crossings {
+    int n;
+    scene_hit hit[SCENE_SHADOW_MAX];
+} scene_crossings;
+
+/* A shadow ray in one walk through the scene: true when an opaque object
+ * blocks r within (tmin, tmax), or when it crosses transmitting objects
+ * more than SCENE_SHADOW_MAX times (full shadow); otherwise out holds every
+ * place where r crosses a transmitting object's surface, by t (ties by
+ * object). After each crossing of an object the next is sought
+ * ray_epsilon beyond it (core/ray.h). */
+bool scene_shadow(const scene *s, const ray *r, scene_crossings *out);
+
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may
  * be left 0 where the hit's material does not use them (material_uses_uv). */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);

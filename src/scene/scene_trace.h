@@ -81,6 +81,47 @@ __attribute__((always_inline)) static inline bool scene_leaf_any(void *ctx, uint
     return false;
 }
 
+typedef struct scene_shadow_ctx {
+    const scene *s;
+    const ray *r;
+    float dlen;
+    scene_crossings *out;
+} scene_shadow_ctx;
+
+/* Object i against a shadow ray: true when it blocks it (an opaque object
+ * in the way, or more crossings than fit); a transmitting object adds its
+ * crossings to c->out. */
+__attribute__((always_inline)) static inline bool scene_shadow_object(scene_shadow_ctx *c, int i)
+{
+    const object *o = &c->s->objects[i];
+    ray lr = scene_object_ray(c->s, o, c->r);
+    if (!o->transmits)
+        return shape_occluded(&o->shape, &lr);
+    scene_crossings *out = c->out;
+    shape_hit h;
+    while (shape_intersect(&o->shape, &lr, &h)) {
+        if (out->n == SCENE_SHADOW_MAX)
+            return true;
+        out->hit[out->n++] = (scene_hit){h, i};
+        float next = h.t + ray_epsilon(ray_at(c->r, h.t)) / c->dlen;
+        lr.tmin = next > h.t ? next : nextafterf(h.t, INFINITY);
+    }
+    return false;
+}
+
+__attribute__((always_inline)) static inline bool scene_leaf_shadow(void *ctx, uint32_t first,
+                                                                    uint32_t count, float tmin,
+                                                                    float *tmax)
+{
+    (void)tmin, (void)tmax;
+    scene_shadow_ctx *c = ctx;
+    const int32_t *prims = c->s->bvh.prims + first;
+    for (uint32_t i = 0; i < count; i++)
+        if (scene_shadow_object(c, prims[i]))
+            return true;
+    return false;
+}
+
 /* Defines scene_intersect_<isa> and scene_occluded_<isa> for nodes of the
  * given width: unbounded objects first, then the BVH. */
 #define SCENE_KERNELS(isa, width)                                                              \
@@ -104,15 +145,30 @@ __attribute__((always_inline)) static inline bool scene_leaf_any(void *ctx, uint
         float tmax = r->tmax;                                                                  \
         return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true, scene_leaf_any, \
                              &c);                                                              \
+    }                                                                                          \
+    bool scene_shadow_walk_##isa(const scene *s, const ray *r, scene_crossings *out)           \
+    {                                                                                          \
+        scene_shadow_ctx c = {s, r, v3_len(r->d), out};                                        \
+        out->n = 0;                                                                            \
+        for (int i = 0; i < s->nunbounded; i++)                                                \
+            if (scene_shadow_object(&c, s->unbounded[i]))                                      \
+                return true;                                                                   \
+        float tmax = r->tmax;                                                                  \
+        return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true,                 \
+                             scene_leaf_shadow, &c);                                           \
     }
 
 bool scene_intersect_scalar(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_scalar(const scene *s, const ray *r);
+bool scene_shadow_walk_scalar(const scene *s, const ray *r, scene_crossings *out);
 bool scene_intersect_sse(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_sse(const scene *s, const ray *r);
+bool scene_shadow_walk_sse(const scene *s, const ray *r, scene_crossings *out);
 bool scene_intersect_avx2(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx2(const scene *s, const ray *r);
+bool scene_shadow_walk_avx2(const scene *s, const ray *r, scene_crossings *out);
 bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx512(const scene *s, const ray *r);
+bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out);
 
 #endif

@@ -4,9 +4,6 @@
 
 #include "core/hash.h"
 
-/* More crossings than this on one shadow ray count as full shadow. */
-#define SHADOW_MAX_CROSSINGS 64
-
 /* Beer-Lambert over the part of the shadow ray inside the object whose
  * surface it crosses at hit, if it leaves the object there: the segment
  * since the previous crossing at t_prev. */
@@ -30,28 +27,26 @@ vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
                              : ray_make(o, v3_sub(lr->pos, o), 1.0f);
     sr.time = ctx->time;
     ctx->shadow_rays++;
-    if (scene_occluded_opaque(s, &sr))
-        return v3s(0.0f);
     if (!s->any_transmit)
-        return v3s(1.0f);
-    /* Only transmitting surfaces remain between p and the light: walk
-     * through them in order, filtering at each crossing. */
+        return v3s(scene_occluded_opaque(s, &sr) ? 0.0f : 1.0f);
+    /* One walk finds an opaque blocker or every transmitting surface in the
+     * way; those filter the light in order along the ray. */
+    scene_crossings cross;
+    if (scene_shadow(s, &sr, &cross))
+        return v3s(0.0f);
     vec3 filter = v3s(1.0f);
-    scene_hit hit;
     float dlen = v3_len(sr.d), t_prev = 0.0f;
-    for (int i = 0; i < SHADOW_MAX_CROSSINGS; i++) {
-        if (!scene_intersect(s, &sr, &hit))
-            return filter;
-        const material *m = scene_hit_material(s, &hit);
+    for (int i = 0; i < cross.n; i++) {
+        const scene_hit *hit = &cross.hit[i];
+        const material *m = scene_hit_material(s, hit);
         filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
         if (material_absorbs(m))
-            filter = v3_mul(filter, shadow_absorb(s, &sr, &hit, m, t_prev, dlen));
+            filter = v3_mul(filter, shadow_absorb(s, &sr, hit, m, t_prev, dlen));
         if (v3_max_comp(filter) <= 0.0f)
             return filter;
-        t_prev = hit.h.t;
-        sr.tmin = hit.h.t + ray_epsilon(ray_at(&sr, hit.h.t)) / dlen;
+        t_prev = hit->h.t;
     }
-    return v3s(0.0f);
+    return filter;
 }
 
 /* One light sample's diffuse and specular share, shadowed. */
