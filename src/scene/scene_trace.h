@@ -12,7 +12,7 @@
 
 /* The ray in the object's own space; t values carry over unchanged because
  * the direction is transformed without renormalising. */
-static inline ray scene_object_ray(const scene *s, const object *o, const ray *r)
+__attribute__((always_inline)) static inline ray scene_object_ray(const scene *s, const object *o, const ray *r)
 {
     if (o->xform < 0)
         return *r;

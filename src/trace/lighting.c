@@ -73,7 +73,7 @@ static inline void add_sample(trace_ctx *ctx, const shade_point *sp, const light
 
 /* Every sample of light i (lighting.h: the jitter). */
 static inline void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint32_t event,
-                      vec3 *diffuse, vec3 *specular)
+                             vec3 *diffuse, vec3 *specular)
 {
     const light *l = &ctx->scene->lights[i];
     int ns = light_sample_count(l);
@@ -82,7 +82,7 @@ static inline void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint3
         add_sample(ctx, sp, &lr, diffuse, specular);
         return;
     }
-    uint32_t h = hash_add(event, (uint32_t)i);
+    uint32_t h = hash_add(hash_add(trace_sample_hash(ctx), event), (uint32_t)i);
     for (int k = 0; k < ns; k++) {
         uint32_t hk = hash_add(h, (uint32_t)k);
         light_ray lr = light_sample(l, sp->p, k, hash_unit(hk), hash_unit(hash_u32(hk)));
@@ -94,7 +94,7 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
 {
     const scene *s = ctx->scene;
     const material *m = sp->m;
-    uint32_t event = hash_add(ctx->sample, ctx->events++);
+    uint32_t event = ctx->events++;
     vec3 diffuse = v3_scale(s->ambient, m->ambient);
     vec3 specular = v3s(0.0f);
     for (int i = 0; i < s->nlights; i++)

@@ -25,8 +25,11 @@ typedef struct trace_ctx {
     float bailout, weight;
     /* The camera sample being traced (trace_begin_sample) and the shading
      * events since it began: each event draws its light samples from a hash
-     * of the two, so they depend on the pixel and sample alone. */
-    uint32_t sample, events;
+     * of the two, so they depend on the pixel and sample alone. The hash
+     * of the sample is worked out the first time a light needs it
+     * (trace_sample_hash): lights with one sample never do. */
+    uint32_t id[3], sample, events;
+    bool sample_hashed;
     float time; /* the camera ray's time, which every ray it leads to shares */
 } trace_ctx;
 
@@ -34,8 +37,20 @@ typedef struct trace_ctx {
  * identify it in the image (a pixel's x, y and the sample's index). */
 static inline void trace_begin_sample(trace_ctx *ctx, uint32_t x, uint32_t y, uint32_t index)
 {
-    ctx->sample = hash_add(hash_add(hash_u32(x), y), index);
+    ctx->id[0] = x;
+    ctx->id[1] = y;
+    ctx->id[2] = index;
+    ctx->sample_hashed = false;
     ctx->events = 0;
+}
+
+static inline uint32_t trace_sample_hash(trace_ctx *ctx)
+{
+    if (!ctx->sample_hashed) {
+        ctx->sample = hash_add(hash_add(hash_u32(ctx->id[0]), ctx->id[1]), ctx->id[2]);
+        ctx->sample_hashed = true;
+    }
+    return ctx->sample;
 }
 
 /* Radiance arriving along r; depth counts the bounces so far (0 for a
