@@ -30,7 +30,7 @@ export DISPLAY
 # waits until the log has N lines containing $2 (at most a minute)
 wait_log() {
     i=0
-    while [ "$(grep -c "$2" log 2>/dev/null)" -lt "$1" ] && [ $i -lt 600 ]; do
+    while n=$(grep -c "$2" log 2>/dev/null); [ "${n:-0}" -lt "$1" ] && [ $i -lt 600 ]; do
         sleep 0.1
         i=$((i + 1))
     done

@@ -1,6 +1,7 @@
 #define _GNU_SOURCE /* sched_getaffinity */
 #include "bvh.h"
 
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <sched.h>
@@ -10,6 +11,10 @@
 #include <unistd.h>
 
 #include "core/error.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #define BINS 32
 #define MAX_LEAF 4
@@ -95,9 +100,71 @@ static float leaf_cost(const build *b, int n)
     return COST_INTERSECT * (float)((n + b->block - 1) / b->block);
 }
 
+/* Boxes as the binning loops use them: with SSE, lo and hi in one
+ * register each (the fourth lane unused), so that a union is two
+ * instructions. Both forms give the same values. */
+#if defined(__SSE2__)
+typedef struct box4 {
+    __m128 lo, hi;
+} box4;
+
+static inline box4 box4_empty(void) { return (box4){_mm_set1_ps(FLT_MAX), _mm_set1_ps(-FLT_MAX)}; }
+
+/* aabb is six floats: lo.x lo.y lo.z hi.x hi.y hi.z; the two loads stay
+ * inside it. */
+static inline box4 box4_load(const aabb *b)
+{
+    __m128 hi = _mm_loadu_ps(&b->lo.z); /* lo.z hi.x hi.y hi.z */
+    return (box4){_mm_loadu_ps(&b->lo.x), _mm_shuffle_ps(hi, hi, _MM_SHUFFLE(3, 3, 2, 1))};
+}
+
+/* A centre (a vec3 in an array padded by one float) as a point box. */
+static inline __m128 point4_load(const vec3 *c) { return _mm_loadu_ps(&c->x); }
+
+static inline box4 box4_union(box4 a, box4 b)
+{
+    return (box4){_mm_min_ps(a.lo, b.lo), _mm_max_ps(a.hi, b.hi)};
+}
+
+static inline box4 box4_grow(box4 a, __m128 p) { return (box4){_mm_min_ps(a.lo, p), _mm_max_ps(a.hi, p)}; }
+
+static inline aabb box4_aabb(box4 b)
+{
+    float l[4], h[4];
+    _mm_storeu_ps(l, b.lo);
+    _mm_storeu_ps(h, b.hi);
+    return (aabb){{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+}
+
+/* Bin k on each axis of centre c: (c - cmin) * scale, truncated, in
+ * [0, nbins - 1]; NaN (a zero extent's 0 * inf) goes to 0. */
+static inline void bin_of(__m128 c, __m128 cmin, __m128 scale, __m128 top, int k[4])
+{
+    __m128 f = _mm_mul_ps(_mm_sub_ps(c, cmin), scale);
+    f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top); /* max_ps gives 0 for NaN */
+    _mm_storeu_si128((__m128i *)k, _mm_cvttps_epi32(f));
+}
+#else
+typedef aabb box4;
+static inline box4 box4_empty(void) { return aabb_empty(); }
+static inline box4 box4_load(const aabb *b) { return *b; }
+static inline vec3 point4_load(const vec3 *c) { return *c; }
+static inline box4 box4_union(box4 a, box4 b) { return aabb_union(a, b); }
+static inline box4 box4_grow(box4 a, vec3 p) { return aabb_grow(a, p); }
+static inline aabb box4_aabb(box4 b) { return b; }
+static inline void bin_of(vec3 c, vec3 cmin, vec3 scale, vec3 top, int k[4])
+{
+    for (int a = 0; a < 3; a++) {
+        float f = (v3_at(c, a) - v3_at(cmin, a)) * v3_at(scale, a);
+        k[a] = f >= v3_at(top, a) ? (int)v3_at(top, a) : f > 0.0f ? (int)f : 0;
+    }
+}
+#endif
+
 /* Primitive counts and bounds per bin, on each of the three axes. */
 typedef struct bins {
-    aabb box[3][BINS];
+    int nbins;
+    box4 box[3][BINS];
     int n[3][BINS];
 } bins;
 
@@ -105,22 +172,27 @@ typedef struct bins {
  * holds the centres in [cmin + k / scale, cmin + (k + 1) / scale)). */
 static void bin_prims(const build *b, int lo, int hi, vec3 cmin, const float scale[3], bins *out)
 {
+    int nb = out->nbins;
     for (int a = 0; a < 3; a++)
-        for (int k = 0; k < BINS; k++) {
-            out->box[a][k] = aabb_empty();
+        for (int k = 0; k < nb; k++) {
+            out->box[a][k] = box4_empty();
             out->n[a][k] = 0;
         }
+    float top = (float)(nb - 1);
+#if defined(__SSE2__)
+    __m128 cmin4 = _mm_setr_ps(cmin.x, cmin.y, cmin.z, 0.0f);
+    __m128 scale4 = _mm_setr_ps(scale[0], scale[1], scale[2], 0.0f), top4 = _mm_set1_ps(top);
+#else
+    vec3 cmin4 = cmin, scale4 = v3(scale[0], scale[1], scale[2]), top4 = v3s(top);
+#endif
     for (int i = lo; i < hi; i++) {
         int32_t p = b->prims[i];
-        vec3 c = b->centers[p];
-        aabb box = b->boxes[p];
+        int k[4];
+        bin_of(point4_load(&b->centers[p]), cmin4, scale4, top4, k);
+        box4 box = box4_load(&b->boxes[p]);
         for (int a = 0; a < 3; a++) {
-            /* compared as a float first: with an extent near the smallest
-             * normal float, scale is infinite and so may be the product */
-            float f = (v3_at(c, a) - v3_at(cmin, a)) * scale[a];
-            int k = f >= (float)BINS ? BINS - 1 : f > 0.0f ? (int)f : 0;
-            out->n[a][k]++;
-            out->box[a][k] = aabb_union(out->box[a][k], box);
+            out->n[a][k[a]]++;
+            out->box[a][k[a]] = box4_union(out->box[a][k[a]], box);
         }
     }
 }
@@ -130,24 +202,26 @@ static void bin_prims(const build *b, int lo, int hi, vec3 cmin, const float sca
 static void sweep_axis(const build *b, const bins *bn, int a, float area, float cmin, float scale,
                        float *best, int *axis, float *plane)
 {
+    int nb = bn->nbins;
     float right_area[BINS];
     int right_n[BINS];
-    aabb acc = aabb_empty();
+    box4 acc = box4_empty();
     int cnt = 0;
-    for (int i = BINS - 1; i > 0; i--) {
-        acc = aabb_union(acc, bn->box[a][i]);
+    for (int i = nb - 1; i > 0; i--) {
+        acc = box4_union(acc, bn->box[a][i]);
         cnt += bn->n[a][i];
-        right_area[i] = aabb_area(acc);
+        right_area[i] = aabb_area(box4_aabb(acc));
         right_n[i] = cnt;
     }
-    acc = aabb_empty();
+    acc = box4_empty();
     cnt = 0;
-    for (int i = 1; i < BINS; i++) {
-        acc = aabb_union(acc, bn->box[a][i - 1]);
+    for (int i = 1; i < nb; i++) {
+        acc = box4_union(acc, bn->box[a][i - 1]);
         cnt += bn->n[a][i - 1];
         if (cnt == 0 || right_n[i] == 0)
             continue;
-        float cost = aabb_area(acc) * leaf_cost(b, cnt) + right_area[i] * leaf_cost(b, right_n[i]);
+        float cost = aabb_area(box4_aabb(acc)) * leaf_cost(b, cnt) +
+                     right_area[i] * leaf_cost(b, right_n[i]);
         cost = area > 0.0f ? COST_TRAVERSE + cost / area : INFINITY;
         if (cost < *best) {
             *best = cost;
@@ -159,15 +233,19 @@ static void sweep_axis(const build *b, const bins *bn, int a, float area, float 
 
 /* The best binned SAH split of [lo, hi) over all three axes: sets *axis
  * and *plane (a centre coordinate) and returns its cost relative to the
- * parent's area, or INFINITY when no plane separates the centres. */
+ * parent's area, or INFINITY when no plane separates the centres. A node
+ * of n < BINS primitives gets max(n, 8) bins: more would mostly stay
+ * empty, and sweeping them costs more than binning the primitives. */
 static float best_split(const build *b, int lo, int hi, aabb box, aabb cbox, int *axis,
                         float *plane)
 {
     float best = INFINITY, scale[3];
+    bins bn;
+    int n = hi - lo;
+    bn.nbins = n >= BINS ? BINS : n > 8 ? n : 8;
     vec3 ext = aabb_extent(cbox);
     for (int a = 0; a < 3; a++)
-        scale[a] = v3_at(ext, a) > 0.0f ? (float)BINS / v3_at(ext, a) : 0.0f;
-    bins bn;
+        scale[a] = v3_at(ext, a) > 0.0f ? (float)bn.nbins / v3_at(ext, a) : 0.0f;
     bin_prims(b, lo, hi, cbox.lo, scale, &bn);
     for (int a = 0; a < 3; a++)
         if (v3_at(ext, a) > 0.0f)
@@ -240,11 +318,13 @@ static int build_node(build *b, int lo, int hi, int depth)
     int self = new_node(b);
     if (self < 0)
         return -1;
-    aabb box = aabb_empty(), cbox = aabb_empty();
+    box4 bx = box4_empty(), cbx = box4_empty();
     for (int i = lo; i < hi; i++) {
-        box = aabb_union(box, b->boxes[b->prims[i]]);
-        cbox = aabb_grow(cbox, b->centers[b->prims[i]]);
+        int32_t p = b->prims[i];
+        bx = box4_union(bx, box4_load(&b->boxes[p]));
+        cbx = box4_grow(cbx, point4_load(&b->centers[p]));
     }
+    aabb box = box4_aabb(bx), cbox = box4_aabb(cbx);
     int n = hi - lo, mid;
     b->nodes[self].box = box;
     /* The median fallback splits along the axis of largest centre extent. */
@@ -325,7 +405,7 @@ glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cp
     if (n <= 0)
         return GLINT_OK;
     build b = {boxes, block > 0 ? block : 1, NULL, NULL, NULL, 0, 0, spawn_depth(cpus)};
-    b.centers = malloc(sizeof *b.centers * (size_t)n);
+    b.centers = malloc(sizeof *b.centers * (size_t)n + sizeof(float)); /* point4_load reads 4 */
     b.prims = malloc(sizeof *b.prims * (size_t)n);
     b.cap = 2 * (n / MAX_LEAF + 1) + 1;
     b.nodes = malloc(sizeof *b.nodes * (size_t)b.cap);
