@@ -2,14 +2,6 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
-
-double cli_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
 
 void cli_warn(const glint_scene *scene, const char *path)
 {
