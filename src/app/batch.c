@@ -144,18 +144,6 @@ static void add_stats(glint_stats *to, const glint_stats *st)
     to->seconds += st->seconds;
 }
 
-/* --resume and path already a complete image, with no resume file beside
- * it: nothing is left to render. */
-static bool done_before(const run *r, const char *path)
-{
-    if (!r->c->resume || strcmp(path, "-") == 0)
-        return false;
-    char *rpath = rerun_path(path);
-    bool kept = !rpath || access(rpath, F_OK) == 0;
-    free(rpath);
-    return !kept && glint_output_complete(path, r->s.width, r->s.height);
-}
-
 /* Renders the scene as it stands into path through a resume record:
  * continued from path.resume with --resume, kept there when interrupted.
  * Returns the exit code. */
@@ -205,7 +193,7 @@ static int render_frames(run *r, int first, int last)
     for (int pass = 0; pass < 2; pass++) {
         for (int f = first; f <= last; f++) {
             glint_rc rc = glint_frame_path(r->c->output, f, path, sizeof path, &err);
-            if (rc == GLINT_OK && done_before(r, path))
+            if (rc == GLINT_OK && rerun_done(r->c, path, &r->s))
                 continue;
             if (rc == GLINT_OK && pass == 0) {
                 todo++;
@@ -269,7 +257,7 @@ int batch_main(const struct cli *c)
     progress_begin(&r.w.bar, stderr, progress_choose(c->quiet, c->progress, isatty(STDERR_FILENO)),
                    "glint");
     int code = first > 0 ? render_frames(&r, first, last)
-               : done_before(&r, c->output) ? 0 : render_one(&r, c->output);
+               : rerun_done(c, c->output, &r.s) ? 0 : render_one(&r, c->output);
     if (code == 0 && c->stats)
         print_stats(&r);
     glint_scene_free(r.scene);

@@ -41,18 +41,7 @@ glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
         *scene = NULL;
         return rc;
     }
-    if (c->width > 0) {
-        s->width = c->width;
-        s->height = c->height;
-    }
-    if (c->samples > 0)
-        s->samples = c->samples;
-    if (c->depth >= 0)
-        s->max_depth = c->depth;
-    if (c->threads >= 0)
-        s->threads = c->threads;
-    if (c->transfer >= 0)
-        s->transfer = (glint_transfer)c->transfer;
+    cli_settings(c, s);
     rc = glint_settings_check(s, err);
     if (rc != GLINT_OK) {
         glint_scene_free(*scene);

@@ -47,6 +47,9 @@ struct cli {
  * written), 2 after a bad option, with its message on stderr. */
 int cli_parse(const cli_program *p, int argc, char **argv, struct cli *c);
 
+/* The options that override a scene's settings, applied to s. */
+void cli_settings(const struct cli *c, glint_settings *s);
+
 /* Prints "name: message (try 'name --help')" when the program speaks;
  * returns 2, the exit code of bad usage. */
 __attribute__((format(printf, 2, 3))) int cli_usage_error(const cli_program *p, const char *fmt,

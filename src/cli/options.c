@@ -437,3 +437,19 @@ int cli_parse(const cli_program *p, int argc, char **argv, struct cli *c)
                                argv[optind]);
     return -1;
 }
+
+void cli_settings(const struct cli *c, glint_settings *s)
+{
+    if (c->width > 0) {
+        s->width = c->width;
+        s->height = c->height;
+    }
+    if (c->samples > 0)
+        s->samples = c->samples;
+    if (c->depth >= 0)
+        s->max_depth = c->depth;
+    if (c->threads >= 0)
+        s->threads = c->threads;
+    if (c->transfer >= 0)
+        s->transfer = (glint_transfer)c->transfer;
+}

@@ -166,3 +166,13 @@ int rerun_keep(const struct cli *c, const glint_resume *rec, const char *rpath, 
                 name, (int)rerun_percent(rec), rpath, name, rpath);
     return code;
 }
+
+bool rerun_done(const struct cli *c, const char *path, const glint_settings *s)
+{
+    if (!c->resume || strcmp(path, "-") == 0)
+        return false;
+    char *rpath = rerun_path(path);
+    bool kept = !rpath || access(rpath, F_OK) == 0;
+    free(rpath);
+    return !kept && glint_output_complete(path, s->width, s->height);
+}

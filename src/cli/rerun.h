@@ -14,6 +14,10 @@
 /* OUTPUT.resume, malloc'd; NULL for standard output ("-"). */
 char *rerun_path(const char *output);
 
+/* --resume and path already a complete image of s's size, with no resume
+ * file beside it: nothing is left to render. */
+bool rerun_done(const struct cli *c, const char *path, const glint_settings *s);
+
 /* Keeps c's working folder and arguments in r's note. */
 glint_rc rerun_note_set(glint_resume *r, const struct cli *c, glint_error *err);
 
