@@ -377,3 +377,21 @@ Test(mpi, a_bad_option_is_reported_once_with_status_2)
                           "2\nglint-mpi: -p: the preview window is glint's; glint-mpi renders to "
                           "files (try 'glint-mpi --help')\n");
 }
+
+/* Frames behave as glint's: a frame stopped part of the way keeps its own
+ * resume file (here glint's: the format is one), which --resume continues
+ * and then removes, and the sequence is glint's. */
+Test(mpi, a_frames_resume_file_is_continued)
+{
+    need_mpi();
+    char out[8192], script[2048];
+    snprintf(script, sizeof script,
+             "S='%s/scenes/orbit.yaml' && O='-q -t 1 -r 48x36 -s 4' && "
+             "$GLINT $O \"$S\" --frames 1:4 -o g-%%d.png && "
+             "{ GLINT_TEST_SIGNALS=15@2 $GLINT $O \"$S\" --frames 1:4 -o f-%%d.png 2>/dev/null; true; } && "
+             "ls f-* && run 2 $MPI $O \"$S\" --frames 1:4 -o f-%%d.png --resume && "
+             "for i in 1 2 3 4; do cmp g-$i.png f-$i.png || echo frame $i differs; done; ls f-*",
+             GLINT_SOURCE_DIR);
+    cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "f-1.png.resume\nf-1.png\nf-2.png\nf-3.png\nf-4.png\n");
+}

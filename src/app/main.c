@@ -33,28 +33,13 @@ static int resume_command(struct cli *c)
 {
     if (!rerun_wanted(c))
         return -1;
-    const char *p = c->scene_path;
     glint_error err = {0};
     char *note = NULL;
     size_t len = 0;
-    int argc;
-    char **argv;
-    glint_rc rc = rerun_note_read(p, &note, &len, &err);
-    if (rc == GLINT_OK)
-        rc = rerun_args(p, note, len, &argc, &argv, &err);
+    glint_rc rc = rerun_note_read(c->scene_path, &note, &len, &err);
+    int code = rerun_parse(&glint_program, c, rc, note, len, &err, &kept_argv);
     free(note);
-    if (rc != GLINT_OK) {
-        fprintf(stderr, "glint: %s\n", err.msg);
-        return glint_exit_code(err.code);
-    }
-    int code = cli_parse(&glint_program, argc, argv, c);
-    c->resume = true;
-    if (code >= 0) {
-        free(argv);
-        return code;
-    }
-    kept_argv = argv; /* lives as long as the process: c points into it */
-    return -1;
+    return code;
 }
 
 int main(int argc, char **argv)

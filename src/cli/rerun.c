@@ -176,3 +176,25 @@ bool rerun_done(const struct cli *c, const char *path, const glint_settings *s)
     free(rpath);
     return !kept && glint_output_complete(path, s->width, s->height);
 }
+
+int rerun_parse(const cli_program *p, struct cli *c, glint_rc rc, const char *note, size_t len,
+                glint_error *err, char ***kept)
+{
+    int argc;
+    char **argv;
+    if (rc == GLINT_OK)
+        rc = rerun_args(c->scene_path, note, len, &argc, &argv, err);
+    if (rc != GLINT_OK) {
+        if (p->speak)
+            fprintf(stderr, "%s: %s\n", p->name, err->msg);
+        return glint_exit_code(rc);
+    }
+    int code = cli_parse(p, argc, argv, c);
+    c->resume = true;
+    if (code >= 0) {
+        free(argv);
+        return code;
+    }
+    *kept = argv; /* c points into it */
+    return -1;
+}

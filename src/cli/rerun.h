@@ -34,6 +34,14 @@ glint_rc rerun_note_read(const char *path, char **note, size_t *len, glint_error
 glint_rc rerun_args(const char *path, const char *note, size_t len, int *argc, char ***argv,
                     glint_error *err);
 
+/* 'PROGRAM --resume OUT.resume' (c->scene_path): parses the command line
+ * in the note read from it (rc: how the reading went, err its message)
+ * into c, with --resume. Returns -1 to go on, *kept then holding the
+ * arguments c points into (free it at the end), else the exit code, the
+ * message printed when the program speaks. */
+int rerun_parse(const cli_program *p, struct cli *c, glint_rc rc, const char *note, size_t len,
+                glint_error *err, char ***kept);
+
 /* The record a render of scene with settings s goes into: with --resume
  * and rpath there, read from it and checked against them (*resumed set),
  * else fresh; either way with c's command line in its note. */

@@ -43,29 +43,13 @@ static glint_rc share_note(const char *path, int rank, char **note, size_t *len,
  * --resume. Returns -1 to go on. */
 static int rerun(const cli_program *p, int rank, struct cli *c, char ***kept)
 {
-    const char *path = c->scene_path;
     glint_error err = {0};
     char *note = NULL;
     size_t len = 0;
-    int argc;
-    char **argv;
-    glint_rc rc = share_note(path, rank, &note, &len, &err);
-    if (rc == GLINT_OK)
-        rc = rerun_args(path, note, len, &argc, &argv, &err);
+    glint_rc rc = share_note(c->scene_path, rank, &note, &len, &err);
+    int code = rerun_parse(p, c, rc, note, len, &err, kept);
     free(note);
-    if (rc != GLINT_OK) {
-        if (p->speak)
-            fprintf(stderr, "glint-mpi: %s\n", err.msg);
-        return glint_exit_code(rc);
-    }
-    int code = cli_parse(p, argc, argv, c);
-    c->resume = true;
-    if (code >= 0) {
-        free(argv);
-        return code;
-    }
-    *kept = argv; /* c points into it */
-    return -1;
+    return code;
 }
 
 int dist_parse_options(int argc, char **argv, int rank, struct cli *c, char ***kept)
