@@ -2,7 +2,8 @@
 #
 # Variants build into their own folder: build/ (optimised) and build/asan/
 # (AddressSanitizer + UBSan, used by `make test`). Every .c under src/ goes
-# into the library except src/app (the command line) and src/dist: the
+# into the library except the command lines: src/app (glint), src/dist
+# (glint-mpi) and src/cli (what both take from the command line): the
 # static libglint.a and the shared libglint.so, which exports only the
 # glint_* functions of include/glint.h (hidden visibility by default, and
 # the export list in src/api/glint.map).
@@ -33,8 +34,11 @@ LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthr
 SDL_CFLAGS := $(shell pkg-config --cflags sdl2 2>/dev/null)
 SDL_LIBS   := $(or $(shell pkg-config --libs sdl2 2>/dev/null),-lSDL2)
 
-LIB_SRC  := $(shell find src -name '*.c' -not -path 'src/app/*' -not -path 'src/dist/*' | sort)
+LIB_SRC  := $(shell find src -name '*.c' -not -path 'src/app/*' -not -path 'src/dist/*' \
+              -not -path 'src/cli/*' | sort)
 APP_SRC  := $(wildcard src/app/*.c)
+CLI_SRC  := $(wildcard src/cli/*.c)
+CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
 TEST_SRC := $(wildcard tests/test_*.c)
 GEN_SRC  := $(BUILD)/gen/assets.c
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/assets.o
@@ -42,7 +46,7 @@ APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/obj/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/obj/%.o)
 DIST_SRC := $(wildcard src/dist/*.c)
 DIST_OBJ := $(DIST_SRC:%.c=$(BUILD)/obj/%.o)
-DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(DIST_OBJ:.o=.d)
+DEPS     := $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(DIST_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
 
 # glint-mpi (src/dist, the only code that includes mpi.h) is built whenever
 # Open MPI's compiler wrapper is there; its flags, with the compiler above.
@@ -145,10 +149,10 @@ $(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
 
 $(APP_OBJ): CPPFLAGS += $(SDL_CFLAGS)
 
-$(BUILD)/glint: $(APP_OBJ) $(BUILD)/libglint.a
+$(BUILD)/glint: $(APP_OBJ) $(CLI_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(SDL_LIBS)
 
-$(BUILD)/glint-mpi: $(DIST_OBJ) $(BUILD)/libglint.a
+$(BUILD)/glint-mpi: $(DIST_OBJ) $(CLI_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)
 
 $(DIST_OBJ): CPPFLAGS += $(MPI_CFLAGS)

@@ -151,10 +151,9 @@ Test(mpi, every_glint_option_is_a_glint_mpi_option)
     need_mpi();
     char out[8192];
     /* the preview window is one machine's: glint-mpi has none (-p,
-     * --exit-when-done, --preview-bench); glint-mpi does not take
-     * --progress */
+     * --exit-when-done, --preview-bench) */
     cr_expect_eq(sh("$GLINT --help | grep -o -- '--[a-z-]*' | "
-                    "grep -v -e '^--preview' -e '^--exit-when-done' -e '^--progress$' | sort -u > a && "
+                    "grep -v -e '^--preview' -e '^--exit-when-done' | sort -u > a && "
                     "$MPI --help | grep -o -- '--[a-z-]*' | sort -u > b && comm -23 a b",
                     out, sizeof out), 0, "%s", out);
     cr_expect_str_eq(out, "", "options of glint missing from glint-mpi");
@@ -308,4 +307,91 @@ Test(mpi, a_frame_that_cannot_be_written_fails_the_job_once)
     cr_expect(strncmp(out, "1\n1\nf-3.png: is a directory\n", 40) == 0 ||
                   strncmp(out, "2\n1\nf-3.png: is a directory\n", 40) == 0,
               "one message, a failing status: %s", out);
+}
+
+/* A job killed part of the way through one image keeps its final tiles in
+ * OUTPUT.resume (written as they come in, and again on SIGTERM); --resume
+ * renders only the others, writes glint's bytes and removes the file. */
+Test(mpi, a_killed_image_resumes_from_its_resume_file)
+{
+    need_mpi();
+    if (SANITISED)
+        cr_skip_test("the optimised build's run covers this (a render of seconds there)");
+    char out[8192];
+    /* a render long enough that the stop comes well before its end */
+    const char *script =
+        "O='-q -t 1 -r 512x384 -s 64'; $GLINT $O -o g.png || exit 1; "
+        "$MPIRUN -n 2 $MPI $O -o m.png & job=$!; "
+        "n=0; while [ ! -e m.png.resume ] && [ $n -lt 1200 ]; do sleep 0.05; n=$((n+1)); done; "
+        "kill -TERM $job; wait $job 2>/dev/null; "
+        "[ -e m.png.resume ] && echo kept; [ -e m.png ] && echo 'image written before the stop'; "
+        "run 2 $MPI $O -o m.png --resume --stats 2> stats || cat stats; "
+        "cmp g.png m.png && echo same; [ -e m.png.resume ] && echo 'resume file left'; "
+        "awk '/^rank/ { n += $3 } END { print n }' stats";
+    cr_assert_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect(!strstr(out, "written before") && !strstr(out, "left"), "%s", out);
+    const char *kept = strstr(out, "kept\nsame\n");
+    cr_assert_not_null(kept, "the stop kept a resume file, and --resume wrote glint's bytes: %s",
+                       out);
+    int rendered = -1;
+    cr_assert_eq(sscanf(kept + 10, "%d", &rendered), 1, "%s", out);
+    /* 512x384: 32 x 24 tiles */
+    cr_expect(rendered >= 0 && rendered < 768, "--resume rendered %d of the 768 tiles", rendered);
+}
+
+/* A resume file of another render is refused, once, with glint's words. */
+Test(mpi, a_resume_file_of_another_render_is_refused_once)
+{
+    need_mpi();
+    char out[8192];
+    cr_expect_eq(sh("GLINT_TEST_SIGNALS=15@3 $GLINT -r 64x48 -s 1 -t 1 -o o.png 2>/dev/null; "
+                    "run 3 $MPI -q -r 64x48 -s 4 -o o.png --resume 2>err; echo $?; grep glint err; "
+                    "[ -e o.png ] && echo image written; true",
+                    out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "2\nglint-mpi: o.png.resume: resume file is for 1 samples per pixel, this "
+                          "render takes 4\n");
+}
+
+/* Rank 0 alone shows progress: each line once, however many processes. */
+Test(mpi, progress_is_shown_once)
+{
+    need_mpi();
+    char out[16384];
+    cr_expect_eq(sh("run 3 $MPI -r 64x48 -s 1 --progress -o p.png", out, sizeof out), 0, "%s", out);
+    cr_expect_eq(count(out, "100%"), 1, "%s", out);
+    cr_expect_eq(count(out, "wrote p.png (64x48, "), 1, "%s", out);
+    cr_expect_eq(sh("run 3 $MPI -q -r 64x48 -s 1 --progress -o q.png", out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "", "-q: no progress, no 'wrote' line");
+}
+
+/* Options are glint's table: a bad one, or one of glint's preview window,
+ * is reported once, by rank 0, with status 2. */
+Test(mpi, a_bad_option_is_reported_once_with_status_2)
+{
+    need_mpi();
+    char out[8192];
+    cr_expect_eq(sh("run 3 $MPI -q -s 0 2>err; echo $?; cat err | grep glint; "
+                    "run 2 $MPI -p 2>err; echo $?; cat err | grep glint", out, sizeof out), 0);
+    cr_expect_str_eq(out, "2\nglint-mpi: -s: expected a positive whole number, got '0' (try "
+                          "'glint-mpi --help')\n"
+                          "2\nglint-mpi: -p: the preview window is glint's; glint-mpi renders to "
+                          "files (try 'glint-mpi --help')\n");
+}
+
+/* Frames behave as glint's: a frame stopped part of the way keeps its own
+ * resume file (here glint's: the format is one), which --resume continues
+ * and then removes, and the sequence is glint's. */
+Test(mpi, a_frames_resume_file_is_continued)
+{
+    need_mpi();
+    char out[8192], script[2048];
+    snprintf(script, sizeof script,
+             "S='%s/scenes/orbit.yaml' && O='-q -t 1 -r 48x36 -s 4' && "
+             "$GLINT $O \"$S\" --frames 1:4 -o g-%%d.png && "
+             "{ GLINT_TEST_SIGNALS=15@2 $GLINT $O \"$S\" --frames 1:4 -o f-%%d.png 2>/dev/null; true; } && "
+             "ls f-* && run 2 $MPI $O \"$S\" --frames 1:4 -o f-%%d.png --resume && "
+             "for i in 1 2 3 4; do cmp g-$i.png f-$i.png || echo frame $i differs; done; ls f-*",
+             GLINT_SOURCE_DIR);
+    cr_expect_eq(sh(script, out, sizeof out), 0, "%s", out);
+    cr_expect_str_eq(out, "f-1.png.resume\nf-1.png\nf-2.png\nf-3.png\nf-4.png\n");
 }

@@ -53,3 +53,23 @@ Test(sched, first_batches_are_a_share_of_the_image)
     cr_expect_eq(sched_min_batch(1), 4);
     cr_expect_eq(sched_min_batch(8), 32);
 }
+
+/* A resumed render: tiles final already are never handed out, and no batch
+ * runs across one. */
+Test(sched, skipped_tiles_are_left_out)
+{
+    unsigned char skip[100] = {0};
+    for (int t = 0; t < 100; t++)
+        skip[t] = t < 10 || (t >= 40 && t < 45) || t % 17 == 0;
+    sched s;
+    sched_init(&s, 100, 2, 4, 64);
+    sched_skip(&s, skip);
+    int seen[100] = {0}, first, n;
+    while ((n = sched_take(&s, &first)) > 0)
+        for (int t = first; t < first + n; t++) {
+            cr_assert(!skip[t], "tile %d was final already", t);
+            seen[t]++;
+        }
+    for (int t = 0; t < 100; t++)
+        cr_expect_eq(seen[t], !skip[t], "tile %d handed out %d times", t, seen[t]);
+}

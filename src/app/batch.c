@@ -2,8 +2,6 @@
  * --stats report, and resume files. Every render goes through a resume
  * record (glint_resume_render), so an interruption at any point can be kept
  * and finished later into the same bytes. */
-#include "batch.h"
-
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -13,109 +11,10 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "progress.h"
-#include "signals.h"
 
-char *batch_resume_path(const char *output)
-{
-    if (strcmp(output, "-") == 0)
-        return NULL;
-    size_t n = strlen(output);
-    char *p = malloc(n + 8);
-    if (p)
-        snprintf(p, n + 8, "%s.resume", output);
-    return p;
-}
-
-/* The note: the working folder, then each argument, each NUL-terminated. */
-static glint_rc set_note(glint_resume *r, const struct cli *c, glint_error *err)
-{
-    char cwd[4096];
-    if (!getcwd(cwd, sizeof cwd))
-        cwd[0] = '\0';
-    size_t len = strlen(cwd) + 1;
-    for (int i = 0; i < c->argc; i++)
-        len += strlen(c->argv[i]) + 1;
-    char *note = malloc(len), *at = note;
-    if (!note) {
-        snprintf(err->msg, sizeof err->msg, "out of memory");
-        return err->code = GLINT_ERR_NOMEM;
-    }
-    at = stpcpy(at, cwd) + 1;
-    for (int i = 0; i < c->argc; i++)
-        at = stpcpy(at, c->argv[i]) + 1;
-    glint_rc rc = glint_resume_set_note(r, note, len, err);
-    free(note);
-    return rc;
-}
-
-glint_rc batch_resume_args(const char *path, int *argc, char ***argv, glint_error *err)
-{
-    glint_resume r;
-    glint_rc rc = glint_resume_read(path, &r, err);
-    if (rc != GLINT_OK)
-        return rc;
-    int n = 0;
-    for (size_t i = 0; i < r.note_len; i++)
-        n += r.note[i] == '\0';
-    if (n < 2 || r.note[r.note_len - 1] != '\0') {
-        glint_resume_free(&r);
-        snprintf(err->msg, sizeof err->msg, "%s: resume file keeps no command line", path);
-        return err->code = GLINT_ERR_INPUT;
-    }
-    /* pointers first, then the strings, in one block */
-    char **v = malloc((size_t)n * sizeof *v + r.note_len);
-    if (!v) {
-        glint_resume_free(&r);
-        snprintf(err->msg, sizeof err->msg, "out of memory");
-        return err->code = GLINT_ERR_NOMEM;
-    }
-    char *text = (char *)(v + n);
-    memcpy(text, r.note, r.note_len);
-    glint_resume_free(&r);
-    if (*text && chdir(text) != 0) {
-        snprintf(err->msg, sizeof err->msg, "%s: cannot return to the folder '%s': %s", path, text,
-                 strerror(errno));
-        free(v);
-        return err->code = GLINT_ERR_INPUT;
-    }
-    char *at = text + strlen(text) + 1;
-    for (int i = 0; i < n - 1; i++, at += strlen(at) + 1)
-        v[i] = at;
-    v[n - 1] = NULL;
-    *argc = n - 1;
-    *argv = v;
-    return GLINT_OK;
-}
-
-/* The record to render into: fresh, or read from rpath with --resume. */
-static glint_rc prepare(const struct cli *c, const glint_scene *scene, const glint_settings *s,
-                        const char *rpath, glint_resume *rec, bool *resumed, glint_error *err)
-{
-    *resumed = false;
-    if (c->resume && rpath && access(rpath, F_OK) == 0) {
-        glint_rc rc = glint_resume_read(rpath, rec, err);
-        if (rc != GLINT_OK)
-            return rc;
-        rc = glint_resume_check(rec, scene, s, err);
-        if (rc != GLINT_OK) {
-            char msg[sizeof err->msg];
-            snprintf(msg, sizeof msg, "%s", err->msg);
-            snprintf(err->msg, sizeof err->msg, "%.500s: %.500s", rpath, msg);
-            glint_resume_free(rec);
-            return rc;
-        }
-        *resumed = true;
-        return set_note(rec, c, err);
-    }
-    if (c->resume && !c->quiet && !c->frames)
-        fprintf(stderr, "glint: no resume file %s; rendering from the start\n",
-                rpath ? rpath : "for standard output");
-    glint_rc rc = glint_resume_init(rec, scene, s, err);
-    if (rc == GLINT_OK)
-        rc = set_note(rec, c, err);
-    return rc;
-}
+#include "cli/progress.h"
+#include "cli/rerun.h"
+#include "cli/signals.h"
 
 /* What the render's callbacks share. */
 typedef struct watch {
@@ -156,37 +55,6 @@ static int on_cancel(void *user)
 {
     (void)user;
     return signals_caught() != 0;
-}
-
-/* Percent of the image's pixels in final tiles. */
-static double record_percent(const glint_resume *r)
-{
-    uint64_t done = 0;
-    for (int i = 0; i < r->ntiles; i++) {
-        glint_rect t;
-        if (r->done[i] && glint_tile_rect(&r->settings, i, &t, NULL) == GLINT_OK)
-            done += (uint64_t)(t.x1 - t.x0) * (uint64_t)(t.y1 - t.y0);
-    }
-    return 100.0 * (double)done / ((double)r->settings.width * (double)r->settings.height);
-}
-
-/* Interrupted: keeps the finished tiles beside the output. */
-static int keep(const struct cli *c, const glint_resume *rec, const char *rpath)
-{
-    int code = signals_exit_code(signals_caught());
-    if (!rpath) {
-        fprintf(stderr, "glint: interrupted; nothing kept (the output is standard output)\n");
-        return code;
-    }
-    glint_error err = {0};
-    if (glint_resume_write(rec, rpath, &err) != GLINT_OK) {
-        fprintf(stderr, "glint: interrupted; cannot keep the render: %s\n", err.msg);
-        return code;
-    }
-    (void)c;
-    fprintf(stderr, "glint: interrupted at %d%%; kept in %s (continue with: glint --resume %s)\n",
-            (int)record_percent(rec), rpath, rpath);
-    return code;
 }
 
 typedef struct times {
@@ -276,18 +144,6 @@ static void add_stats(glint_stats *to, const glint_stats *st)
     to->seconds += st->seconds;
 }
 
-/* --resume and path already a complete image, with no resume file beside
- * it: nothing is left to render. */
-static bool done_before(const run *r, const char *path)
-{
-    if (!r->c->resume || strcmp(path, "-") == 0)
-        return false;
-    char *rpath = batch_resume_path(path);
-    bool kept = !rpath || access(rpath, F_OK) == 0;
-    free(rpath);
-    return !kept && glint_output_complete(path, r->s.width, r->s.height);
-}
-
 /* Renders the scene as it stands into path through a resume record:
  * continued from path.resume with --resume, kept there when interrupted.
  * Returns the exit code. */
@@ -299,20 +155,20 @@ static int render_one(run *r, const char *path)
     glint_stats st = {0};
     bool resumed = false;
     double t0 = cli_now();
-    char *rpath = batch_resume_path(path);
+    char *rpath = rerun_path(path);
     glint_rc rc = !rpath && strcmp(path, "-") != 0 ? GLINT_ERR_NOMEM : GLINT_OK;
     if (rc == GLINT_OK)
-        rc = prepare(c, r->scene, &r->s, rpath, &rec, &resumed, &err);
+        rc = rerun_open(c, r->scene, &r->s, rpath, &rec, &resumed, &err);
     if (rc != GLINT_OK)
         return finish(rc, &err, &rec, rpath);
-    r->w.bar.base = record_percent(&rec);
+    r->w.bar.base = rerun_percent(&rec);
     glint_callbacks cb = {&r->w, on_tile, on_progress, on_cancel};
     rc = glint_resume_render(r->scene, &r->s, &cb, &rec, &st, &err);
     add_stats(&r->stats, &st);
     r->t.render += st.seconds;
     progress_end(&r->w.bar);
     if (rc == GLINT_ERR_CANCELLED && signals_caught()) {
-        int code = keep(c, &rec, rpath);
+        int code = rerun_keep(c, &rec, rpath, true);
         finish(GLINT_OK, &err, &rec, rpath);
         return code;
     }
@@ -337,7 +193,7 @@ static int render_frames(run *r, int first, int last)
     for (int pass = 0; pass < 2; pass++) {
         for (int f = first; f <= last; f++) {
             glint_rc rc = glint_frame_path(r->c->output, f, path, sizeof path, &err);
-            if (rc == GLINT_OK && done_before(r, path))
+            if (rc == GLINT_OK && rerun_done(r->c, path, &r->s))
                 continue;
             if (rc == GLINT_OK && pass == 0) {
                 todo++;
@@ -398,9 +254,10 @@ int batch_main(const struct cli *c)
     cli_warn(r.scene, c->scene_path);
     signals_install();
     hook_parse(&r.w);
-    progress_begin(&r.w.bar, stderr, progress_choose(c->quiet, c->progress, stderr));
+    progress_begin(&r.w.bar, stderr, progress_choose(c->quiet, c->progress, isatty(STDERR_FILENO)),
+                   "glint");
     int code = first > 0 ? render_frames(&r, first, last)
-               : done_before(&r, c->output) ? 0 : render_one(&r, c->output);
+               : rerun_done(c, c->output, &r.s) ? 0 : render_one(&r, c->output);
     if (code == 0 && c->stats)
         print_stats(&r);
     glint_scene_free(r.scene);

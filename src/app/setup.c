@@ -2,14 +2,6 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
-
-double cli_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
 
 void cli_warn(const glint_scene *scene, const char *path)
 {
@@ -49,18 +41,7 @@ glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
         *scene = NULL;
         return rc;
     }
-    if (c->width > 0) {
-        s->width = c->width;
-        s->height = c->height;
-    }
-    if (c->samples > 0)
-        s->samples = c->samples;
-    if (c->depth >= 0)
-        s->max_depth = c->depth;
-    if (c->threads >= 0)
-        s->threads = c->threads;
-    if (c->transfer >= 0)
-        s->transfer = (glint_transfer)c->transfer;
+    cli_settings(c, s);
     rc = glint_settings_check(s, err);
     if (rc != GLINT_OK) {
         glint_scene_free(*scene);

@@ -1,16 +1,34 @@
-/* Pieces both sides of a job use: clocks, a batch's bounds and packing. */
+/* Pieces both sides of a job use: waiting for a message, clocks, a batch's
+ * bounds and packing. */
 #include "job.h"
 
+#include <mpi.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-double dist_now(void)
+#include "cli/signals.h"
+
+#define POLL_NS 100000 /* 0.1 ms between polls when nothing came */
+
+bool dist_wait(int source, int tag, int *from, int *bytes)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+    for (;;) {
+        int flag = 0;
+        MPI_Status st;
+        MPI_Iprobe(source < 0 ? MPI_ANY_SOURCE : source, tag, MPI_COMM_WORLD, &flag, &st);
+        if (flag) {
+            if (from)
+                *from = st.MPI_SOURCE;
+            if (bytes)
+                MPI_Get_count(&st, MPI_BYTE, bytes);
+            return true;
+        }
+        if (signals_caught())
+            return false;
+        nanosleep(&(struct timespec){0, POLL_NS}, NULL);
+    }
 }
 
 glint_rc tile_clock_init(tile_clock *c, int threads, glint_error *err)

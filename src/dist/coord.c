@@ -1,8 +1,10 @@
 /* Rank 0: hands out batches of tiles (sched.h), renders batches of its own
  * on a thread of its own, and gathers the other ranks' pixels into the
- * image as they arrive. Only this thread calls MPI (MPI_THREAD_FUNNELED).
- * It polls for answers and sleeps briefly between polls: a blocking receive
- * spins in Open MPI and would take a core from the renderers. */
+ * image as they arrive, keeping the final tiles in the resume file
+ * (keep.h) and the progress bar up to date. Only this thread calls MPI
+ * (MPI_THREAD_FUNNELED). It polls for answers and sleeps briefly between
+ * polls: a blocking receive spins in Open MPI and would take a core from
+ * the renderers. */
 #include <mpi.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -10,26 +12,32 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli/rerun.h"
+#include "cli/signals.h"
 #include "job.h"
-#include "report.h"
+#include "keep.h"
 #include "sched.h"
 
 #define POLL_NS 100000 /* 0.1 ms between polls when nothing came */
 
 typedef struct coord {
     const dist_job *job;
-    glint_film *film;
+    dist_gather *g;
+    glint_resume *rec;
     dist_rank *ranks;
     double *costs;
     int *owner;
     sched sched;
-    pthread_mutex_t lock; /* sched, ranks[0], rc and err */
+    unsigned char *skip;  /* the tiles final before the render */
+    pthread_mutex_t lock; /* sched, ranks[0], rc, err, rec->done, final, pixels */
     glint_rc rc;          /* the first failure */
     glint_error err;
-    atomic_int local_tiles;
+    int final;            /* tiles final in rec */
+    uint64_t pixels;      /* their pixels */
     atomic_bool local_done;
-    int remote_tiles;
     int *outstanding;     /* batches each rank holds */
+    dist_keep keep;
+    double start;
     tile_clock clock;     /* the local renderer's */
     int *tiles;           /* the local batch */
     char *buf;            /* an answer */
@@ -46,6 +54,20 @@ static void fail(coord *c, glint_rc rc, const char *msg)
     pthread_mutex_unlock(&c->lock);
 }
 
+/* Tiles first .. first + count - 1 are final in the record. Locked. */
+static void mark(coord *c, int first, int count)
+{
+    const glint_settings *s = &c->job->settings;
+    for (int t = first; t < first + count; t++) {
+        glint_rect r;
+        if (glint_tile_rect(s, t, &r, NULL) != GLINT_OK)
+            continue;
+        c->rec->done[t] = 1;
+        c->pixels += (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+        c->final++;
+    }
+}
+
 static int take(coord *c, int *first)
 {
     pthread_mutex_lock(&c->lock);
@@ -60,13 +82,21 @@ static void on_local_tile(void *user, const glint_film *film, int x0, int y0, in
     (void)x1;
     (void)y1;
     coord *c = user;
+    int across = (c->job->settings.width + DIST_TILE - 1) / DIST_TILE;
+    int tile = (y0 / DIST_TILE) * across + x0 / DIST_TILE;
     if (c->costs) {
-        int across = (c->job->settings.width + DIST_TILE - 1) / DIST_TILE;
-        int tile = (y0 / DIST_TILE) * across + x0 / DIST_TILE;
         c->costs[tile] = tile_clock_tick(&c->clock);
         c->owner[tile] = 0;
     }
-    atomic_fetch_add(&c->local_tiles, 1);
+    pthread_mutex_lock(&c->lock);
+    mark(c, tile, 1);
+    pthread_mutex_unlock(&c->lock);
+}
+
+static int on_local_cancel(void *user)
+{
+    (void)user;
+    return signals_caught() != 0;
 }
 
 /* The local renderer: batches from the same scheduler, into the image. */
@@ -77,16 +107,16 @@ static void *local_main(void *arg)
     while ((n = take(c, &first)) > 0) {
         for (int i = 0; i < n; i++)
             c->tiles[i] = first + i;
-        glint_callbacks cb = {.user = c, .tile_done = on_local_tile};
+        glint_callbacks cb = {.user = c, .tile_done = on_local_tile, .cancelled = on_local_cancel};
         glint_stats st = {0};
         glint_error err = {0};
         tile_clock_start(&c->clock);
-        double t0 = dist_now();
+        double t0 = cli_now();
         glint_rc rc = glint_render_tiles(c->job->scene, &c->job->settings, c->tiles, n, &cb,
-                                         c->film, &st, &err);
+                                         &c->rec->film, &st, &err);
         pthread_mutex_lock(&c->lock);
         dist_rank *r = &c->ranks[0];
-        r->busy += dist_now() - t0;
+        r->busy += cli_now() - t0;
         r->tiles += n;
         r->batches++;
         r->primary += st.primary_rays;
@@ -145,13 +175,16 @@ static void take_in(coord *c, int rank, const char *msg, size_t bytes)
         fail(c, GLINT_ERR_IO, "a rank's answer does not match its batch");
         return;
     }
-    dist_batch_unpack(s, h.first, h.count, (const float *)(msg + head), c->film);
+    dist_batch_unpack(s, h.first, h.count, (const float *)(msg + head), &c->rec->film);
     if (c->costs)
         for (int i = 0; i < h.count; i++) {
             memcpy(&c->costs[h.first + i], msg + sizeof h + (size_t)i * sizeof(double),
                    sizeof(double));
             c->owner[h.first + i] = rank;
         }
+    pthread_mutex_lock(&c->lock);
+    mark(c, h.first, h.count);
+    pthread_mutex_unlock(&c->lock);
     dist_rank *r = &c->ranks[rank];
     r->busy += h.busy;
     r->tiles += h.count;
@@ -159,7 +192,6 @@ static void take_in(coord *c, int rank, const char *msg, size_t bytes)
     r->primary += h.primary;
     r->secondary += h.secondary;
     r->shadow += h.shadow;
-    c->remote_tiles += h.count;
 }
 
 /* Receives one answer if there is one; false when none had come. */
@@ -194,49 +226,82 @@ static bool any_outstanding(const coord *c)
     return false;
 }
 
-/* Hands out and gathers until every rank is done; local is the renderer
- * thread, joined at the end. */
-static void serve(coord *c, pthread_t local, dist_bar *bar)
+/* The bar and the resume file, from the tiles final so far. */
+static void report(coord *c)
+{
+    pthread_mutex_lock(&c->lock);
+    int final = c->final;
+    uint64_t pixels = c->pixels, rays = 0;
+    for (int r = 0; r < c->job->size; r++)
+        rays += c->ranks[r].primary + c->ranks[r].secondary + c->ranks[r].shadow;
+    pthread_mutex_unlock(&c->lock);
+    const glint_settings *s = &c->job->settings;
+    uint64_t all = (uint64_t)s->width * (uint64_t)s->height;
+    glint_progress p = {.percent = pixels == all ? 100.0 : 100.0 * (double)pixels / (double)all,
+                        .samples_done = pixels, .samples_total = all, .rays = rays,
+                        .seconds = cli_now() - c->start};
+    progress_update(c->g->bar, &p);
+    dist_keep_update(&c->keep, final, &c->lock);
+}
+
+/* Hands out and gathers until every rank is done, or until a signal; local
+ * is the renderer thread, joined at the end. */
+static void serve(coord *c, pthread_t local)
 {
     for (int r = 1; r < c->job->size; r++)
         for (int d = 0; d < DIST_DEPTH && (d == 0 || c->outstanding[r] > 0); d++)
             give(c, r);
-    while (any_outstanding(c) || !atomic_load(&c->local_done)) {
+    while ((any_outstanding(c) || !atomic_load(&c->local_done)) && !signals_caught()) {
         if (!poll_once(c)) {
-            dist_bar_update(bar, atomic_load(&c->local_tiles) + c->remote_tiles, c->job->ntiles);
+            report(c);
             nanosleep(&(struct timespec){0, POLL_NS}, NULL);
         }
     }
     pthread_join(local, NULL);
-    dist_bar_update(bar, atomic_load(&c->local_tiles) + c->remote_tiles, c->job->ntiles);
+    if (!signals_caught())
+        report(c);
 }
 
-static glint_rc coord_init(coord *c, const dist_job *job, glint_film *film, glint_error *err)
+static glint_rc coord_init(coord *c, const dist_job *job, glint_error *err)
 {
     const glint_settings *s = &job->settings;
     int threads = s->threads > 0 ? s->threads : glint_default_threads();
     sched_init(&c->sched, job->ntiles, job->size, sched_min_batch(threads), DIST_MAX_BATCH);
     c->outstanding = calloc((size_t)job->size, sizeof *c->outstanding);
     c->tiles = malloc(DIST_MAX_BATCH * sizeof *c->tiles);
-    if (!c->outstanding || !c->tiles) {
+    c->skip = malloc((size_t)job->ntiles);
+    if (!c->outstanding || !c->tiles || !c->skip) {
         snprintf(err->msg, sizeof err->msg, "out of memory");
         return GLINT_ERR_NOMEM;
     }
+    memcpy(c->skip, c->rec->done, (size_t)job->ntiles);
+    sched_skip(&c->sched, c->skip);
+    for (int t = 0; t < job->ntiles; t++)
+        if (c->skip[t])
+            mark(c, t, 1);
     glint_rc rc = tile_clock_init(&c->clock, threads, err);
     if (rc == GLINT_OK)
-        rc = dist_film_alloc(film, s, s->width, s->height, err);
+        rc = dist_keep_init(&c->keep, c->rec, c->g->rpath, err);
     return rc;
 }
 
-glint_rc dist_coordinate(const dist_job *job, glint_film *film, dist_rank *ranks, double *costs,
-                         int *owner, double *seconds, glint_error *err)
+/* Interrupted: the tiles final so far go into the resume file, with a
+ * word on how to go on. */
+static glint_rc stop(coord *c, glint_error *err)
 {
-    coord c = {.job = job, .film = film, .ranks = ranks, .costs = costs, .owner = owner};
+    rerun_keep(c->job->opt, c->rec, c->g->rpath, true);
+    c->g->kept = c->g->rpath != NULL;
+    snprintf(err->msg, sizeof err->msg, "interrupted");
+    return err->code = GLINT_ERR_CANCELLED;
+}
+
+glint_rc dist_coordinate(const dist_job *job, dist_gather *g, glint_error *err)
+{
+    coord c = {.job = job, .g = g, .rec = g->rec, .ranks = g->ranks, .costs = g->costs,
+               .owner = g->owner, .start = cli_now()};
     pthread_mutex_init(&c.lock, NULL);
-    atomic_init(&c.local_tiles, 0);
     atomic_init(&c.local_done, false);
-    double t0 = dist_now();
-    glint_rc rc = coord_init(&c, job, film, err);
+    glint_rc rc = coord_init(&c, job, err);
     pthread_t local;
     if (rc == GLINT_OK && pthread_create(&local, NULL, local_main, &c) != 0) {
         snprintf(err->msg, sizeof err->msg, "cannot start a render thread");
@@ -248,20 +313,20 @@ glint_rc dist_coordinate(const dist_job *job, glint_film *film, dist_rank *ranks
         for (int r = 1; r < job->size; r++)
             MPI_Send(end, 2, MPI_INT, r, TAG_WORK, MPI_COMM_WORLD);
     } else {
-        dist_bar bar;
-        dist_bar_begin(&bar, !job->opt->quiet);
-        serve(&c, local, &bar);
-        dist_bar_end(&bar);
+        serve(&c, local);
         rc = c.rc;
         if (rc != GLINT_OK)
             *err = c.err;
+        if (signals_caught())
+            rc = stop(&c, err);
     }
-    *seconds = dist_now() - t0;
-    if (rc != GLINT_OK)
-        glint_film_free(film);
+    g->seconds = cli_now() - c.start;
+    g->kept = g->kept || c.keep.wrote;
+    dist_keep_free(&c.keep);
     tile_clock_free(&c.clock);
     free(c.outstanding);
     free(c.tiles);
+    free(c.skip);
     free(c.buf);
     pthread_mutex_destroy(&c.lock);
     return rc;

@@ -10,7 +10,14 @@
  * batch; a count of 0 tells a rank that the image is done. Then rank 0
  * writes the image and broadcasts the job's result code, which every rank
  * returns. Processes are alike (same byte order and float format), as on a
- * cluster's nodes. */
+ * cluster's nodes.
+ *
+ * Rank 0 keeps the final tiles in OUTPUT.resume as they come in (keep.c),
+ * in glint's resume format, and hands out only the tiles not final in it
+ * after --resume. A signal (mpirun passes SIGTERM or SIGINT to every
+ * process) stops each process within a tile: rank 0 writes the resume file
+ * with every tile it has, and each process exits with 128 + the signal,
+ * without more messages, as the others are stopping too. */
 #ifndef GLINT_DIST_JOB_H
 #define GLINT_DIST_JOB_H
 
@@ -18,8 +25,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "cli/cli.h"
+#include "cli/progress.h"
 #include "glint.h"
-#include "options.h"
 
 #define DIST_TILE 16          /* the side of the image's tile grid (glint.h) */
 #define DIST_DEPTH 2          /* batches a rank holds: one rendering, one waiting */
@@ -44,7 +52,7 @@ typedef struct dist_rank {
 
 typedef struct dist_job {
     int rank, size;
-    const dist_options *opt;
+    const struct cli *opt;
     glint_scene *scene;
     glint_settings settings;
     int ntiles;
@@ -55,22 +63,38 @@ typedef struct dist_job {
 glint_rc dist_image(const dist_job *job, glint_error *err);
 glint_rc dist_frames(const dist_job *job, glint_error *err);
 
-/* Rank 0: one image into path, the other ranks working (dist_work); the
- * counts are added to ranks, and costs and owner are as below. */
-glint_rc dist_image_once(const dist_job *job, const char *path, dist_rank *ranks, double *costs,
-                         int *owner, double *seconds, glint_error *err);
+/* What rank 0 gathers of one image. */
+typedef struct dist_gather {
+    glint_resume *rec;  /* the image: its final tiles and their pixels */
+    const char *rpath;  /* where they are kept as they come in; NULL: nowhere */
+    progress *bar;
+    dist_rank *ranks;   /* [size]: each rank's counts, added to */
+    double *costs;      /* NULL, or [ntiles]: each tile's seconds */
+    int *owner;         /* with costs: the rank that rendered each tile */
+    double seconds;     /* the render's wall time */
+    bool kept;          /* rpath was written */
+} dist_gather;
 
-/* Rank 0: hands out the tiles, renders its share, gathers the image into
- * film (allocated here) and fills ranks[size] and, when costs is not NULL,
- * costs[ntiles] (seconds) and owner[ntiles] (rank). */
-glint_rc dist_coordinate(const dist_job *job, glint_film *film, dist_rank *ranks, double *costs,
-                         int *owner, double *seconds, glint_error *err);
+/* Rank 0: one image into path, continued from path.resume with --resume
+ * and kept there as the tiles come in, the other ranks working
+ * (dist_work); the counts are added to ranks, costs and owner as in
+ * dist_gather. GLINT_ERR_CANCELLED after a signal, the tiles kept. */
+glint_rc dist_image_once(const dist_job *job, const char *path, progress *bar, dist_rank *ranks,
+                         double *costs, int *owner, double *seconds, glint_error *err);
+
+/* Rank 0: hands out the tiles not final in g->rec, renders its share and
+ * gathers the others' into g->rec. */
+glint_rc dist_coordinate(const dist_job *job, dist_gather *g, glint_error *err);
 /* Every other rank: renders what rank 0 sends until told the image is done. */
 glint_rc dist_work(const dist_job *job, glint_error *err);
 
 /* ---- shared by both sides (batch.c) ---- */
 
-double dist_now(void);
+/* Waits, polling (a blocking receive spins in Open MPI and takes a core
+ * from the renderers), until a message with tag from source (or any rank,
+ * -1) is there: its sender in *from and size in bytes in *bytes (either
+ * may be NULL). false when a signal was caught instead. */
+bool dist_wait(int source, int tag, int *from, int *bytes);
 
 /* Times tiles as the render's callbacks report them: each tile's cost is
  * the CPU time its thread spent since its previous tile (or since the

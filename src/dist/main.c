@@ -5,11 +5,14 @@
  * writes. Problems before the render (options, output name, scene) are
  * agreed on by all processes and reported once, by rank 0. The protocol is
  * in job.h; README.md, "Rendering on a cluster", tells what happens when a
- * process fails. */
+ * process fails. A job stopped by a signal keeps its tiles (job.h) and
+ * each process exits with 128 + the signal, as glint does. */
 #include <mpi.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "cli/signals.h"
 #include "job.h"
 #include "options.h"
 
@@ -48,7 +51,7 @@ static glint_rc frames_of(dist_job *job, glint_error *err)
         char msg[900];
         snprintf(msg, sizeof msg, "%.899s", err->msg);
         snprintf(err->msg, sizeof err->msg, "--frame%s: %.900s",
-                 strchr(job->opt->frames, ':') ? "s" : "", msg);
+                 job->opt->one_frame ? "" : "s", msg);
     }
     return rc;
 }
@@ -57,7 +60,7 @@ static glint_rc frames_of(dist_job *job, glint_error *err)
  * sequence), the scene, the settings and the frames. */
 static glint_rc prepare(dist_job *job, glint_error *err)
 {
-    const dist_options *o = job->opt;
+    const struct cli *o = job->opt;
     char path[4096];
     glint_rc rc = GLINT_OK;
     if (o->frames)
@@ -83,8 +86,9 @@ int main(int argc, char **argv)
     dist_job job = {0};
     MPI_Comm_rank(MPI_COMM_WORLD, &job.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &job.size);
-    dist_options o;
-    int code = dist_parse_options(argc, argv, &o, job.rank == 0);
+    struct cli o;
+    char **kept = NULL;
+    int code = dist_parse_options(argc, argv, job.rank, &o, &kept);
     if (code >= 0) {
         MPI_Finalize();
         return code;
@@ -92,14 +96,24 @@ int main(int argc, char **argv)
     job.opt = &o;
     glint_error err = {0};
     glint_rc rc = agree(&job, prepare(&job, &err), &err);
-    if (rc == GLINT_OK)
+    if (rc == GLINT_OK) {
+        signals_install();
         rc = job.first > 0 ? dist_frames(&job, &err) : dist_image(&job, &err);
+    }
+    if (signals_caught()) {
+        /* every process is stopping (mpirun passes the signal on, or ends
+         * the job when one process leaves): no more messages */
+        glint_scene_free(job.scene);
+        free(kept);
+        return signals_exit_code(signals_caught());
+    }
     /* the job's result is rank 0's: a rank's failure reached it as an answer */
     int final = (int)rc;
     MPI_Bcast(&final, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (job.rank == 0 && rc != GLINT_OK)
         fprintf(stderr, "glint-mpi: %s\n", err.msg);
     glint_scene_free(job.scene);
+    free(kept);
     MPI_Finalize();
     return glint_exit_code((glint_rc)final);
 }

@@ -4,42 +4,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#define BAR_WIDTH 40
-
-void dist_bar_begin(dist_bar *b, bool wanted)
+progress_mode dist_progress_mode(const struct cli *o)
 {
     /* Under mpirun, rank 0's standard output is a terminal when mpirun's is
      * but its standard error is a pipe to mpirun, which passes it on. */
-    b->on = wanted && (isatty(STDERR_FILENO) || isatty(STDOUT_FILENO));
-    b->last_percent = -1;
-    b->start = dist_now();
-}
-
-void dist_bar_update(dist_bar *b, int done, int total)
-{
-    if (!b->on || total <= 0)
-        return;
-    double percent_done = 100.0 * done / total;
-    int percent = (int)percent_done;
-    if (percent == b->last_percent)
-        return;
-    b->last_percent = percent;
-    int fill = percent * BAR_WIDTH / 100;
-    double elapsed = dist_now() - b->start;
-    double eta = percent_done > 0 ? elapsed * (100.0 - percent_done) / percent_done : 0.0;
-    fprintf(stderr, "\r[");
-    for (int i = 0; i < BAR_WIDTH; i++)
-        fputc(i < fill ? '#' : '.', stderr);
-    fprintf(stderr, "] %3d%%  %.1fs elapsed, %.1fs left ", percent, elapsed, eta);
-    fflush(stderr);
-}
-
-void dist_bar_end(dist_bar *b)
-{
-    if (b->on && b->last_percent >= 0) {
-        fputc('\n', stderr);
-        fflush(stderr);
-    }
+    return progress_choose(o->quiet, o->progress, isatty(STDERR_FILENO) || isatty(STDOUT_FILENO));
 }
 
 /* How the settings sample a pixel, as glint --stats says it. */

@@ -1,4 +1,4 @@
-/* report: what rank 0 shows: the progress bar, the statistics of
+/* report: what rank 0 shows: how it shows progress, the statistics of
  * --stats with each rank's share, and the tile costs of --tile-costs. */
 #ifndef GLINT_DIST_REPORT_H
 #define GLINT_DIST_REPORT_H
@@ -6,19 +6,12 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "cli/progress.h"
 #include "job.h"
 
-/* A one-line bar on standard error when the job runs at a terminal, as
- * glint's. */
-typedef struct dist_bar {
-    bool on;
-    int last_percent;
-    double start;
-} dist_bar;
-
-void dist_bar_begin(dist_bar *b, bool wanted);
-void dist_bar_update(dist_bar *b, int done, int total);
-void dist_bar_end(dist_bar *b);
+/* How rank 0 shows progress: glint's bar (cli/progress.h) when the job
+ * runs at a terminal, plain lines with --progress otherwise. */
+progress_mode dist_progress_mode(const struct cli *o);
 
 /* --stats: the image, rays, time and speed as glint prints them, then each
  * rank's share (unit: "tiles" or "frames"), busy time and efficiency (busy

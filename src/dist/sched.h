@@ -5,7 +5,9 @@
  * the tiles left divided by SCHED_FACTOR times the number of processes,
  * held between a smallest and a largest size. Early batches are big, so
  * there are few messages; late ones are small, so the processes finish
- * together. No MPI here: glint-mpi and the scheduler simulator in bench/
+ * together. Tiles already final (a resumed render) are skipped: a batch
+ * never takes one and ends before it, so a batch stays a run of
+ * consecutive tiles. No MPI here: glint-mpi and the scheduler simulator in bench/
  * share this code. */
 #ifndef GLINT_DIST_SCHED_H
 #define GLINT_DIST_SCHED_H
@@ -23,10 +25,16 @@ typedef struct sched {
     int ranks;     /* processes taking batches */
     int min_batch; /* tiles, >= 1 */
     int max_batch; /* tiles, >= min_batch */
+    const unsigned char *skip; /* NULL, or ntiles flags: non-zero, never handed out */
+    int left;      /* tiles neither handed out nor skipped */
 } sched;
 
 /* A scheduler for ntiles tiles shared by ranks processes (both >= 1). */
 void sched_init(sched *s, int ntiles, int ranks, int min_batch, int max_batch);
+
+/* Leaves out the tiles whose flag is non-zero (ntiles flags, which must
+ * outlive s and not change); before the first sched_take. */
+void sched_skip(sched *s, const unsigned char *skip);
 
 /* The next batch: its first tile in *first and its size as the result;
  * 0 when every tile has been handed out. */

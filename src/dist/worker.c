@@ -1,10 +1,12 @@
 /* The ranks other than 0: render the batches rank 0 sends, answer each with
- * its pixels, until told the image is done. */
+ * its pixels, until told the image is done, or until a signal stops the
+ * job (then without a word: rank 0 keeps what it has). */
 #include <mpi.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/signals.h"
 #include "job.h"
 
 typedef struct worker {
@@ -26,6 +28,12 @@ static void on_tile(void *user, const glint_film *film, int x0, int y0, int x1, 
     (void)x1;
     (void)y1;
     w->costs[tile - w->first] = tile_clock_tick(&w->clock);
+}
+
+static int on_cancel(void *user)
+{
+    (void)user;
+    return signals_caught() != 0;
 }
 
 static glint_rc grow(worker *w, size_t bytes, glint_error *err)
@@ -61,12 +69,12 @@ static glint_rc render_batch(worker *w, int first, int count, size_t *bytes, gli
         dist_result *r = (dist_result *)w->buf;
         w->costs = (double *)(w->buf + sizeof *r);
         w->first = first;
-        glint_callbacks cb = {.user = w, .tile_done = on_tile};
+        glint_callbacks cb = {.user = w, .tile_done = on_tile, .cancelled = on_cancel};
         glint_stats st = {0};
         tile_clock_start(&w->clock);
-        double t0 = dist_now();
+        double t0 = cli_now();
         rc = glint_render_tiles(w->job->scene, s, tiles, count, &cb, &film, &st, err);
-        *r = (dist_result){GLINT_OK, first, count, 0, dist_now() - t0, st.primary_rays,
+        *r = (dist_result){GLINT_OK, first, count, 0, cli_now() - t0, st.primary_rays,
                            st.secondary_rays, st.shadow_rays};
         if (rc == GLINT_OK)
             dist_batch_pack(s, first, count, &film, box, (float *)(w->buf + head));
@@ -96,12 +104,16 @@ glint_rc dist_work(const dist_job *job, glint_error *err)
     glint_rc rc = tile_clock_init(&w.clock, job->settings.threads, err);
     for (;;) {
         int work[2];
+        if (!dist_wait(0, TAG_WORK, NULL, NULL))
+            break;
         MPI_Recv(work, 2, MPI_INT, 0, TAG_WORK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         if (work[1] == 0)
             break;
         size_t bytes = 0;
         if (rc == GLINT_OK)
             rc = render_batch(&w, work[0], work[1], &bytes, err);
+        if (signals_caught())
+            break;
         if (rc == GLINT_OK)
             MPI_Send(w.buf, (int)bytes, MPI_BYTE, 0, TAG_RESULT, MPI_COMM_WORLD);
         else
@@ -109,5 +121,9 @@ glint_rc dist_work(const dist_job *job, glint_error *err)
     }
     tile_clock_free(&w.clock);
     free(w.buf);
+    if (signals_caught()) {
+        snprintf(err->msg, sizeof err->msg, "interrupted");
+        rc = GLINT_ERR_CANCELLED;
+    }
     return rc;
 }

@@ -3,9 +3,10 @@
  * render stops within one tile, and glint keeps what it has (a resume
  * file) and exits with 128 + the signal (130, 143). A second one exits at
  * once, with the same code. The flag is the one piece of process-wide state
- * in glint, as a signal handler can reach nothing else. */
-#ifndef GLINT_APP_SIGNALS_H
-#define GLINT_APP_SIGNALS_H
+ * in glint (and in each process of glint-mpi), as a signal handler can
+ * reach nothing else. */
+#ifndef GLINT_CLI_SIGNALS_H
+#define GLINT_CLI_SIGNALS_H
 
 void signals_install(void);
 /* The signal caught since signals_install, or 0. */

@@ -1,25 +1,24 @@
 #include "progress.h"
 
 #include <math.h>
-#include <unistd.h>
 
 #include "cli.h"
 
 #define BAR_WIDTH 30
 #define REDRAW_SECONDS 0.1
 
-progress_mode progress_choose(bool quiet, bool forced, FILE *out)
+progress_mode progress_choose(bool quiet, bool forced, bool terminal)
 {
     if (quiet)
         return PROGRESS_OFF;
-    if (isatty(fileno(out)))
+    if (terminal)
         return PROGRESS_BAR;
     return forced ? PROGRESS_LINES : PROGRESS_OFF;
 }
 
-void progress_begin(progress *p, FILE *out, progress_mode mode)
+void progress_begin(progress *p, FILE *out, progress_mode mode, const char *name)
 {
-    *p = (progress){out, mode, 0, 0, cli_now(), 0.0, -1, 0.0, false};
+    *p = (progress){out, name, mode, 0, 0, cli_now(), 0.0, -1, 0.0, false};
 }
 
 void progress_frame(progress *p, int k, int n)
@@ -76,7 +75,7 @@ void progress_update(progress *p, const glint_progress *g)
             return;
         p->last_percent = percent;
         describe(p, g, text, sizeof text);
-        fprintf(p->out, "glint: %s\n", text);
+        fprintf(p->out, "%s: %s\n", p->name, text);
         fflush(p->out);
         return;
     }
@@ -111,7 +110,7 @@ void progress_phase(progress *p, const char *what)
         fprintf(p->out, "\r\033[K%s", what);
         p->open = true;
     } else {
-        fprintf(p->out, "glint: %s\n", what);
+        fprintf(p->out, "%s: %s\n", p->name, what);
     }
     fflush(p->out);
 }

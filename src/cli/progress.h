@@ -6,9 +6,10 @@
  * of N" for sequences. Elsewhere, with --progress, plain lines every 10
  * percent, for logs. Then the phases after rendering ("writing out.png…")
  * and the final "wrote out.png (1920x1080, 2.3 s)" line. Updates come from
- * the renderer's progress callback, which the library serialises. */
-#ifndef GLINT_APP_PROGRESS_H
-#define GLINT_APP_PROGRESS_H
+ * the renderer's progress callback, which the library serialises, or from
+ * glint-mpi's rank 0 as the tiles of a job come in. */
+#ifndef GLINT_CLI_PROGRESS_H
+#define GLINT_CLI_PROGRESS_H
 
 #include <stdbool.h>
 #include <stdio.h>
@@ -25,6 +26,7 @@ typedef enum progress_mode {
 
 typedef struct progress {
     FILE *out;
+    const char *name; /* the program, before each plain line */
     progress_mode mode;
     int frame, frames; /* frames > 1: "frame k of N" */
     double start, last_draw;
@@ -33,10 +35,11 @@ typedef struct progress {
     bool open; /* a bar line is drawn without its newline */
 } progress;
 
-/* The mode for these options and this stream. */
-progress_mode progress_choose(bool quiet, bool forced, FILE *out);
+/* The mode for these options, the output being a terminal or not. */
+progress_mode progress_choose(bool quiet, bool forced, bool terminal);
 
-void progress_begin(progress *p, FILE *out, progress_mode mode);
+/* name: the program, as plain lines begin ("glint: 40% ..."). */
+void progress_begin(progress *p, FILE *out, progress_mode mode, const char *name);
 void progress_update(progress *p, const glint_progress *g);
 /* Ends the bar's line (after the last update, or on interruption). */
 /* The next render is frame k (from 1) of a sequence of n: the line shows
