@@ -8,14 +8,19 @@
 bool sphere_intersect(const struct sphere *s, const ray *r, shape_hit *hit)
 {
     vec3 f = v3_sub(r->o, s->center);
-    float a = v3_dot(r->d, r->d);
     float b = -v3_dot(f, r->d); /* half of -B */
-    vec3 l = v3_madd(f, r->d, b / a);
     float rr = s->radius * s->radius;
+    float c = v3_dot(f, f) - rr;
+    /* From outside (c > 0) moving away (b < 0) both roots are negative:
+     * q < 0, so c / q and q / a are too. Rays leaving a sphere's surface
+     * (reflections, shadow rays) meet this first, before any division. */
+    if (c > 0.0f && b < 0.0f && r->tmin >= 0.0f)
+        return false;
+    float a = v3_dot(r->d, r->d);
+    vec3 l = v3_madd(f, r->d, b / a);
     float disc = a * (rr - v3_dot(l, l));
     if (disc < 0.0f)
         return false;
-    float c = v3_dot(f, f) - rr;
     float q = b + copysignf(sqrtf(disc), b);
     float t0, t1;
     if (q == 0.0f) {
