@@ -188,8 +188,24 @@ wide_visit(const bvhw *b, int width, int32_t i, const wide_ray *r, float tmax, b
 #if defined(GLINT_TRAVERSE_AVX2)
     if (width == 8) {
         const bvh8_node *n = &b->n8[i];
-        return wide_descend(wide_test8(n, r, tmax, tn), tn, n->child, n->count, any, stack, sp,
-                            cur, cur_count);
+        int mask = wide_test8(n, r, tmax, tn);
+        /* What the children entered hold is read next: fetch it now (a
+         * node's four cache lines, a leaf's first three). */
+        for (int m = mask; m; m &= m - 1) {
+            int32_t c = n->child[__builtin_ctz((unsigned)m)];
+            const char *p = c >= 0 ? (const char *)&b->n8[c]
+                            : b->leaf_data ? (const char *)b->leaf_data +
+                                                 (size_t)(-1 - c) * b->leaf_stride
+                                           : NULL;
+            if (p) {
+                __builtin_prefetch(p);
+                __builtin_prefetch(p + 64);
+                __builtin_prefetch(p + 128);
+                if (c >= 0)
+                    __builtin_prefetch(p + 192);
+            }
+        }
+        return wide_descend(mask, tn, n->child, n->count, any, stack, sp, cur, cur_count);
     }
 #else
     if (width == 8) /* an eight-wide tree needs a kernel built with AVX2 */

@@ -44,6 +44,11 @@ typedef struct bvhw {
     int32_t *prims; /* taken over from the binary BVH */
     int nprims;
     aabb bounds;
+    /* Where an owner that renumbers leaves keeps leaf i's data: at
+     * leaf_data + i * leaf_stride, fetched early by traversal (NULL: no
+     * such store). */
+    const void *leaf_data;
+    size_t leaf_stride;
 } bvhw;
 
 /* Collapses b into out for the kernels of isa, taking over b's primitive

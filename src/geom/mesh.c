@@ -25,6 +25,8 @@ static glint_rc make_blocks(mesh *m, glint_error *err)
         return err_nomem(err);
     memset(m->blocks, 0, (n ? n : 1) * sizeof *m->blocks);
     m->nblocks = (int)n;
+    b->leaf_data = m->blocks;
+    b->leaf_stride = sizeof *m->blocks;
     int next = 0;
     for (int i = 0; i < b->nnodes; i++)
         for (int k = 0; k < b->width; k++) {

@@ -35,10 +35,9 @@ typedef struct tri4_ray {
     float sx, sy, sz;
 } tri4_ray;
 
-static inline tri4_ray tri4_ray_make(const ray *r)
+__attribute__((always_inline)) static inline tri4_ray tri4_ray_make(const ray *r)
 {
     tri4_ray q;
-    q.tr = tri_ray_make(r);
     vec3 ad = v3(fabsf(r->d.x), fabsf(r->d.y), fabsf(r->d.z));
     q.kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
     q.kx = (q.kz + 1) % 3;
@@ -55,6 +54,11 @@ static inline tri4_ray tri4_ray_make(const ray *r)
     q.ox = v3_at(r->o, q.kx);
     q.oy = v3_at(r->o, q.ky);
     q.oz = v3_at(r->o, q.kz);
+    /* the same shear as tri_ray_make's, without working it out twice */
+    q.tr.o = r->o;
+    q.tr.mx = v3_add(tri_axis(q.kx, 1.0f), tri_axis(q.kz, -q.sx));
+    q.tr.my = v3_add(tri_axis(q.ky, 1.0f), tri_axis(q.kz, -q.sy));
+    q.tr.mz = tri_axis(q.kz, q.sz);
     return q;
 }
 
