@@ -191,7 +191,7 @@ wide_visit(const bvhw *b, int width, int32_t i, const wide_ray *r, float tmax, b
         int mask = wide_test8(n, r, tmax, tn);
         /* What the children entered hold is read next: fetch it now (a
          * node's four cache lines, a leaf's first three). */
-        for (int m = mask; m; m &= m - 1) {
+        for (int m = b->fetch_ahead ? mask : 0; m; m &= m - 1) {
             int32_t c = n->child[__builtin_ctz((unsigned)m)];
             const char *p = c >= 0 ? (const char *)&b->n8[c]
                             : b->leaf_data ? (const char *)b->leaf_data +

@@ -148,6 +148,7 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
     else
         out->n4 = (bvh4_node *)(void *)c.nodes;
     out->nnodes = c.nnodes;
+    out->fetch_ahead = bvhw_node_bytes(out) > WIDE_FETCH_BYTES;
     out->prims = b->prims;
     out->nprims = b->nprims;
     out->bounds = b->nodes[0].box;

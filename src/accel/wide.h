@@ -49,7 +49,12 @@ typedef struct bvhw {
      * such store). */
     const void *leaf_data;
     size_t leaf_stride;
+    /* Traversal fetches children ahead (traverse.h) when the nodes are
+     * more than WIDE_FETCH_BYTES: a smaller tree stays in the cache. */
+    bool fetch_ahead;
 } bvhw;
+
+#define WIDE_FETCH_BYTES (256u * 1024u)
 
 /* Collapses b into out for the kernels of isa, taking over b's primitive
  * array. b is freed in every case, failure included. */
