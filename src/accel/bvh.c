@@ -18,12 +18,18 @@
 
 #define BINS 32
 #define MAX_LEAF 4
-#define COST_TRAVERSE 1.0f
+/* Primitives tested block-wide at a time (bvh_build_blocked) go up to this
+ * many blocks to a leaf, when the SAH finds that cheaper than a split: on
+ * the bunny that takes the eight-wide nodes from 5,280 to about 4,100 (mesh
+ * and BVH from 80 to 75 bytes a triangle) for the same speed. */
+#define LEAF_BLOCKS 2
+#define COST_TRAVERSE 1.2f /* a node visit against one leaf test (or block) */
 #define COST_INTERSECT 1.0f
 
 typedef struct build {
     const aabb *boxes;
     int block;
+    int max_leaf; /* most primitives a leaf takes */
     vec3 *centers;
     int32_t *prims;
     bvh_node *nodes;
@@ -297,7 +303,7 @@ static int build_children(build *b, int lo, int mid, int hi, int depth)
     }
     subtree t = {*b, mid, hi, depth, -1};
     t.b.nnodes = 0;
-    t.b.cap = 2 * ((hi - mid) / MAX_LEAF + 1) + 1;
+    t.b.cap = 2 * ((hi - mid) / b->max_leaf + 1) + 1;
     t.b.nodes = malloc(sizeof *t.b.nodes * (size_t)t.b.cap);
     if (!t.b.nodes)
         return -1;
@@ -343,11 +349,11 @@ static int build_node(build *b, int lo, int hi, int depth)
         float plane = 0.0f;
         float split = best_split(b, lo, hi, box, cbox, &axis, &plane);
         if (split == INFINITY) {
-            if (n <= MAX_LEAF)
+            if (n <= b->max_leaf)
                 goto leaf;
             goto split_median;
         }
-        if (n <= MAX_LEAF && leaf_cost(b, n) <= split)
+        if (n <= b->max_leaf && leaf_cost(b, n) <= split)
             goto leaf;
         mid = partition(b, lo, hi, axis, plane);
         if (mid == lo || mid == hi)
@@ -404,10 +410,12 @@ glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cp
     memset(out, 0, sizeof *out);
     if (n <= 0)
         return GLINT_OK;
-    build b = {boxes, block > 0 ? block : 1, NULL, NULL, NULL, 0, 0, spawn_depth(cpus)};
+    block = block > 0 ? block : 1;
+    build b = {boxes, block, block > 1 ? LEAF_BLOCKS * block : MAX_LEAF, NULL, NULL, NULL, 0, 0,
+               spawn_depth(cpus)};
     b.centers = malloc(sizeof *b.centers * (size_t)n + sizeof(float)); /* point4_load reads 4 */
     b.prims = malloc(sizeof *b.prims * (size_t)n);
-    b.cap = 2 * (n / MAX_LEAF + 1) + 1;
+    b.cap = 2 * (n / b.max_leaf + 1) + 1;
     b.nodes = malloc(sizeof *b.nodes * (size_t)b.cap);
     if (!b.centers || !b.prims || !b.nodes)
         goto nomem;
