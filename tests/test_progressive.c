@@ -79,6 +79,48 @@ Test(progressive, passes_converge_to_the_batch_image)
     passes_match_batch(1, (int[]){1}, 1, 0, 1);
 }
 
+/* The adaptive sampler's passes: each pixel's centre first, then the whole
+ * adaptive tile; a pass cancelled part way and run again changes nothing.
+ * The resolved film is the batch film to the bit, and the first pass is
+ * not (it is one sample a pixel where the batch image refines edges). */
+Test(progressive, adaptive_passes_end_at_the_batch_image)
+{
+    glint_scene *s;
+    OK(glint_scene_builtin(&s, &err));
+    glint_settings st;
+    OK(glint_scene_settings(s, &st, &err));
+    st.width = 64;
+    st.height = 48;
+    st.samples = 4;
+    st.threads = 2;
+    st.sampler = GLINT_SAMPLER_ADAPTIVE;
+    st.threshold = 0.05;
+    st.adaptive_depth = 2;
+    glint_film batch = {0};
+    OK(glint_render(s, &st, NULL, &batch, NULL, &err));
+    glint_accum a;
+    OK(glint_accum_alloc(&a, st.width, st.height, &err));
+    glint_film film;
+    OK(glint_film_alloc(&film, st.width, st.height, &err));
+    size_t n = (size_t)st.width * (size_t)st.height * 3 * sizeof(float);
+    int least;
+    OK(glint_render_pass(s, &st, 1, NULL, &a, NULL, &err));
+    OK(glint_accum_resolve(&a, NULL, &film, &least, &err));
+    cr_expect_eq(least, 1);
+    cr_expect_neq(memcmp(film.rgb, batch.rgb, n), 0, "the centres alone are the batch image");
+    stopper sp = {3, 0};
+    glint_callbacks cb = {&sp, count_tile, NULL, stop_now};
+    cr_assert_eq(glint_render_pass(s, &st, st.samples, &cb, &a, NULL, &err), GLINT_ERR_CANCELLED);
+    OK(glint_render_pass(s, &st, st.samples, NULL, &a, NULL, &err));
+    OK(glint_accum_resolve(&a, NULL, &film, &least, &err));
+    cr_expect_eq(least, st.samples);
+    cr_expect_eq(memcmp(film.rgb, batch.rgb, n), 0, "adaptive passes differ from the batch image");
+    glint_film_free(&film);
+    glint_film_free(&batch);
+    glint_accum_free(&a);
+    glint_scene_free(s);
+}
+
 Test(progressive, first_pass_is_one_sample_and_refusals)
 {
     glint_scene *s;
