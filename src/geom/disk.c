@@ -4,11 +4,8 @@
 
 bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit)
 {
-    float dn = v3_dot(r->d, s->normal);
-    if (dn == 0.0f)
-        return false;
-    float t = v3_dot(v3_sub(s->center, r->o), s->normal) / dn;
-    if (!ray_in_range(r, t))
+    float t;
+    if (!ray_plane(r, s->center, s->normal, &t))
         return false;
     vec3 q = v3_sub(ray_at(r, t), s->center);
     float u = v3_dot(q, s->tu), v = v3_dot(q, s->tv);

@@ -4,11 +4,8 @@
 
 bool plane_intersect(const struct plane *s, const ray *r, shape_hit *hit)
 {
-    float dn = v3_dot(r->d, s->normal);
-    if (dn == 0.0f)
-        return false; /* parallel: no hit, or the ray lies in the plane */
-    float t = v3_dot(v3_sub(s->point, r->o), s->normal) / dn;
-    if (!ray_in_range(r, t))
+    float t;
+    if (!ray_plane(r, s->point, s->normal, &t))
         return false;
     hit->t = t;
     hit->part = 0;

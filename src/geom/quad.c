@@ -5,11 +5,8 @@
 
 bool quad_intersect(const struct quad *s, const ray *r, shape_hit *hit)
 {
-    float dn = v3_dot(r->d, s->normal);
-    if (dn == 0.0f)
-        return false;
-    float t = v3_dot(v3_sub(s->origin, r->o), s->normal) / dn;
-    if (!ray_in_range(r, t))
+    float t;
+    if (!ray_plane(r, s->origin, s->normal, &t))
         return false;
     vec3 q = v3_sub(ray_at(r, t), s->origin);
     float u = v3_dot(s->w, v3_cross(q, s->edge_v));
