@@ -138,6 +138,7 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
             l.count[k] = k == 0 ? b->nodes[0].count : 0;
         }
         store(&c, new_node(&c), &l);
+        out->leaf_root = true;
     } else if (collapse_node(&c, 0) < 0) {
         free(c.nodes);
         bvh_free(b);

@@ -52,6 +52,9 @@ typedef struct bvhw {
     /* Traversal fetches children ahead (traverse.h) when the nodes are
      * more than WIDE_FETCH_BYTES: a smaller tree stays in the cache. */
     bool fetch_ahead;
+    /* The whole tree is one leaf (lane 0 of node 0): traversal goes
+     * straight to it, without a box test (its primitives make their own). */
+    bool leaf_root;
 } bvhw;
 
 #define WIDE_FETCH_BYTES (256u * 1024u)
