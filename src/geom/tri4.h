@@ -29,11 +29,26 @@ typedef struct tri4 {
 /* The ray in the form the test wants: the axis it runs most along (kz), the
  * two others (kx, ky) and the shear constants (Woop et al., section 3). */
 typedef struct tri4_ray {
-    tri_ray tr; /* for the scalar retry */
+#if !defined(GLINT_TRI4_SSE)
+    tri_ray tr; /* the scalar test's form */
+#endif
+    vec3 o;
     int kx, ky, kz;
     float ox, oy, oz; /* origin along kx, ky, kz */
     float sx, sy, sz;
 } tri4_ray;
+
+/* The same shear in tri_ray_make's form (watertight.h), for the scalar test:
+ * the SSE path needs it only to retry a lane in double precision. */
+static inline tri_ray tri4_scalar_ray(const tri4_ray *q)
+{
+    tri_ray t;
+    t.o = q->o;
+    t.mx = v3_add(tri_axis(q->kx, 1.0f), tri_axis(q->kz, -q->sx));
+    t.my = v3_add(tri_axis(q->ky, 1.0f), tri_axis(q->kz, -q->sy));
+    t.mz = tri_axis(q->kz, q->sz);
+    return t;
+}
 
 __attribute__((always_inline)) static inline tri4_ray tri4_ray_make(const ray *r)
 {
@@ -54,11 +69,10 @@ __attribute__((always_inline)) static inline tri4_ray tri4_ray_make(const ray *r
     q.ox = v3_at(r->o, q.kx);
     q.oy = v3_at(r->o, q.ky);
     q.oz = v3_at(r->o, q.kz);
-    /* the same shear as tri_ray_make's, without working it out twice */
-    q.tr.o = r->o;
-    q.tr.mx = v3_add(tri_axis(q.kx, 1.0f), tri_axis(q.kz, -q.sx));
-    q.tr.my = v3_add(tri_axis(q.ky, 1.0f), tri_axis(q.kz, -q.sy));
-    q.tr.mz = tri_axis(q.kz, q.sz);
+    q.o = r->o;
+#if !defined(GLINT_TRI4_SSE)
+    q.tr = tri4_scalar_ray(&q);
+#endif
     return q;
 }
 
@@ -94,9 +108,10 @@ __attribute__((always_inline)) static inline int tri4_intersect(const tri4_ray *
     int mask = 0;
     if (on_edge) {
         /* Rare: settle those lanes one at a time in double precision. */
+        tri_ray tr = tri4_scalar_ray(q);
         for (int k = 0; k < 4; k++)
             if ((on_edge >> k & 1) && b->id[k] >= 0 &&
-                tri_intersect(&q->tr, tri4_corner(b, 0, k), tri4_corner(b, 1, k),
+                tri_intersect(&tr, tri4_corner(b, 0, k), tri4_corner(b, 1, k),
                               tri4_corner(b, 2, k), tmin, tmax, &t[k], &b1[k], &b2[k]))
                 mask |= 1 << k;
     }
