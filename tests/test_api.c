@@ -607,8 +607,8 @@ Test(api, values_out_of_range_are_refused)
     t = glint_texture_default(GLINT_TEXTURE_CHECKER);
     t.scale[1] = 0;
     REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "scale");
-    t = glint_texture_default((glint_texture_kind)5);
-    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "kind 5");
+    t = glint_texture_default((glint_texture_kind)42);
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "kind 42");
     REFUSED(glint_scene_add_texture(s, NULL, NULL, &err), "texture is NULL");
     REFUSED(glint_scene_add_mesh(s, NULL, NULL, &err), "path is NULL");
     REFUSED(glint_scene_add_mesh(s, "/nonexistent/m.obj", NULL, &err), "m.obj");
