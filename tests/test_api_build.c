@@ -348,3 +348,223 @@ Test(api_build, csg_trees_with_operand_materials_and_transforms_as_in_yaml)
     object(s, (glint_shape){GLINT_SHAPE_CSG, .csg = {GLINT_CSG_INTERSECTION, both, 2}}, -1, right, 1);
     expect_same_render(s, csg_yaml);
 }
+
+/* ---- refusals ------------------------------------------------------------- */
+
+/* Refuses the object, leaving the scene's object count as it was. */
+static void refuse_object(glint_scene *s, const glint_object *o, const char *words)
+{
+    glint_scene_counts before, after;
+    OK(glint_scene_count(s, &before, &err));
+    REFUSED(glint_scene_add_object(s, o, NULL, &err), words);
+    OK(glint_scene_count(s, &after, &err));
+    cr_expect_eq(after.objects, before.objects, "a refused object (%s) was added", words);
+}
+
+Test(api_build, shapes_out_of_their_rules_are_refused)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    int mat = material(s, glint_material_default());
+    struct {
+        const char *words;
+        glint_shape shape;
+    } shapes[] = {
+        {"cone radius and height must be > 0", {GLINT_SHAPE_CONE, .cone = {{0, 0, 0}, 0, 0, 1, 1}}},
+        {"top_radius >= 0", {GLINT_SHAPE_CONE, .cone = {{0, 0, 0}, 1, -1, 1, 1}}},
+        {"disk normal must not be zero", {GLINT_SHAPE_DISK, .disk = {{0, 0, 0}, {0, 0, 0}, 1, 0}}},
+        {"inner_radius must be >= 0 and less than radius (got 2, radius 1)",
+         {GLINT_SHAPE_DISK, .disk = {{0, 0, 0}, {0, 1, 0}, 1, 2}}},
+        {"torus major_radius and minor_radius", {GLINT_SHAPE_TORUS, .torus = {{0, 0, 0}, 1, 0}}},
+        {"torus major_radius and minor_radius", {GLINT_SHAPE_TORUS, .torus = {{0, NAN, 0}, 1, 1}}},
+        {"preset 9 is not one of",
+         {GLINT_SHAPE_POLYHEDRON, .polyhedron = {.preset = (glint_polyhedron_preset)9}}},
+        {"polyhedron radius must be > 0",
+         {GLINT_SHAPE_POLYHEDRON, .polyhedron = {.preset = GLINT_POLYHEDRON_CUBE}}},
+        {"polyhedron vertices is NULL", {GLINT_SHAPE_POLYHEDRON, .polyhedron = {.nfaces = 4}}},
+        {"triangle uv must be finite",
+         {GLINT_SHAPE_TRIANGLE, .triangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, {{0, NAN}}}}},
+    };
+    glint_object o = {.material = mat};
+    for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
+        o.shape = shapes[i].shape;
+        refuse_object(s, &o, shapes[i].words);
+    }
+    /* Vertices and faces: polyhedron_init's findings, in words. */
+    glint_polyhedron p = {.vertices = pyramid, .nvertices = 5, .indices = pyramid_faces,
+                          .face_sizes = pyramid_sizes, .nfaces = 5};
+    o.shape = (glint_shape){GLINT_SHAPE_POLYHEDRON, .polyhedron = p};
+    o.shape.polyhedron.nvertices = 3;
+    refuse_object(s, &o, "at least 4 vertices and 4 faces (got 3 and 5)");
+    o.shape.polyhedron = p;
+    o.shape.polyhedron.nfaces = 4;
+    refuse_object(s, &o, "the solid is not closed");
+    int out_of_range[16], repeat[16], wound[16];
+    memcpy(out_of_range, pyramid_faces, sizeof out_of_range);
+    memcpy(repeat, pyramid_faces, sizeof repeat);
+    memcpy(wound, pyramid_faces, sizeof wound);
+    out_of_range[5] = 7;
+    repeat[6] = 0;
+    wound[5] = 1, wound[6] = 4; /* face 1 turned round */
+    const int *bad[] = {out_of_range, repeat, wound};
+    const char *why[] = {"vertex index 7 is out of range (the polyhedron has 5 vertices, 0 to 4)",
+                         "face 1 names a vertex twice", "both run from vertex"};
+    for (int i = 0; i < 3; i++) {
+        o.shape.polyhedron = p;
+        o.shape.polyhedron.indices = bad[i];
+        refuse_object(s, &o, why[i]);
+    }
+    REFUSED(glint_scene_add_mesh_smoothed(s, "x.obj", 200, NULL, &err), "smooth_angle");
+    REFUSED(glint_scene_add_mesh_smoothed(s, NULL, 30, NULL, &err), "path is NULL");
+    OK(glint_scene_add_object(s, &(glint_object){{GLINT_SHAPE_POLYHEDRON, .polyhedron = p}, mat,
+                                                  NULL, 0},
+                              NULL, &err));
+    glint_scene_free(s);
+}
+
+Test(api_build, csg_out_of_its_rules_is_refused)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    int mat = material(s, glint_material_default());
+    glint_shape ball = {GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}};
+    glint_object two[2] = {{ball, -1, NULL, 0}, {ball, -1, NULL, 0}};
+    glint_object o = {{GLINT_SHAPE_CSG, .csg = {GLINT_CSG_UNION, two, 1}}, mat, NULL, 0};
+    refuse_object(s, &o, "a csg needs at least 2 operands (got 1)");
+    o.shape.csg = (glint_csg){(glint_csg_op)7, two, 2};
+    refuse_object(s, &o, "csg op 7 is not one of glint_csg_op");
+    o.shape.csg = (glint_csg){GLINT_CSG_UNION, NULL, 2};
+    refuse_object(s, &o, "csg operands is NULL");
+    o.shape.csg = (glint_csg){GLINT_CSG_DIFFERENCE, two, 2};
+    two[1].shape = (glint_shape){GLINT_SHAPE_PLANE, .plane = {{0, 0, 0}, {0, 1, 0}}};
+    refuse_object(s, &o, "operands[1]: does not enclose a solid");
+    two[1].shape = (glint_shape){GLINT_SHAPE_CYLINDER, .cylinder = {{0, 0, 0}, 1, 1, 0}};
+    refuse_object(s, &o, "operands[1]: does not enclose a solid");
+    two[1].shape = ball;
+    o.material = -1;
+    refuse_object(s, &o, "operands[0]: material is -1 and no csg around it has one");
+    two[0].material = 5;
+    refuse_object(s, &o, "operands[0]: material 5 was not added");
+    /* Nested: the message gives the operand's path. */
+    glint_object inner[2] = {{ball, mat, NULL, 0}, {{GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, -1}},
+                                                    mat, NULL, 0}};
+    two[0] = (glint_object){ball, mat, NULL, 0};
+    two[1] = (glint_object){{GLINT_SHAPE_CSG, .csg = {GLINT_CSG_UNION, inner, 2}}, -1, NULL, 0};
+    refuse_object(s, &o, "operands[1].operands[1]: sphere radius must be > 0");
+    inner[1].shape = ball;
+    glint_step flat[] = {{GLINT_STEP_SCALE, {1, 0, 1}}};
+    inner[0].steps = flat, inner[0].nsteps = 1;
+    refuse_object(s, &o, "operands[1].operands[0]: steps[0]: scale factors must not be 0");
+    inner[0].nsteps = 0;
+    /* An operand that holds its own csg nests without end: refused. */
+    inner[1] = two[1];
+    refuse_object(s, &o, "nest more than 256 deep");
+    inner[1] = (glint_object){ball, mat, NULL, 0};
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+
+    /* A mesh is an operand when it is closed; with material -1 it keeps
+     * its own materials. */
+    tmpdir_make("api-csg");
+    char open_path[128], closed_path[128];
+    snprintf(open_path, sizeof open_path, "%s/open.obj", dir);
+    snprintf(closed_path, sizeof closed_path, "%s/closed.obj", dir);
+    FILE *f = fopen(open_path, "w");
+    cr_assert_not_null(f);
+    fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", f);
+    fclose(f);
+    f = fopen(closed_path, "w");
+    cr_assert_not_null(f);
+    fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", f);
+    fclose(f);
+    int open_mesh = -1, closed_mesh = -1;
+    OK(glint_scene_add_mesh(s, open_path, &open_mesh, &err));
+    OK(glint_scene_add_mesh_smoothed(s, closed_path, 0, &closed_mesh, &err));
+    tmpdir_remove();
+    two[0] = (glint_object){{GLINT_SHAPE_MESH, .mesh = {open_mesh}}, -1, NULL, 0};
+    two[1] = (glint_object){{GLINT_SHAPE_MESH, .mesh = {closed_mesh}}, -1, NULL, 0};
+    refuse_object(s, &o, "operands[0]: mesh cannot be a csg operand: it is not a closed surface");
+    two[0] = two[1];
+    OK(glint_scene_add_object(s, &o, NULL, &err));
+    OK(glint_scene_build(s, &err));
+    glint_scene_free(s);
+}
+
+Test(api_build, textures_materials_and_fog_out_of_their_rules_are_refused)
+{
+    glint_scene *s = NULL;
+    OK(glint_scene_new(&s, &err));
+    glint_texture t = glint_texture_default(GLINT_TEXTURE_IMAGE);
+    t.file = GLINT_SOURCE_DIR "/scenes/textures/globe.png";
+    t.mapping = GLINT_MAPPING_SPHERICAL;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err),
+            "mapping spherical projects a point in space: space must be object or world");
+    t.mapping = GLINT_MAPPING_UV, t.space = GLINT_SPACE_WORLD;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "an image with mapping uv is on (u, v)");
+    t.mapping = GLINT_MAPPING_PLANAR, t.axis = 3;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "axis must be 0 (x), 1 (y) or 2 (z)");
+    t.mapping = (glint_mapping)8;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "mapping 8 is not one of");
+    t = glint_texture_default(GLINT_TEXTURE_NOISE);
+    t.space = (glint_texture_space)4;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "space 4 is not one of");
+    t = glint_texture_default(GLINT_TEXTURE_NOISE);
+    t.scale_z = 0;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "scale_z must not be 0");
+    t = glint_texture_default(GLINT_TEXTURE_STRIPES);
+    t.ncolors = GLINT_COLOR_MAP_MAX + 1;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "colors must have 1 to 16 stops (got 17)");
+    set_stops(&t, 2, (glint_color_stop[]){{1, {1, 1, 1}}, {0.5, {0, 0, 0}}});
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "ascending order of value (0.5 after 1)");
+    set_stops(&t, 1, (glint_color_stop[]){{0, {-1, 0, 0}}});
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "colors[0]");
+    t = glint_texture_default(GLINT_TEXTURE_TURBULENCE);
+    t.octaves = 17;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "octaves must be 1 to 16 (got 17)");
+    t = glint_texture_default(GLINT_TEXTURE_WOOD);
+    t.gain = 0;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "lacunarity and gain must be > 0");
+    t = glint_texture_default(GLINT_TEXTURE_MARBLE);
+    t.turbulence = -1;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "turbulence must be >= 0");
+    glint_step flat[] = {{GLINT_STEP_SCALE, {0, 1, 1}}};
+    t = glint_texture_default(GLINT_TEXTURE_MARBLE);
+    t.steps = flat, t.nsteps = 1;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "steps[0]: scale factors must not be 0");
+    t.steps = NULL;
+    REFUSED(glint_scene_add_texture(s, &t, NULL, &err), "steps is NULL");
+    glint_scene_counts counts;
+    OK(glint_scene_count(s, &counts, &err));
+    cr_expect_eq(counts.textures, 0, "a refused texture was added");
+
+    int on_uv = -1, in_space = -1;
+    t = glint_texture_default(GLINT_TEXTURE_CHECKER);
+    OK(glint_scene_add_texture(s, &t, &on_uv, &err));
+    t = glint_texture_default(GLINT_TEXTURE_NOISE);
+    OK(glint_scene_add_texture(s, &t, &in_space, &err));
+    glint_material m = glint_material_default();
+    m.bump = 1, m.bump_texture = on_uv;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err),
+            "a bump pattern must be in space object or world");
+    m.bump_texture = 7;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err), "bump_texture 7 was not added");
+    m.bump_texture = in_space, m.bump_strength = INFINITY;
+    REFUSED(glint_scene_add_material(s, &m, NULL, &err), "bump_strength must be finite");
+    m.bump_strength = -2; /* any finite strength: negative bumps dent */
+    OK(glint_scene_add_material(s, &m, NULL, &err));
+
+    glint_fog f = glint_fog_default(GLINT_FOG_EXPONENTIAL);
+    REFUSED(glint_scene_set_fog(s, &f, &err), "density must be > 0");
+    f = glint_fog_default(GLINT_FOG_LINEAR);
+    f.start = 5, f.end = 5;
+    REFUSED(glint_scene_set_fog(s, &f, &err), "end greater than start");
+    f.end = 6, f.height_falloff = -1;
+    REFUSED(glint_scene_set_fog(s, &f, &err), "height_falloff must be >= 0");
+    f.height_falloff = 0, f.color[1] = -0.5;
+    REFUSED(glint_scene_set_fog(s, &f, &err), "colour components >= 0");
+    f = glint_fog_default((glint_fog_kind)9);
+    REFUSED(glint_scene_set_fog(s, &f, &err), "fog kind is not one of");
+    REFUSED(glint_scene_set_fog(s, NULL, &err), "fog is NULL");
+    f = glint_fog_default(GLINT_FOG_NONE);
+    OK(glint_scene_set_fog(s, &f, &err));
+    glint_scene_free(s);
+}
