@@ -2,18 +2,7 @@
  * scene format's steps use, for objects, csg operands and textures. */
 #include "api/build.h"
 
-#include <math.h>
-
 #include "api/check.h"
-
-static bool xform_finite(const xform *x)
-{
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            if (!isfinite(x->fwd.m[i][j]) || !isfinite(x->inv.m[i][j]))
-                return false;
-    return true;
-}
 
 /* One step as a transform, or NULL; otherwise what is wrong with it. */
 static const char *make_step(const glint_step *st, xform *out)
@@ -49,7 +38,7 @@ static const char *make_step(const glint_step *st, xform *out)
             return "matrix is not invertible";
         break;
     }
-    return xform_finite(out) ? NULL : "makes the transform degenerate";
+    return xform_is_finite(out) ? NULL : "makes the transform degenerate";
 }
 
 glint_rc api_xform(const char *fn, const char *where, const glint_step *steps, int nsteps,
@@ -72,7 +61,7 @@ glint_rc api_xform(const char *fn, const char *where, const glint_step *steps, i
         if (problem)
             return api_bad(err, fn, "%ssteps[%d]: %s", where, i, problem);
         *out = i > 0 ? xform_then(out, &step) : step;
-        if (!xform_finite(out))
+        if (!xform_is_finite(out))
             return api_bad(err, fn, "%ssteps[%d] makes the transform degenerate", where, i);
     }
     return GLINT_OK;
