@@ -28,8 +28,8 @@
  * Compatibility. Structures may gain fields in later versions: start from
  * what the library fills in (glint_scene_settings, glint_scene_camera,
  * glint_material_default, glint_texture_default, glint_light_default,
- * glint_fog_default) rather than from a
- * structure written out by hand, and zero-initialise the rest. */
+ * glint_fog_default) rather than from a structure written out by hand, and
+ * zero-initialise the rest. */
 #ifndef GLINT_GLINT_H
 #define GLINT_GLINT_H
 

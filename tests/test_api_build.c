@@ -351,14 +351,22 @@ Test(api_build, csg_trees_with_operand_materials_and_transforms_as_in_yaml)
 
 /* ---- refusals ------------------------------------------------------------- */
 
-/* Refuses the object, leaving the scene's object count as it was. */
+/* Refuses the object, leaving the scene as it was: its objects, and all
+ * that a pixel depends on (its fingerprint, transforms included). */
 static void refuse_object(glint_scene *s, const glint_object *o, const char *words)
 {
     glint_scene_counts before, after;
+    glint_settings st;
+    uint64_t fp_before, fp_after;
+    OK(glint_scene_build(s, &err));
+    OK(glint_scene_settings(s, &st, &err));
     OK(glint_scene_count(s, &before, &err));
+    OK(glint_fingerprint(s, &st, &fp_before, &err));
     REFUSED(glint_scene_add_object(s, o, NULL, &err), words);
     OK(glint_scene_count(s, &after, &err));
+    OK(glint_fingerprint(s, &st, &fp_after, &err));
     cr_expect_eq(after.objects, before.objects, "a refused object (%s) was added", words);
+    cr_expect_eq(fp_after, fp_before, "a refused object (%s) changed the scene", words);
 }
 
 Test(api_build, shapes_out_of_their_rules_are_refused)
@@ -385,7 +393,8 @@ Test(api_build, shapes_out_of_their_rules_are_refused)
         {"triangle uv must be finite",
          {GLINT_SHAPE_TRIANGLE, .triangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, {{0, NAN}}}}},
     };
-    glint_object o = {.material = mat};
+    glint_step moved[] = {{GLINT_STEP_TRANSLATE, {1, 2, 3}}};
+    glint_object o = {.material = mat, .steps = moved, .nsteps = 1};
     for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
         o.shape = shapes[i].shape;
         refuse_object(s, &o, shapes[i].words);
@@ -429,7 +438,8 @@ Test(api_build, csg_out_of_its_rules_is_refused)
     int mat = material(s, glint_material_default());
     glint_shape ball = {GLINT_SHAPE_SPHERE, .sphere = {{0, 0, 0}, 1}};
     glint_object two[2] = {{ball, -1, NULL, 0}, {ball, -1, NULL, 0}};
-    glint_object o = {{GLINT_SHAPE_CSG, .csg = {GLINT_CSG_UNION, two, 1}}, mat, NULL, 0};
+    glint_step moved[] = {{GLINT_STEP_TRANSLATE, {1, 2, 3}}};
+    glint_object o = {{GLINT_SHAPE_CSG, .csg = {GLINT_CSG_UNION, two, 1}}, mat, moved, 1};
     refuse_object(s, &o, "a csg needs at least 2 operands (got 1)");
     o.shape.csg = (glint_csg){(glint_csg_op)7, two, 2};
     refuse_object(s, &o, "csg op 7 is not one of glint_csg_op");

@@ -201,17 +201,16 @@ glint_rc glint_scene_add_object(glint_scene *s, const glint_object *in, int *ind
     if (rc != GLINT_OK)
         return rc;
     /* The shape is checked before the transform joins the scene, so that
-     * a refused object leaves nothing behind. */
+     * a refused object leaves no transform behind. */
+    if (in->shape.kind == GLINT_SHAPE_CSG)
+        return api_add_csg(s, in, in->nsteps > 0 ? &x : NULL, index, err);
     shape sh;
-    if (in->shape.kind != GLINT_SHAPE_CSG)
-        rc = api_shape(s, fn, "", &in->shape, &sh, err);
+    rc = api_shape(s, fn, "", &in->shape, &sh, err);
     int xf = -1;
     if (rc == GLINT_OK && in->nsteps > 0)
         rc = api_added(scene_add_xform(s, &x), &xf, err);
     if (rc != GLINT_OK)
         return rc;
-    if (in->shape.kind == GLINT_SHAPE_CSG)
-        return api_add_csg(s, in, xf, index, err);
     return api_added(scene_add_object(s, &sh, in->material, xf), index, err);
 }
 

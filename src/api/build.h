@@ -21,8 +21,9 @@ glint_rc api_shape(glint_scene *s, const char *fn, const char *where, const glin
                    shape *out, glint_error *err);
 
 /* A csg object: its tree joins the scene and the object places it with
- * the transform xf (-1: none); *index gets the object. */
-glint_rc api_add_csg(glint_scene *s, const glint_object *in, int xf, int *index,
+ * the transform x (NULL: none), which joins the scene only once the tree
+ * is whole; *index gets the object. */
+glint_rc api_add_csg(glint_scene *s, const glint_object *in, const xform *x, int *index,
                      glint_error *err);
 
 /* Stores the index of a new element, or says memory ran out (i < 0). */

@@ -130,7 +130,7 @@ static glint_rc node(build *b, const glint_csg *in, const xform *outer, int fall
     return rc;
 }
 
-glint_rc api_add_csg(glint_scene *s, const glint_object *in, int xf, int *index,
+glint_rc api_add_csg(glint_scene *s, const glint_object *in, const xform *x, int *index,
                      glint_error *err)
 {
     build b = {s, calloc(1, sizeof(csg))};
@@ -148,6 +148,9 @@ glint_rc api_add_csg(glint_scene *s, const glint_object *in, int xf, int *index,
         free(b.c);
         return rc;
     }
+    int xf = -1;
+    if (x && (xf = scene_add_xform(s, x)) < 0)
+        return err_nomem(err);
     shape sh = shape_csg(b.c);
     return api_added(scene_add_object(s, &sh, -1, xf), index, err);
 }
