@@ -30,11 +30,8 @@ static glint_scene *from_yaml(const char *text)
 
 /* Renders both with the YAML scene's settings; the films agree and show
  * something (many values differ from the first pixel's). */
-static void expect_same_render(glint_scene *code, const char *yaml)
+static void expect_same_films(glint_scene *code, glint_scene *y)
 {
-    tmpdir_make("api-build");
-    glint_scene *y = from_yaml(yaml);
-    tmpdir_remove();
     OK(glint_scene_build(code, &err));
     glint_settings st;
     OK(glint_scene_settings(y, &st, &err));
@@ -51,6 +48,14 @@ static void expect_same_render(glint_scene *code, const char *yaml)
     glint_film_free(&b);
     glint_scene_free(code);
     glint_scene_free(y);
+}
+
+static void expect_same_render(glint_scene *code, const char *yaml)
+{
+    tmpdir_make("api-build");
+    glint_scene *y = from_yaml(yaml);
+    tmpdir_remove();
+    expect_same_films(code, y);
 }
 
 static glint_scene *new_scene(const glint_camera *cam, const double light[3])
@@ -159,6 +164,48 @@ Test(api_build, cone_disk_torus_polyhedra_triangle_uv_and_fog_as_in_yaml)
                                                           {{0, 0}, {4, 0}, {2, 4}}}};
     object(s, tri, grid, NULL, 0);
     expect_same_render(s, shapes_yaml);
+}
+
+/* ---- mesh smoothing ------------------------------------------------------- */
+
+/* An octahedron whose faces meet at 109.5 degrees (normals 70.5 apart):
+ * smooth under smooth_angle 90, faceted under 0 or the default 30. */
+static const char octahedron_obj[] = "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+                                     "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\n"
+                                     "f 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
+
+static const char mesh_yaml[] =
+    "image: {width: 48, height: 24, samples: 1, background: 0.2}\n"
+    "camera: {eye: [0, 1, 6], look_at: [0, 0, 0], up: [0, 1, 0], fov: 38}\n"
+    "lights: [{type: point, position: [3, 4, 5]}]\n"
+    "objects:\n"
+    "  - {type: mesh, file: oct.obj, smooth_angle: 90, material: {color: [0.8, 0.5, 0.2]},\n"
+    "     transform: [translate: [-1.2, 0, 0]]}\n"
+    "  - {type: mesh, file: oct.obj, smooth_angle: 0, material: {color: [0.8, 0.5, 0.2]},\n"
+    "     transform: [translate: [1.2, 0, 0]]}\n";
+
+Test(api_build, mesh_smoothing_angle_as_in_yaml)
+{
+    tmpdir_make("api-mesh");
+    char path[128];
+    snprintf(path, sizeof path, "%s/oct.obj", dir);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(octahedron_obj, f);
+    fclose(f);
+    glint_camera cam = {{0, 1, 6}, {0, 0, 0}, {0, 1, 0}, 38, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
+    glint_scene *s = new_scene(&cam, (double[3]){3, 4, 5});
+    OK(glint_scene_set_background(s, (double[3]){0.2, 0.2, 0.2}, &err));
+    int mat = colored(s, 0.8, 0.5, 0.2), smooth = -1, faceted = -1;
+    OK(glint_scene_add_mesh_smoothed(s, path, 90, &smooth, &err));
+    OK(glint_scene_add_mesh_smoothed(s, path, 0, &faceted, &err));
+    glint_step left[] = {{GLINT_STEP_TRANSLATE, {-1.2, 0, 0}}};
+    glint_step right[] = {{GLINT_STEP_TRANSLATE, {1.2, 0, 0}}};
+    object(s, (glint_shape){GLINT_SHAPE_MESH, .mesh = {smooth}}, mat, left, 1);
+    object(s, (glint_shape){GLINT_SHAPE_MESH, .mesh = {faceted}}, mat, right, 1);
+    glint_scene *y = from_yaml(mesh_yaml);
+    tmpdir_remove();
+    expect_same_films(s, y);
 }
 
 /* ---- textures, bump maps and linear fog ----------------------------------- */
