@@ -27,8 +27,9 @@
  *
  * Compatibility. Structures may gain fields in later versions: start from
  * what the library fills in (glint_scene_settings, glint_scene_camera,
- * glint_material_default, glint_texture_default) rather than from a
- * structure written out by hand, and zero-initialise the rest. */
+ * glint_material_default, glint_texture_default, glint_light_default,
+ * glint_fog_default) rather than from a structure written out by hand, and
+ * zero-initialise the rest. */
 #ifndef GLINT_GLINT_H
 #define GLINT_GLINT_H
 
@@ -225,9 +226,13 @@ GLINT_API glint_rc glint_scene_set_time(glint_scene *scene, double seconds, glin
 GLINT_API glint_rc glint_scene_set_frame(glint_scene *scene, int frame, glint_error *err);
 
 /* ---- building a scene in code --------------------------------------------
- * The same scene as a YAML file renders to the same bytes when it gives the
- * same numbers. Adds return the new element's index in *index (may be NULL
- * where no index is needed). Colours are display values unless the render's
+ * Every shape, texture, material, light and setting of the scene format
+ * (docs/scene-format.md) can be built here; the same scene as a YAML file
+ * renders to the same image when it gives the same numbers. Keyed values
+ * (animation) are the scene format's alone: a scene built in code is
+ * still, and an embedder animates it by changing it between renders.
+ * Adds return the new element's index in *index (may be NULL where no
+ * index is needed). Colours are display values unless the render's
  * transfer is sRGB; every number must be finite. */
 
 /* An empty scene: no objects or lights, the default camera (eye at the
@@ -241,18 +246,58 @@ GLINT_API glint_rc glint_scene_set_background(glint_scene *scene, const double r
 GLINT_API glint_rc glint_scene_set_ambient(glint_scene *scene, const double rgb[3],
                                            glint_error *err);
 
+/* The procedural patterns (src/shade/pattern.h gives each formula) give a
+ * value that the colour map turns into a colour. */
 typedef enum glint_texture_kind {
-    GLINT_TEXTURE_IMAGE,   /* a picture read from file */
-    GLINT_TEXTURE_CHECKER, /* a chequer of even and odd */
+    GLINT_TEXTURE_IMAGE,      /* a picture read from file */
+    GLINT_TEXTURE_CHECKER,    /* a chequer of even and odd (or of colors' stops 0 and 1) */
+    GLINT_TEXTURE_STRIPES,    /* slabs of width 1 across x */
+    GLINT_TEXTURE_RINGS,      /* tubes round the z axis (circles on (u, v)) */
+    GLINT_TEXTURE_GRADIENT,   /* a ramp from 0 to 1 along x, repeating */
+    GLINT_TEXTURE_NOISE,      /* Perlin noise */
+    GLINT_TEXTURE_TURBULENCE, /* a fractal sum of noise (octaves, lacunarity, gain) */
+    GLINT_TEXTURE_MARBLE,     /* veins across x bent by turbulence */
+    GLINT_TEXTURE_WOOD,       /* rings round the z axis bent by turbulence */
 } glint_texture_kind;
+
+/* Where a texture is looked up (the scene format's space:). */
+typedef enum glint_texture_space {
+    GLINT_SPACE_UV,     /* the surface's (u, v) */
+    GLINT_SPACE_OBJECT, /* the point in the object's own coordinates, from its bounds' centre */
+    GLINT_SPACE_WORLD,  /* the point in the world */
+} glint_texture_space;
+
+/* How an image in space OBJECT or WORLD finds its (u, v) (mapping:). */
+typedef enum glint_mapping {
+    GLINT_MAPPING_UV,          /* the surface's (u, v): only in space UV */
+    GLINT_MAPPING_PLANAR,      /* along axis, one image per unit, centred at the origin */
+    GLINT_MAPPING_SPHERICAL,   /* longitude and latitude round the origin */
+    GLINT_MAPPING_CYLINDRICAL, /* longitude round the y axis, height along it */
+    GLINT_MAPPING_BOX,         /* planar on the face the normal points most along */
+} glint_mapping;
+
+/* A colour map's stop: the colour at pattern value at. */
+typedef struct glint_color_stop {
+    double at;
+    double color[3]; /* components >= 0 */
+} glint_color_stop;
+
+#define GLINT_COLOR_MAP_MAX 16
 
 typedef enum glint_wrap {
     GLINT_WRAP_REPEAT,
     GLINT_WRAP_CLAMP,
 } glint_wrap;
 
-/* Colour as a function of the surface's (u, v), as in the scene format:
- * before lookup u' = u * scale[0] + offset[0], v' = v * scale[1] + offset[1]. */
+struct glint_step;
+
+/* Colour as a function of where a surface point is, as in the scene
+ * format: on (u, v), u' = u * scale[0] + offset[0], v' = v * scale[1] +
+ * offset[1] before lookup; in space, the point goes through the inverse of
+ * the texture's transform (steps), then (an image) its mapping, then scale
+ * and offset per component (z: scale_z, offset_z). The fields from space on
+ * came later; zero in them keeps the earlier meaning for images and
+ * chequers on (u, v). */
 typedef struct glint_texture {
     glint_texture_kind kind;
     const char *file;       /* IMAGE: PNG, JPEG, ... (read by the add); v = 0 is its bottom row */
@@ -260,10 +305,30 @@ typedef struct glint_texture {
     double even[3], odd[3]; /* CHECKER: colours of the two kinds of square, components >= 0 */
     double scale[2];        /* not 0; a chequer has scale[0] x scale[1] squares on the unit square */
     double offset[2];
+    glint_texture_space space; /* images: UV with mapping UV, OBJECT or WORLD with any other;
+                                  patterns: any (the default is OBJECT, UV for the chequer) */
+    glint_mapping mapping;     /* IMAGE only */
+    int axis;                  /* IMAGE with MAPPING_PLANAR: 0 x, 1 y, 2 z */
+    double scale_z, offset_z;  /* patterns in space: the third components (scale_z not 0) */
+    /* Patterns: the colour map, 1 to GLINT_COLOR_MAP_MAX stops with at
+     * ascending; 0 stops: the kind's own (the chequer's even and odd,
+     * black at 0 to white at 1 for the others). */
+    int ncolors;
+    glint_color_stop colors[GLINT_COLOR_MAP_MAX];
+    int octaves;        /* TURBULENCE, MARBLE, WOOD: 1 to 16 */
+    double lacunarity;  /* TURBULENCE, MARBLE, WOOD: > 0, frequency ratio of octaves */
+    double gain;        /* TURBULENCE, MARBLE, WOOD: > 0, amplitude ratio of octaves */
+    double turbulence;  /* MARBLE, WOOD: >= 0, how much turbulence bends them */
+    const struct glint_step *steps; /* the texture's transform, as an object's, placing it
+                                       in its space; NULL: none */
+    int nsteps;
 } glint_texture;
 
 /* The scene format's defaults for a kind: no file, repeat, even 1, odd 0,
- * scale 1, offset 0. */
+ * scale 1, offset 0, space UV for images and chequers and OBJECT for the
+ * other patterns, mapping UV, axis z, the kind's own colours, 6 octaves,
+ * lacunarity 2, gain 0.5, turbulence 5 for marble, 0.6 for wood, no
+ * transform. */
 GLINT_API glint_texture glint_texture_default(glint_texture_kind kind);
 /* Reads an image texture's file now: a file that cannot be read or decoded
  * is GLINT_ERR_INPUT naming it. */
@@ -287,11 +352,16 @@ typedef struct glint_material {
     double emission[3];   /* light of its own, added unlit; components >= 0 */
     int fresnel_off;      /* nonzero: reflect and transmit as given at any angle (the
                              scene format's fresnel: false) */
+    int bump;             /* nonzero: the normal leans with bump_texture's gradient (bump:) */
+    int bump_texture;     /* with bump: an index from glint_scene_add_texture, a texture
+                             in space OBJECT or WORLD */
+    double bump_strength; /* with bump: how far the normal leans, finite; 1 as given */
 } glint_material;
 
 /* Matte white: colour 1, ambient 1, diffuse 1, specular 0, shininess 50,
  * reflect 0, transmit 0, ior 1, tint 1, no texture, no absorption or
- * emission, Fresnel on (the scene format's defaults). */
+ * emission, Fresnel on, no bump (strength 1) (the scene format's
+ * defaults). */
 GLINT_API glint_material glint_material_default(void);
 GLINT_API glint_rc glint_scene_add_material(glint_scene *scene, const glint_material *m,
                                             int *index, glint_error *err);
@@ -339,10 +409,16 @@ typedef enum glint_shape_kind {
     GLINT_SHAPE_CYLINDER,
     GLINT_SHAPE_TRIANGLE,
     GLINT_SHAPE_MESH,
+    GLINT_SHAPE_CONE,
+    GLINT_SHAPE_DISK,
+    GLINT_SHAPE_TORUS,
+    GLINT_SHAPE_POLYHEDRON,
+    GLINT_SHAPE_CSG,
 } glint_shape_kind;
 
 /* The shapes, in their own coordinates, with the rules of the scene format.
- * A triangle's (u, v) are (0, 0), (1, 0), (0, 1) at p0, p1, p2. */
+ * A triangle's (u, v) are (0, 0), (1, 0), (0, 1) at p0, p1, p2 unless it has
+ * its own. */
 typedef struct glint_sphere { double center[3], radius; } glint_sphere;          /* radius > 0 */
 typedef struct glint_plane { double point[3], normal[3]; } glint_plane;          /* normal not 0 */
 typedef struct glint_quad { double origin[3], edge_u[3], edge_v[3]; } glint_quad; /* edges not parallel */
@@ -352,8 +428,72 @@ typedef struct glint_cylinder {
     double radius, height; /* > 0 */
     int capped;            /* non-zero: closed ends */
 } glint_cylinder;
-typedef struct glint_triangle { double p0[3], p1[3], p2[3]; } glint_triangle; /* not on one line */
+typedef struct glint_triangle {
+    double p0[3], p1[3], p2[3]; /* not on one line */
+    int has_uv;                 /* non-zero: uv holds the (u, v) of p0, p1 and p2 */
+    double uv[3][2];
+} glint_triangle;
 typedef struct glint_mesh { int index; } glint_mesh; /* from glint_scene_add_mesh */
+typedef struct glint_cone {
+    double base[3];    /* centre of the bottom; the axis is +y */
+    double radius;     /* at the base, > 0 */
+    double top_radius; /* at base + height, >= 0; 0 is pointed */
+    double height;     /* > 0 */
+    int capped;        /* non-zero: closed ends */
+} glint_cone;
+typedef struct glint_disk {
+    double center[3], normal[3]; /* normal not 0 */
+    double radius;               /* > 0 */
+    double inner_radius;         /* 0 <= inner_radius < radius: an annulus when > 0 */
+} glint_disk;
+typedef struct glint_torus {
+    double center[3];    /* round the +y axis through center */
+    double major_radius; /* > 0: of the circle the tube follows, in the xz plane */
+    double minor_radius; /* > 0: of the tube */
+} glint_torus;
+
+/* A closed solid of flat faces: a preset, or vertices and faces. */
+typedef enum glint_polyhedron_preset {
+    GLINT_POLYHEDRON_FACES, /* not a preset: vertices and faces */
+    GLINT_POLYHEDRON_TETRAHEDRON,
+    GLINT_POLYHEDRON_CUBE,
+    GLINT_POLYHEDRON_OCTAHEDRON,
+    GLINT_POLYHEDRON_DODECAHEDRON,
+    GLINT_POLYHEDRON_ICOSAHEDRON,
+} glint_polyhedron_preset;
+typedef struct glint_polyhedron {
+    glint_polyhedron_preset preset;
+    double center[3];  /* a preset's centre */
+    double radius;     /* a preset's circumradius, > 0 */
+    /* GLINT_POLYHEDRON_FACES: at least 4 vertices and 4 faces; face i has
+     * face_sizes[i] (>= 3) vertex indices, listed one face after another in
+     * indices, counter-clockwise seen from outside. The solid must be
+     * closed, each face planar (to 0.1% of its size), simple and with area,
+     * each edge shared by two faces running along it opposite ways. */
+    const double (*vertices)[3];
+    int nvertices;
+    const int *indices;
+    const int *face_sizes;
+    int nfaces;
+} glint_polyhedron;
+
+/* Constructive solid geometry: op applied to the operands (difference: the
+ * first minus all the others). Each operand is an object: a closed solid
+ * (sphere, box, capped cylinder or cone, torus, polyhedron, closed mesh)
+ * or another csg, with its own transform, applied before the enclosing
+ * csg's, and its own material, or -1: the nearest enclosing csg's (the
+ * object's material), else for a mesh the file's own. */
+typedef enum glint_csg_op {
+    GLINT_CSG_UNION,
+    GLINT_CSG_INTERSECTION,
+    GLINT_CSG_DIFFERENCE,
+} glint_csg_op;
+struct glint_object;
+typedef struct glint_csg {
+    glint_csg_op op;
+    const struct glint_object *operands; /* at least 2; at most 256 solids in all */
+    int noperands;
+} glint_csg;
 
 typedef struct glint_shape {
     glint_shape_kind kind;
@@ -365,6 +505,11 @@ typedef struct glint_shape {
         glint_cylinder cylinder;
         glint_triangle triangle;
         glint_mesh mesh;
+        glint_cone cone;
+        glint_disk disk;
+        glint_torus torus;
+        glint_polyhedron polyhedron;
+        glint_csg csg;
     };
 } glint_shape;
 
@@ -387,19 +532,48 @@ typedef struct glint_step {
  * with a GLINT_SHAPE_MESH shape is an instance sharing its triangles. */
 GLINT_API glint_rc glint_scene_add_mesh(glint_scene *scene, const char *path, int *index,
                                         glint_error *err);
+/* The same with the scene format's smooth_angle: vertex normals are shared
+ * across edges whose faces meet at less than this many degrees (0 to 180;
+ * 0 is faceted). glint_scene_add_mesh uses the format's default. */
+GLINT_API glint_rc glint_scene_add_mesh_smoothed(glint_scene *scene, const char *path,
+                                                 double smooth_angle, int *index,
+                                                 glint_error *err);
 
 typedef struct glint_object {
     glint_shape shape;
     int material;            /* an index from glint_scene_add_material; for a
-                                mesh, -1: the file's own materials */
+                                mesh, -1: the file's own materials; for a csg,
+                                -1: each operand's own */
     const glint_step *steps; /* the transform, first step applied first; NULL: none */
     int nsteps;
 } glint_object;
 
 /* Refuses a shape out of its rules, a material index not added yet, or a
- * transform that is not invertible. */
+ * transform that is not invertible; messages name the csg operand by its
+ * path (operands[1].operands[0]). */
 GLINT_API glint_rc glint_scene_add_object(glint_scene *scene, const glint_object *obj,
                                           int *index, glint_error *err);
+
+/* Fog along camera, reflected and refracted rays (src/shade/fog.h). */
+typedef enum glint_fog_kind {
+    GLINT_FOG_NONE,
+    GLINT_FOG_EXPONENTIAL, /* keeps exp(-density d) of what lies at distance d */
+    GLINT_FOG_LINEAR,      /* clear up to start, opaque from end */
+} glint_fog_kind;
+typedef struct glint_fog {
+    glint_fog_kind kind;
+    double color[3];       /* components >= 0 */
+    double density;        /* EXPONENTIAL: > 0 */
+    double start, end;     /* LINEAR: 0 <= start < end */
+    double height_falloff; /* >= 0: the air thins upwards as exp(-height_falloff y); 0 none */
+} glint_fog;
+
+/* The scene format's defaults for a kind: colour 0.5, start 0, no height
+ * fall-off; density and end 0, which the kind must be given. */
+GLINT_API glint_fog glint_fog_default(glint_fog_kind kind);
+/* Replaces the scene's fog (GLINT_FOG_NONE: none). */
+GLINT_API glint_rc glint_scene_set_fog(glint_scene *scene, const glint_fog *fog,
+                                       glint_error *err);
 
 /* Prepares the scene for rendering (bounds, the BVH). Call after the last
  * add; a scene with objects added since its last build refuses to render. */

@@ -23,6 +23,12 @@ static inline bool api_finite(const double *v, int n)
     return true;
 }
 
+/* A colour: finite, components >= 0. */
+static inline bool api_color_ok(const double c[3])
+{
+    return api_finite(c, 3) && c[0] >= 0.0 && c[1] >= 0.0 && c[2] >= 0.0;
+}
+
 static inline vec3 api_vec3(const double v[3])
 {
     return v3((float)v[0], (float)v[1], (float)v[2]);

@@ -165,3 +165,12 @@ bool xform_is_identity(const xform *x)
     mat4 id = mat4_identity();
     return memcmp(&x->fwd, &id, sizeof id) == 0;
 }
+
+bool xform_is_finite(const xform *x)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (!isfinite(x->fwd.m[i][j]) || !isfinite(x->inv.m[i][j]))
+                return false;
+    return true;
+}

@@ -34,6 +34,8 @@ bool xform_from_matrix(const mat4 *m, xform *out);
 /* The transform that applies a first, then b. */
 xform xform_then(const xform *a, const xform *b);
 bool xform_is_identity(const xform *x);
+/* Whether every entry of the matrix and its inverse is finite. */
+bool xform_is_finite(const xform *x);
 
 static inline vec3 mat4_point(const mat4 *m, vec3 p)
 {

@@ -3,6 +3,7 @@
 #include "polyhedron.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,12 +26,19 @@ static bool check_indices(const polyhedron *p, poly_error *why)
 {
     for (int f = 0; f < p->nfaces; f++) {
         const poly_face *F = &p->faces[f];
-        if (F->count < 3)
-            return fail(why, POLY_FEW_VERTICES, f, -1);
+        if (F->count < 3) {
+            fail(why, POLY_FEW_VERTICES, f, -1);
+            why->a = F->count;
+            return false;
+        }
         for (int i = 0; i < F->count; i++) {
             int32_t v = p->idx[F->first + i];
-            if (v < 0 || v >= p->nverts)
-                return fail(why, POLY_INDEX, f, i);
+            if (v < 0 || v >= p->nverts) {
+                fail(why, POLY_INDEX, f, i);
+                why->a = v;
+                why->b = p->nverts;
+                return false;
+            }
             for (int j = 0; j < i; j++)
                 if (p->idx[F->first + j] == v)
                     return fail(why, POLY_REPEAT, f, i);
@@ -293,4 +301,56 @@ void polyhedron_free(polyhedron *p)
     free(p->tri);
     free(p->tri_face);
     memset(p, 0, sizeof *p);
+}
+
+void polyhedron_explain(const poly_error *e, char *buf, size_t size)
+{
+    switch (e->what) {
+    case POLY_FEW_VERTICES:
+        snprintf(buf, size, "face %d has %d vertices (a face needs at least 3)", e->face, e->a);
+        return;
+    case POLY_INDEX:
+        snprintf(buf, size, "vertex index %d is out of range (the polyhedron has %d vertices, "
+                            "0 to %d)", e->a, e->b, e->b - 1);
+        return;
+    case POLY_REPEAT:
+        snprintf(buf, size, "face %d names a vertex twice", e->face);
+        return;
+    case POLY_FLAT:
+        snprintf(buf, size, "face %d has no area (its vertices lie on one line)", e->face);
+        return;
+    case POLY_NOT_PLANAR:
+        snprintf(buf, size, "face %d is not planar: its vertex %d is %.3g off the face's plane "
+                            "(at most %.3g, 0.1%% of the face's size, is allowed)",
+                 e->face, e->a, (double)e->dist, (double)e->size * 1e-3);
+        return;
+    case POLY_TANGLED:
+        snprintf(buf, size, "face %d crosses itself (a face must be a simple polygon)", e->face);
+        return;
+    case POLY_OPEN:
+        snprintf(buf, size, "the solid is not closed: the edge from vertex %d to %d of face %d "
+                            "belongs to no other face", e->a, e->b, e->face);
+        return;
+    case POLY_NOT_MANIFOLD:
+        snprintf(buf, size, "the solid is not manifold: the edge between vertices %d and %d "
+                            "belongs to more than two faces (%d, %d and more)",
+                 e->a < e->b ? e->a : e->b, e->a < e->b ? e->b : e->a, e->face, e->other);
+        return;
+    case POLY_WINDING:
+        snprintf(buf, size, "faces %d and %d both run from vertex %d to %d: neighbouring faces "
+                            "must run along their shared edge in opposite directions (each "
+                            "counter-clockwise seen from outside)",
+                 e->face, e->other, e->a, e->b);
+        return;
+    case POLY_INSIDE_OUT:
+        snprintf(buf, size, "the faces are clockwise seen from outside (the solid is inside "
+                            "out): list each face's vertices the other way round");
+        return;
+    case POLY_NOMEM:
+        snprintf(buf, size, "out of memory");
+        return;
+    case POLY_OK:
+        break;
+    }
+    snprintf(buf, size, "no problem");
 }

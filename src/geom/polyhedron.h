@@ -90,6 +90,8 @@ bool polyhedron_init(polyhedron *p, vec3 *verts, int nverts, int32_t *idx, const
 bool polyhedron_preset(polyhedron *p, poly_preset kind, vec3 center, float radius,
                        poly_error *why);
 void polyhedron_free(polyhedron *p);
+/* What is wrong, in words (without where: the caller says that), into buf. */
+void polyhedron_explain(const poly_error *e, char *buf, size_t size);
 
 bool polyhedron_intersect(const polyhedron *p, const ray *r, struct shape_hit *hit);
 void polyhedron_surface(const polyhedron *p, vec3 pt, const struct shape_hit *hit,

@@ -85,49 +85,22 @@ static glint_rc load_faces(loader *L, uint32_t v, int nverts, int32_t **idx, int
     return GLINT_OK;
 }
 
-/* polyhedron_init's finding as a message at the node it is about. */
+/* polyhedron_init's finding as a message at the node it is about: the
+ * index, the face, or the list of faces. */
 static glint_rc poly_message(loader *L, uint32_t faces, const poly_error *e)
 {
+    if (e->what == POLY_NOMEM)
+        return err_nomem(L->err);
     const ydoc *d = load_doc(L);
     uint32_t fv = e->face >= 0 ? ydoc_item(d, load_node(L, faces), (uint32_t)e->face) : faces;
     uint32_t iv = e->corner >= 0 ? ydoc_item(d, load_node(L, fv), (uint32_t)e->corner) : fv;
-    switch (e->what) {
-    case POLY_FEW_VERTICES:
-        return load_fail(L, fv, "face %d has %u vertices (a face needs at least 3)", e->face,
-                         load_node(L, fv)->count);
-    case POLY_INDEX: /* found while reading */
-    case POLY_REPEAT:
-        return load_fail(L, iv, "face %d names a vertex twice", e->face);
-    case POLY_FLAT:
-        return load_fail(L, fv, "face %d has no area (its vertices lie on one line)", e->face);
-    case POLY_NOT_PLANAR:
-        return load_fail(L, iv, "face %d is not planar: its vertex %d is %.3g off the face's "
-                                "plane (at most %.3g, 0.1%% of the face's size, is allowed)",
-                         e->face, e->a, (double)e->dist, (double)e->size * 1e-3);
-    case POLY_TANGLED:
-        return load_fail(L, fv, "face %d crosses itself (a face must be a simple polygon)",
-                         e->face);
-    case POLY_OPEN:
-        return load_fail(L, fv, "the solid is not closed: the edge from vertex %d to %d of face "
-                                "%d belongs to no other face", e->a, e->b, e->face);
-    case POLY_NOT_MANIFOLD:
-        return load_fail(L, fv, "the solid is not manifold: the edge between vertices %d and %d "
-                                "belongs to more than two faces (%d, %d and more)",
-                         e->a < e->b ? e->a : e->b, e->a < e->b ? e->b : e->a, e->face, e->other);
-    case POLY_WINDING:
-        return load_fail(L, fv, "faces %d and %d both run from vertex %d to %d: neighbouring "
-                                "faces must run along their shared edge in opposite directions "
-                                "(each counter-clockwise seen from outside)",
-                         e->face, e->other, e->a, e->b);
-    case POLY_INSIDE_OUT:
-        return load_fail(L, faces, "the faces are clockwise seen from outside (the solid is "
-                                   "inside out): list each face's vertices the other way round");
-    case POLY_NOMEM:
-        return err_nomem(L->err);
-    case POLY_OK:
-        break;
-    }
-    return GLINT_OK;
+    uint32_t at = e->what == POLY_INSIDE_OUT                            ? faces
+                  : e->what == POLY_INDEX || e->what == POLY_REPEAT ||
+                    e->what == POLY_NOT_PLANAR ? iv
+                                               : fv;
+    char msg[512];
+    polyhedron_explain(e, msg, sizeof msg);
+    return load_fail(L, at, "%s", msg);
 }
 
 static glint_rc load_mesh_form(loader *L, uint32_t map, polyhedron *p)

@@ -36,10 +36,6 @@ static const char *const *const texture_keys[TEXTURE_KIND_COUNT] = {
                                            NULL},
 };
 
-/* How much turbulence bends marble and wood unless told. */
-#define MARBLE_TURBULENCE 5.0f
-#define WOOD_TURBULENCE 0.6f
-
 /* The image at a path written in the file, read once per resolved path. */
 static glint_rc load_image_file(loader *L, uint32_t v, int *index)
 {
@@ -283,14 +279,8 @@ glint_rc load_texture(loader *L, uint32_t map, int *index)
         t = texture_image(-1);
         rc = read_image(L, map, &t);
     } else {
-        if (type == TEXTURE_CHECKER) {
-            t = texture_checker(v3s(1.0f), v3s(0.0f), 1.0f, 1.0f);
-        } else {
-            t = texture_pattern((texture_kind)type);
-            t.pattern.noise.amount = type == TEXTURE_MARBLE ? MARBLE_TURBULENCE
-                                     : type == TEXTURE_WOOD ? WOOD_TURBULENCE
-                                                            : 0.0f;
-        }
+        t = type == TEXTURE_CHECKER ? texture_checker(v3s(1.0f), v3s(0.0f), 1.0f, 1.0f)
+                                    : texture_pattern((texture_kind)type);
         rc = read_pattern(L, map, &t);
     }
     if (rc != GLINT_OK)

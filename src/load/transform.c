@@ -31,15 +31,6 @@ _Static_assert(sizeof transform_keys / sizeof *transform_keys == STEP_COUNT + 1,
 static const char *const rotate_keys[] = {"axis", "angle", NULL};
 static const char *const shear_keys[] = {"xy", "xz", "yx", "yz", "zx", "zy", NULL};
 
-static bool xform_is_finite(const xform *x)
-{
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            if (!isfinite(x->fwd.m[i][j]) || !isfinite(x->inv.m[i][j]))
-                return false;
-    return true;
-}
-
 /* A number (uniform) or [sx, sy, sz], no factor 0, as three floats. */
 static glint_rc read_scale(loader *L, uint32_t v, const char *key, float *f)
 {

@@ -17,10 +17,17 @@ texture texture_checker(vec3 even, vec3 odd, float nu, float nv)
                                  .noise = {6, 2.0f, 0.5f, 0.0f}}};
 }
 
+/* How much turbulence bends marble and wood unless told. */
+#define MARBLE_TURBULENCE 5.0f
+#define WOOD_TURBULENCE 0.6f
+
 texture texture_pattern(texture_kind kind)
 {
+    float amount = kind == TEXTURE_MARBLE ? MARBLE_TURBULENCE
+                   : kind == TEXTURE_WOOD ? WOOD_TURBULENCE
+                                          : 0.0f;
     return (texture){.kind = kind, .space = SPACE_OBJECT, .scale = v3s(1.0f),
-                     .pattern = {.map = black_to_white, .noise = {6, 2.0f, 0.5f, 0.0f}}};
+                     .pattern = {.map = black_to_white, .noise = {6, 2.0f, 0.5f, amount}}};
 }
 
 vec3 color_map_eval(const color_map *m, float x)
