@@ -105,16 +105,6 @@ __attribute__((always_inline)) static inline int tri4_intersect(const tri4_ray *
     const __m128 zero = _mm_setzero_ps();
     int on_edge = _mm_movemask_ps(_mm_or_ps(
         _mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero)));
-    int mask = 0;
-    if (on_edge) {
-        /* Rare: settle those lanes one at a time in double precision. */
-        tri_ray tr = tri4_scalar_ray(q);
-        for (int k = 0; k < 4; k++)
-            if ((on_edge >> k & 1) && b->id[k] >= 0 &&
-                tri_intersect(&tr, tri4_corner(b, 0, k), tri4_corner(b, 1, k),
-                              tri4_corner(b, 2, k), tmin, tmax, &t[k], &b1[k], &b2[k]))
-                mask |= 1 << k;
-    }
     __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)),
                            _mm_cmplt_ps(w, zero));
     __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)),
@@ -122,28 +112,31 @@ __attribute__((always_inline)) static inline int tri4_intersect(const tri4_ray *
     __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
     __m128 ok = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_cmpneq_ps(det, zero));
     __m128i used = _mm_cmpgt_epi32(_mm_load_si128((const __m128i *)b->id), _mm_set1_epi32(-1));
-    int lanes = _mm_movemask_ps(_mm_and_ps(ok, _mm_castsi128_ps(used))) & ~on_edge;
-    if (!lanes)
-        return mask;
-    __m128 tt = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, ez[0]), _mm_mul_ps(v, ez[1])),
-                           _mm_mul_ps(w, ez[2]));
-    __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), det);
-    tt = _mm_mul_ps(tt, inv);
-    ok = _mm_and_ps(_mm_cmpgt_ps(tt, _mm_set1_ps(tmin)), _mm_cmplt_ps(tt, _mm_set1_ps(tmax)));
-    lanes &= _mm_movemask_ps(ok);
-    if (!lanes)
-        return mask;
-    float tu[4], tv[4], tw[4];
-    _mm_storeu_ps(tu, tt);
-    _mm_storeu_ps(tv, _mm_mul_ps(v, inv));
-    _mm_storeu_ps(tw, _mm_mul_ps(w, inv));
-    for (int k = 0; k < 4; k++)
-        if (lanes >> k & 1) {
-            t[k] = tu[k];
-            b1[k] = tv[k];
-            b2[k] = tw[k];
+    int mask = _mm_movemask_ps(_mm_and_ps(ok, _mm_castsi128_ps(used))) & ~on_edge;
+    if (mask) {
+        __m128 tt = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, ez[0]), _mm_mul_ps(v, ez[1])),
+                               _mm_mul_ps(w, ez[2]));
+        __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), det);
+        tt = _mm_mul_ps(tt, inv);
+        ok = _mm_and_ps(_mm_cmpgt_ps(tt, _mm_set1_ps(tmin)), _mm_cmplt_ps(tt, _mm_set1_ps(tmax)));
+        mask &= _mm_movemask_ps(ok);
+        if (mask) { /* every lane is stored; the caller reads those in the mask */
+            _mm_storeu_ps(t, tt);
+            _mm_storeu_ps(b1, _mm_mul_ps(v, inv));
+            _mm_storeu_ps(b2, _mm_mul_ps(w, inv));
         }
-    return mask | lanes;
+    }
+    if (on_edge) {
+        /* Rare: settle those lanes one at a time in double precision (after
+         * the stores above, which wrote every lane). */
+        tri_ray tr = tri4_scalar_ray(q);
+        for (int k = 0; k < 4; k++)
+            if ((on_edge >> k & 1) && b->id[k] >= 0 &&
+                tri_intersect(&tr, tri4_corner(b, 0, k), tri4_corner(b, 1, k),
+                              tri4_corner(b, 2, k), tmin, tmax, &t[k], &b1[k], &b2[k]))
+                mask |= 1 << k;
+    }
+    return mask;
 #else
     int mask = 0;
     for (int k = 0; k < 4; k++)
