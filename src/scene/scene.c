@@ -317,8 +317,68 @@ static glint_rc build(scene *s, glint_error *err)
 
 SCENE_KERNELS(sse, 4)
 
+/* A scene whose tree is one leaf (one mesh, say, with planes beside it):
+ * its objects one after another, without a traversal (nor the stack
+ * frame of the traversal kernels). Sets the leaf's objects and their
+ * count; false when the tree is more than one leaf. */
+static bool flat_leaf(const scene *s, const int32_t **objs, uint32_t *count)
+{
+    const bvhw *b = &s->bvh;
+    if (b->nnodes == 0) {
+        *objs = NULL, *count = 0;
+        return true;
+    }
+    if (!b->leaf_root)
+        return false;
+    int32_t c = b->width == 8 ? b->n8[0].child[0] : b->n4[0].child[0];
+    *count = b->width == 8 ? b->n8[0].count[0] : b->n4[0].count[0];
+    *objs = b->prims + (-1 - c);
+    return true;
+}
+
+static bool intersect_flat(const scene *s, const ray *r, const int32_t *objs, uint32_t n,
+                           scene_hit *hit)
+{
+    float tmax = r->tmax;
+    bool found = false;
+    for (int i = 0; i < s->nunbounded; i++)
+        found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
+    for (uint32_t i = 0; i < n; i++)
+        found |= scene_hit_object(s, objs[i], r, r->tmin, &tmax, hit);
+    return found;
+}
+
+static bool occluded_flat(const scene *s, const ray *r, const int32_t *objs, uint32_t n)
+{
+    for (int i = 0; i < s->nunbounded; i++)
+        if (scene_blocks(s, s->unbounded[i], r))
+            return true;
+    for (uint32_t i = 0; i < n; i++)
+        if (scene_blocks(s, objs[i], r))
+            return true;
+    return false;
+}
+
+static bool shadow_flat(const scene *s, const ray *r, const int32_t *objs, uint32_t n,
+                        scene_crossings *out)
+{
+    scene_shadow_ctx c = {s, r, v3_len(r->d), out};
+    out->n = 0;
+    for (int i = 0; i < s->nunbounded; i++)
+        if (scene_shadow_object(&c, s->unbounded[i]))
+            return true;
+    for (uint32_t i = 0; i < n; i++)
+        if (scene_shadow_object(&c, objs[i]))
+            return true;
+    return false;
+}
+
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 {
+    const int32_t *objs;
+    uint32_t n;
+    if (flat_leaf(s, &objs, &n))
+        return intersect_flat(s, r, objs, n, hit);
     accel_isa isa = s->bvh.isa;
 #if defined(GLINT_WIDE_KERNELS)
     if (isa == ACCEL_AVX512)
@@ -331,6 +391,10 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 
 bool scene_occluded_opaque(const scene *s, const ray *r)
 {
+    const int32_t *objs;
+    uint32_t n;
+    if (flat_leaf(s, &objs, &n))
+        return occluded_flat(s, r, objs, n);
     accel_isa isa = s->bvh.isa;
 #if defined(GLINT_WIDE_KERNELS)
     if (isa == ACCEL_AVX512)
@@ -345,8 +409,12 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
 {
     accel_isa isa = s->bvh.isa;
     bool blocked;
+    const int32_t *objs;
+    uint32_t n;
+    if (flat_leaf(s, &objs, &n))
+        blocked = shadow_flat(s, r, objs, n, out);
 #if defined(GLINT_WIDE_KERNELS)
-    if (isa == ACCEL_AVX512)
+    else if (isa == ACCEL_AVX512)
         blocked = scene_shadow_walk_avx512(s, r, out);
     else if (isa == ACCEL_AVX2)
         blocked = scene_shadow_walk_avx2(s, r, out);
