@@ -227,11 +227,6 @@ wide_traverse(const bvhw *b, int width, vec3 o, vec3 d, float tmin, float *tmax,
 {
     if (b->nnodes == 0)
         return false;
-    if (b->leaf_root) {
-        int32_t c = width == 8 ? b->n8[0].child[0] : b->n4[0].child[0];
-        uint32_t n = width == 8 ? b->n8[0].count[0] : b->n4[0].count[0];
-        return leaf(ctx, (uint32_t)(-1 - c), n, tmin, tmax);
-    }
     wide_ray r = wide_ray_make(o, d, tmin);
     bool found = false;
     wide_entry stack[WIDE_STACK(8)];

@@ -52,8 +52,8 @@ typedef struct bvhw {
     /* Traversal fetches children ahead (traverse.h) when the nodes are
      * more than WIDE_FETCH_BYTES: a smaller tree stays in the cache. */
     bool fetch_ahead;
-    /* The whole tree is one leaf (lane 0 of node 0): traversal goes
-     * straight to it, without a box test (its primitives make their own). */
+    /* The whole tree is one leaf (lane 0 of node 0): an owner may test its
+     * primitives without a traversal (scene.c does). */
     bool leaf_root;
 } bvhw;
 

@@ -44,19 +44,13 @@ static inline ray ray_make(vec3 o, vec3 d, float tmax)
 }
 
 /* Where r meets the plane through point with normal n: true with *t when
- * that is within (tmin, tmax). A ray parallel to the plane misses it, and
- * one moving away from it (the distance's sign is not the direction's:
- * t <= 0) is refused before the division when tmin >= 0, as rays leaving
- * a surface mostly are. */
+ * that is within (tmin, tmax); a ray parallel to the plane misses it. */
 static inline bool ray_plane(const ray *r, vec3 point, vec3 n, float *t)
 {
     float dn = v3_dot(r->d, n);
     if (dn == 0.0f)
         return false;
-    float num = v3_dot(v3_sub(point, r->o), n);
-    if ((num == 0.0f || (num < 0.0f) != (dn < 0.0f)) && r->tmin >= 0.0f)
-        return false;
-    *t = num / dn;
+    *t = v3_dot(v3_sub(point, r->o), n) / dn;
     return ray_in_range(r, *t);
 }
 

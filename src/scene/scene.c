@@ -308,6 +308,7 @@ static glint_rc build(scene *s, glint_error *err)
     rc = build_accel(s, err);
     if (rc != GLINT_OK)
         return rc;
+    s->flat = s->bvh.nnodes == 0 || s->bvh.leaf_root;
     s->any_transmit = false;
     for (int i = 0; i < s->nmaterials; i++)
         s->any_transmit = s->any_transmit || s->materials[i].transmit > 0.0f;
@@ -319,26 +320,23 @@ SCENE_KERNELS(sse, 4)
 
 /* A scene whose tree is one leaf (one mesh, say, with planes beside it):
  * its objects one after another, without a traversal (nor the stack
- * frame of the traversal kernels). Sets the leaf's objects and their
- * count; false when the tree is more than one leaf. */
-static bool flat_leaf(const scene *s, const int32_t **objs, uint32_t *count)
+ * frame of the traversal kernels). The leaf's objects and their count. */
+static const int32_t *flat_leaf(const scene *s, uint32_t *count)
 {
     const bvhw *b = &s->bvh;
     if (b->nnodes == 0) {
-        *objs = NULL, *count = 0;
-        return true;
+        *count = 0;
+        return NULL;
     }
-    if (!b->leaf_root)
-        return false;
     int32_t c = b->width == 8 ? b->n8[0].child[0] : b->n4[0].child[0];
     *count = b->width == 8 ? b->n8[0].count[0] : b->n4[0].count[0];
-    *objs = b->prims + (-1 - c);
-    return true;
+    return b->prims + (-1 - c);
 }
 
-static bool intersect_flat(const scene *s, const ray *r, const int32_t *objs, uint32_t n,
-                           scene_hit *hit)
+static bool intersect_flat(const scene *s, const ray *r, scene_hit *hit)
 {
+    uint32_t n;
+    const int32_t *objs = flat_leaf(s, &n);
     float tmax = r->tmax;
     bool found = false;
     for (int i = 0; i < s->nunbounded; i++)
@@ -348,8 +346,10 @@ static bool intersect_flat(const scene *s, const ray *r, const int32_t *objs, ui
     return found;
 }
 
-static bool occluded_flat(const scene *s, const ray *r, const int32_t *objs, uint32_t n)
+static bool occluded_flat(const scene *s, const ray *r)
 {
+    uint32_t n;
+    const int32_t *objs = flat_leaf(s, &n);
     for (int i = 0; i < s->nunbounded; i++)
         if (scene_blocks(s, s->unbounded[i], r))
             return true;
@@ -359,9 +359,10 @@ static bool occluded_flat(const scene *s, const ray *r, const int32_t *objs, uin
     return false;
 }
 
-static bool shadow_flat(const scene *s, const ray *r, const int32_t *objs, uint32_t n,
-                        scene_crossings *out)
+static bool shadow_flat(const scene *s, const ray *r, scene_crossings *out)
 {
+    uint32_t n;
+    const int32_t *objs = flat_leaf(s, &n);
     scene_shadow_ctx c = {s, r, v3_len(r->d), out};
     out->n = 0;
     for (int i = 0; i < s->nunbounded; i++)
@@ -375,10 +376,8 @@ static bool shadow_flat(const scene *s, const ray *r, const int32_t *objs, uint3
 
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 {
-    const int32_t *objs;
-    uint32_t n;
-    if (flat_leaf(s, &objs, &n))
-        return intersect_flat(s, r, objs, n, hit);
+    if (s->flat)
+        return intersect_flat(s, r, hit);
     accel_isa isa = s->bvh.isa;
 #if defined(GLINT_WIDE_KERNELS)
     if (isa == ACCEL_AVX512)
@@ -391,10 +390,8 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)
 
 bool scene_occluded_opaque(const scene *s, const ray *r)
 {
-    const int32_t *objs;
-    uint32_t n;
-    if (flat_leaf(s, &objs, &n))
-        return occluded_flat(s, r, objs, n);
+    if (s->flat)
+        return occluded_flat(s, r);
     accel_isa isa = s->bvh.isa;
 #if defined(GLINT_WIDE_KERNELS)
     if (isa == ACCEL_AVX512)
@@ -409,10 +406,8 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
 {
     accel_isa isa = s->bvh.isa;
     bool blocked;
-    const int32_t *objs;
-    uint32_t n;
-    if (flat_leaf(s, &objs, &n))
-        blocked = shadow_flat(s, r, objs, n, out);
+    if (s->flat)
+        blocked = shadow_flat(s, r, out);
 #if defined(GLINT_WIDE_KERNELS)
     else if (isa == ACCEL_AVX512)
         blocked = scene_shadow_walk_avx512(s, r, out);

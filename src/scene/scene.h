@@ -66,6 +66,7 @@ struct glint_scene {
     char *warnings; /* lines for the user from building the scene, or NULL */
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
+    bool flat;         /* the BVH is one leaf or empty: rays test objects in turn */
     double build_seconds; /* wall time of the last scene_build */
     char **sources;       /* files the scene was read from, each once (front ends add them) */
     int nsources, cap_sources;
