@@ -318,60 +318,23 @@ static glint_rc build(scene *s, glint_error *err)
 
 SCENE_KERNELS(sse, 4)
 
-/* A scene whose tree is one leaf (one mesh, say, with planes beside it):
- * its objects one after another, without a traversal (nor the stack
- * frame of the traversal kernels). The leaf's objects and their count. */
-static const int32_t *flat_leaf(const scene *s, uint32_t *count)
+/* The flat scene's queries, out of line so that the dispatchers below
+ * stay small for every other scene. */
+static __attribute__((noinline)) bool intersect_flat(const scene *s, const ray *r,
+                                                     scene_hit *hit)
 {
-    const bvhw *b = &s->bvh;
-    if (b->nnodes == 0) {
-        *count = 0;
-        return NULL;
-    }
-    int32_t c = b->width == 8 ? b->n8[0].child[0] : b->n4[0].child[0];
-    *count = b->width == 8 ? b->n8[0].count[0] : b->n4[0].count[0];
-    return b->prims + (-1 - c);
+    return scene_closest_walk(s, r, hit, 4, true);
 }
 
-static bool intersect_flat(const scene *s, const ray *r, scene_hit *hit)
+static __attribute__((noinline)) bool occluded_flat(const scene *s, const ray *r)
 {
-    uint32_t n;
-    const int32_t *objs = flat_leaf(s, &n);
-    float tmax = r->tmax;
-    bool found = false;
-    for (int i = 0; i < s->nunbounded; i++)
-        found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
-    for (uint32_t i = 0; i < n; i++)
-        found |= scene_hit_object(s, objs[i], r, r->tmin, &tmax, hit);
-    return found;
+    return scene_any_walk(s, r, 4, true);
 }
 
-static bool occluded_flat(const scene *s, const ray *r)
+static __attribute__((noinline)) bool shadow_flat(const scene *s, const ray *r,
+                                                  scene_crossings *out)
 {
-    uint32_t n;
-    const int32_t *objs = flat_leaf(s, &n);
-    for (int i = 0; i < s->nunbounded; i++)
-        if (scene_blocks(s, s->unbounded[i], r))
-            return true;
-    for (uint32_t i = 0; i < n; i++)
-        if (scene_blocks(s, objs[i], r))
-            return true;
-    return false;
-}
-
-static bool shadow_flat(const scene *s, const ray *r, scene_crossings *out)
-{
-    uint32_t n;
-    const int32_t *objs = flat_leaf(s, &n);
-    scene_shadow_ctx c = {s, r, v3_len(r->d), out};
-    out->n = 0;
-    for (int i = 0; i < s->nunbounded; i++)
-        if (scene_shadow_object(&c, s->unbounded[i]))
-            return true;
-    for (uint32_t i = 0; i < n; i++)
-        if (scene_shadow_object(&c, objs[i]))
-            return true;
-    return false;
+    return scene_shadow_walk(s, r, out, 4, true);
 }
 
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit)

@@ -122,40 +122,85 @@ __attribute__((always_inline)) static inline bool scene_leaf_shadow(void *ctx, u
     return false;
 }
 
-/* Defines scene_intersect_<isa> and scene_occluded_<isa> for nodes of the
- * given width: unbounded objects first, then the BVH. */
+/* The one leaf of a flat scene (scene.flat): its first entry in bvh.prims
+ * and its count (0 for an empty tree). */
+static inline uint32_t scene_flat_leaf(const scene *s, uint32_t *first)
+{
+    const bvhw *b = &s->bvh;
+    *first = 0;
+    if (b->nnodes == 0)
+        return 0;
+    int32_t c = b->width == 8 ? b->n8[0].child[0] : b->n4[0].child[0];
+    *first = (uint32_t)(-1 - c);
+    return b->width == 8 ? b->n8[0].count[0] : b->n4[0].count[0];
+}
+
+/* The three queries: unbounded objects first, then the BVH of the given
+ * width, or for a flat scene its one leaf without a traversal (and so
+ * without the traversal's stack frame). */
+__attribute__((always_inline)) static inline bool
+scene_closest_walk(const scene *s, const ray *r, scene_hit *hit, int width, bool flat)
+{
+    float tmax = r->tmax;
+    bool found = false;
+    for (int i = 0; i < s->nunbounded; i++)
+        found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
+    scene_leaf_ctx c = {s, r, hit};
+    uint32_t first, n;
+    if (!flat)
+        found |= wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, false,
+                               scene_leaf_closest, &c);
+    else if ((n = scene_flat_leaf(s, &first)) > 0)
+        found |= scene_leaf_closest(&c, first, n, r->tmin, &tmax);
+    return found;
+}
+
+__attribute__((always_inline)) static inline bool scene_any_walk(const scene *s, const ray *r,
+                                                                 int width, bool flat)
+{
+    for (int i = 0; i < s->nunbounded; i++)
+        if (scene_blocks(s, s->unbounded[i], r))
+            return true;
+    scene_leaf_ctx c = {s, r, NULL};
+    float tmax = r->tmax;
+    uint32_t first, n;
+    if (!flat)
+        return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true, scene_leaf_any,
+                             &c);
+    return (n = scene_flat_leaf(s, &first)) > 0 && scene_leaf_any(&c, first, n, r->tmin, &tmax);
+}
+
+__attribute__((always_inline)) static inline bool
+scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width, bool flat)
+{
+    scene_shadow_ctx c = {s, r, v3_len(r->d), out};
+    out->n = 0;
+    for (int i = 0; i < s->nunbounded; i++)
+        if (scene_shadow_object(&c, s->unbounded[i]))
+            return true;
+    float tmax = r->tmax;
+    uint32_t first, n;
+    if (!flat)
+        return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true,
+                             scene_leaf_shadow, &c);
+    return (n = scene_flat_leaf(s, &first)) > 0 &&
+           scene_leaf_shadow(&c, first, n, r->tmin, &tmax);
+}
+
+/* Defines scene_intersect_<isa>, scene_occluded_<isa> and
+ * scene_shadow_walk_<isa> for nodes of the given width. */
 #define SCENE_KERNELS(isa, width)                                                              \
     bool scene_intersect_##isa(const scene *s, const ray *r, scene_hit *hit)                   \
     {                                                                                          \
-        float tmax = r->tmax;                                                                  \
-        bool found = false;                                                                    \
-        for (int i = 0; i < s->nunbounded; i++)                                                \
-            found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);             \
-        scene_leaf_ctx c = {s, r, hit};                                                        \
-        found |= wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, false,              \
-                               scene_leaf_closest, &c);                                        \
-        return found;                                                                          \
+        return scene_closest_walk(s, r, hit, width, false);                                    \
     }                                                                                          \
     bool scene_occluded_##isa(const scene *s, const ray *r)                                    \
     {                                                                                          \
-        for (int i = 0; i < s->nunbounded; i++)                                                \
-            if (scene_blocks(s, s->unbounded[i], r))                                           \
-                return true;                                                                   \
-        scene_leaf_ctx c = {s, r, NULL};                                                       \
-        float tmax = r->tmax;                                                                  \
-        return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true, scene_leaf_any, \
-                             &c);                                                              \
+        return scene_any_walk(s, r, width, false);                                             \
     }                                                                                          \
     bool scene_shadow_walk_##isa(const scene *s, const ray *r, scene_crossings *out)           \
     {                                                                                          \
-        scene_shadow_ctx c = {s, r, v3_len(r->d), out};                                        \
-        out->n = 0;                                                                            \
-        for (int i = 0; i < s->nunbounded; i++)                                                \
-            if (scene_shadow_object(&c, s->unbounded[i]))                                      \
-                return true;                                                                   \
-        float tmax = r->tmax;                                                                  \
-        return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true,                 \
-                             scene_leaf_shadow, &c);                                           \
+        return scene_shadow_walk(s, r, out, width, false);                                     \
     }
 
 bool scene_intersect_scalar(const scene *s, const ray *r, scene_hit *hit);
