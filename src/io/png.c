@@ -264,11 +264,11 @@ static void quantize_row(const raster *r, int y, uint8_t *dst, uint16_t *tmp)
         put_be16(dst, tmp, w * 3);
         return;
     }
-    for (size_t x = 0; x < w; x++) {
-        image_quantize16(rgb + x * 3, 3, r->transfer, tmp + x * 4);
-        image_quantize16(r->alpha + at + x, 1, GLINT_TRANSFER_NONE, tmp + x * 4 + 3);
-    }
     if (r->bits == 16) {
+        for (size_t x = 0; x < w; x++) {
+            image_quantize16(rgb + x * 3, 3, r->transfer, tmp + x * 4);
+            image_quantize16(r->alpha + at + x, 1, GLINT_TRANSFER_NONE, tmp + x * 4 + 3);
+        }
         put_be16(dst, tmp, w * 4);
         return;
     }
