@@ -1,23 +1,9 @@
-/* Parallelogram: plane test, then the hit's coordinates along the two edges
- * from the precomputed w = n / (n . n) (Shirley, "Ray Tracing: The Next
- * Week", section 6). */
-#include "shape.h"
+/* Parallelogram: the test is geom/shape_inline.h's. */
+#include "shape_inline.h"
 
 bool quad_intersect(const struct quad *s, const ray *r, shape_hit *hit)
 {
-    float t;
-    if (!ray_plane(r, s->origin, s->normal, &t))
-        return false;
-    vec3 q = v3_sub(ray_at(r, t), s->origin);
-    float u = v3_dot(s->w, v3_cross(q, s->edge_v));
-    float v = v3_dot(s->w, v3_cross(s->edge_u, q));
-    if (!(u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f))
-        return false;
-    hit->t = t;
-    hit->part = 0;
-    hit->b1 = u;
-    hit->b2 = v;
-    return true;
+    return quad_hit(s, r, hit);
 }
 
 void quad_surface(const struct quad *s, vec3 p, const shape_hit *hit, surface *out)

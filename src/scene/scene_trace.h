@@ -8,6 +8,7 @@
 #define GLINT_SCENE_SCENE_TRACE_H
 
 #include "accel/traverse.h"
+#include "geom/shape_inline.h"
 #include "scene/scene.h"
 
 /* The ray in the object's own space; t values carry over unchanged because
@@ -40,7 +41,7 @@ __attribute__((always_inline)) static inline bool scene_hit_object(const scene *
     ray lr = scene_object_ray(s, o, r);
     lr.tmin = tmin;
     lr.tmax = *tmax;
-    if (!shape_intersect(&o->shape, &lr, &hit->h))
+    if (!shape_intersect_inline(&o->shape, &lr, &hit->h))
         return false;
     *tmax = hit->h.t;
     hit->object = i;
@@ -65,7 +66,7 @@ __attribute__((always_inline)) static inline bool scene_blocks(const scene *s, i
     if (o->transmits)
         return false;
     ray lr = scene_object_ray(s, o, r);
-    return shape_occluded(&o->shape, &lr);
+    return shape_occluded_inline(&o->shape, &lr);
 }
 
 __attribute__((always_inline)) static inline bool scene_leaf_any(void *ctx, uint32_t first,
@@ -96,10 +97,10 @@ __attribute__((always_inline)) static inline bool scene_shadow_object(scene_shad
     const object *o = &c->s->objects[i];
     ray lr = scene_object_ray(c->s, o, c->r);
     if (!o->transmits)
-        return shape_occluded(&o->shape, &lr);
+        return shape_occluded_inline(&o->shape, &lr);
     scene_crossings *out = c->out;
     shape_hit h;
-    while (shape_intersect(&o->shape, &lr, &h)) {
+    while (shape_intersect_inline(&o->shape, &lr, &h)) {
         if (out->n == SCENE_SHADOW_MAX)
             return true;
         out->hit[out->n++] = (scene_hit){h, i};

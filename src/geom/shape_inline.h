@@ -1,0 +1,101 @@
+/* shape_inline: the intersection tests of the shapes that small scenes are
+ * made of (sphere, quad), as inline functions, so that the scene's walks
+ * (scene/scene_trace.h) test them without a call through shape_intersect's
+ * switch. sphere.c and quad.c export the same tests for every other
+ * caller, so there is one copy of each routine. */
+#ifndef GLINT_GEOM_SHAPE_INLINE_H
+#define GLINT_GEOM_SHAPE_INLINE_H
+
+#include <math.h>
+#include "geom/shape.h"
+
+/* Sphere: |p - c| = r. The quadratic is solved in the form of Haines et al.,
+ * "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems,
+ * ch. 7, 2019): the discriminant from the distance of the centre to the
+ * ray's line, and the near root from the numerically stable q formula. */
+__attribute__((always_inline)) static inline bool sphere_hit(const struct sphere *s, const ray *r, shape_hit *hit)
+{
+    vec3 f = v3_sub(r->o, s->center);
+    float b = -v3_dot(f, r->d); /* half of -B */
+    float rr = s->radius * s->radius;
+    float c = v3_dot(f, f) - rr;
+    /* From outside (c > 0) moving away (b < 0) both roots are negative:
+     * q < 0, so c / q and q / a are too. Rays leaving a sphere's surface
+     * (reflections, shadow rays) meet this first, before any division. */
+    if (c > 0.0f && b < 0.0f && r->tmin >= 0.0f)
+        return false;
+    float a = v3_dot(r->d, r->d);
+    vec3 l = v3_madd(f, r->d, b / a);
+    float disc = a * (rr - v3_dot(l, l));
+    if (disc < 0.0f)
+        return false;
+    float q = b + copysignf(sqrtf(disc), b);
+    float t0, t1;
+    if (q == 0.0f) {
+        t0 = t1 = 0.0f;
+    } else {
+        t0 = c / q;
+        t1 = q / a;
+    }
+    if (t0 > t1) {
+        float t = t0;
+        t0 = t1;
+        t1 = t;
+    }
+    float t = t0;
+    if (!ray_in_range(r, t)) {
+        t = t1;
+        if (!ray_in_range(r, t))
+            return false;
+    }
+    hit->t = t;
+    hit->part = 0;
+    return true;
+}
+
+/* Parallelogram: plane test, then the hit's coordinates along the two edges
+ * from the precomputed w = n / (n . n) (Shirley, "Ray Tracing: The Next
+ * Week", section 6). */
+__attribute__((always_inline)) static inline bool quad_hit(const struct quad *s, const ray *r, shape_hit *hit)
+{
+    float t;
+    if (!ray_plane(r, s->origin, s->normal, &t))
+        return false;
+    vec3 q = v3_sub(ray_at(r, t), s->origin);
+    float u = v3_dot(s->w, v3_cross(q, s->edge_v));
+    float v = v3_dot(s->w, v3_cross(s->edge_u, q));
+    if (!(u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f))
+        return false;
+    hit->t = t;
+    hit->part = 0;
+    hit->b1 = u;
+    hit->b2 = v;
+    return true;
+}
+
+/* shape_intersect with the two tests above inlined. */
+__attribute__((always_inline)) static inline bool shape_intersect_inline(const shape *s,
+                                                                         const ray *r,
+                                                                         shape_hit *hit)
+{
+    if (s->kind == SHAPE_SPHERE)
+        return sphere_hit(&s->sphere, r, hit);
+    if (s->kind == SHAPE_QUAD)
+        return quad_hit(&s->quad, r, hit);
+    return shape_intersect(s, r, hit);
+}
+
+/* shape_occluded likewise: an analytic shape's occlusion test is its
+ * intersection test. */
+__attribute__((always_inline)) static inline bool shape_occluded_inline(const shape *s,
+                                                                        const ray *r)
+{
+    shape_hit h;
+    if (s->kind == SHAPE_SPHERE)
+        return sphere_hit(&s->sphere, r, &h);
+    if (s->kind == SHAPE_QUAD)
+        return quad_hit(&s->quad, r, &h);
+    return shape_occluded(s, r);
+}
+
+#endif
