@@ -73,6 +73,21 @@ __attribute__((always_inline)) static inline bool quad_hit(const struct quad *s,
     return true;
 }
 
+/* The surface of a sphere at p without (u, v) (left 0): what
+ * sphere_surface_no_uv gives, with the geometric normal set too. Inline,
+ * because the point and the normal travel in registers then: passed to a
+ * function and stored, a vec3's parts are written and read back in
+ * different widths, and the read waits for the writes to reach memory. */
+__attribute__((always_inline)) static inline void sphere_surface_plain(const struct sphere *s,
+                                                                       vec3 p, surface *out)
+{
+    vec3 n = v3_norm(v3_sub(p, s->center));
+    out->p = v3_madd(s->center, n, s->radius); /* back onto the surface (shape.h) */
+    out->n = n;
+    out->ng = n;
+    out->u = out->v = 0.0f;
+}
+
 /* shape_intersect with the two tests above inlined. */
 __attribute__((always_inline)) static inline bool shape_intersect_inline(const shape *s,
                                                                          const ray *r,

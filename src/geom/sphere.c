@@ -9,10 +9,7 @@ bool sphere_intersect(const struct sphere *s, const ray *r, shape_hit *hit)
 
 void sphere_surface_no_uv(const struct sphere *s, vec3 p, surface *out)
 {
-    vec3 n = v3_norm(v3_sub(p, s->center));
-    out->p = v3_madd(s->center, n, s->radius); /* back onto the surface (shape.h) */
-    out->n = n;
-    out->u = out->v = 0.0f;
+    sphere_surface_plain(s, p, out);
 }
 
 /* Longitude/latitude mapping over the whole sphere: u runs once round the

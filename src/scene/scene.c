@@ -403,8 +403,7 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
         /* An untextured sphere needs no (u, v): its normal alone, as
          * shape_surface would compute it. */
         if (o->shape.kind == SHAPE_SPHERE && !material_uses_uv(scene_hit_material(s, hit))) {
-            sphere_surface_no_uv(&o->shape.sphere, ray_at(r, hit->h.t), out);
-            out->ng = out->n;
+            sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), out);
             return;
         }
         shape_surface(&o->shape, r, &hit->h, out);
