@@ -136,6 +136,71 @@ static inline uint32_t scene_flat_leaf(const scene *s, uint32_t *first)
     return b->width == 8 ? b->n8[0].count[0] : b->n4[0].count[0];
 }
 
+/* A tree of one node, whose children are then all leaves (a small scene:
+ * up to width leaves): the node's test, and its leaves visited near to far
+ * for closest hits (ties in child order) or in child order for the others,
+ * without the traversal's stack. */
+__attribute__((always_inline)) static inline int scene_node_test(const scene *s, int width,
+                                                                 const wide_ray *wr, float tmax,
+                                                                 float tn[8], const int32_t **child,
+                                                                 const uint32_t **count)
+{
+    (void)width;
+#if defined(GLINT_TRAVERSE_AVX2)
+    if (width == 8) {
+        *child = s->bvh.n8[0].child;
+        *count = s->bvh.n8[0].count;
+        return wide_test8(&s->bvh.n8[0], wr, tmax, tn);
+    }
+#endif
+    *child = s->bvh.n4[0].child;
+    *count = s->bvh.n4[0].count;
+    return wide_test4(&s->bvh.n4[0], wr, tmax, tn);
+}
+
+__attribute__((always_inline)) static inline bool scene_closest_node(scene_leaf_ctx *c, int width,
+                                                                     float *tmax)
+{
+    const ray *r = c->r;
+    wide_ray wr = wide_ray_make(r->o, r->d, r->tmin);
+    float tn[8];
+    const int32_t *child;
+    const uint32_t *count;
+    int mask = scene_node_test(c->s, width, &wr, *tmax, tn, &child, &count);
+    bool found = false;
+    while (mask) {
+        int k = __builtin_ctz((unsigned)mask);
+        for (int m = mask & (mask - 1); m; m &= m - 1) {
+            int j = __builtin_ctz((unsigned)m);
+            k = tn[j] < tn[k] ? j : k;
+        }
+        if (tn[k] > *tmax)
+            break;
+        mask &= ~(1 << k);
+        found |= scene_leaf_closest(c, (uint32_t)(-1 - child[k]), count[k], r->tmin, tmax);
+    }
+    return found;
+}
+
+/* The same for the queries that stop at a blocker (leaf is scene_leaf_any
+ * or scene_leaf_shadow). */
+__attribute__((always_inline)) static inline bool scene_blocked_node(const scene *s, const ray *r,
+                                                                     int width, wide_leaf_fn leaf,
+                                                                     void *ctx)
+{
+    wide_ray wr = wide_ray_make(r->o, r->d, r->tmin);
+    float tn[8], tmax = r->tmax;
+    const int32_t *child;
+    const uint32_t *count;
+    int mask = scene_node_test(s, width, &wr, tmax, tn, &child, &count);
+    for (; mask; mask &= mask - 1) {
+        int k = __builtin_ctz((unsigned)mask);
+        if (leaf(ctx, (uint32_t)(-1 - child[k]), count[k], r->tmin, &tmax))
+            return true;
+    }
+    return false;
+}
+
 /* The three queries: unbounded objects first, then the BVH of the given
  * width, or for a flat scene its one leaf without a traversal (and so
  * without the traversal's stack frame). */
@@ -148,7 +213,9 @@ scene_closest_walk(const scene *s, const ray *r, scene_hit *hit, int width, bool
         found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
     scene_leaf_ctx c = {s, r, hit};
     uint32_t first, n;
-    if (!flat)
+    if (!flat && s->bvh.nnodes == 1)
+        found |= scene_closest_node(&c, width, &tmax);
+    else if (!flat)
         found |= wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, false,
                                scene_leaf_closest, &c);
     else if ((n = scene_flat_leaf(s, &first)) > 0)
@@ -165,6 +232,8 @@ __attribute__((always_inline)) static inline bool scene_any_walk(const scene *s,
     scene_leaf_ctx c = {s, r, NULL};
     float tmax = r->tmax;
     uint32_t first, n;
+    if (!flat && s->bvh.nnodes == 1)
+        return scene_blocked_node(s, r, width, scene_leaf_any, &c);
     if (!flat)
         return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true, scene_leaf_any,
                              &c);
@@ -181,6 +250,8 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
             return true;
     float tmax = r->tmax;
     uint32_t first, n;
+    if (!flat && s->bvh.nnodes == 1)
+        return scene_blocked_node(s, r, width, scene_leaf_shadow, &c);
     if (!flat)
         return wide_traverse(&s->bvh, width, r->o, r->d, r->tmin, &tmax, true,
                              scene_leaf_shadow, &c);
