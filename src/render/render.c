@@ -108,12 +108,15 @@ static void tile_finished(job *j, worker_state *w, const worker_state *before, g
 
 /* Traces one camera sample at image position (x, y): lens and time from s.
  * *cover gets whether it hit something (only when the film keeps alpha). */
+/* id0, id1, id2: the sample's identity, which light samples hash: pixel
+ * and index, or for the adaptive lattice the point's own coordinates.
+ * Three numbers rather than an array, which the caller would write to
+ * memory a word at a time and this would read back in wider loads that
+ * wait for the writes. */
 static vec3 trace_sample(const job *j, worker_state *w, float x, float y, pixel_sample s,
-                         const uint32_t id[3], float *cover)
+                         uint32_t id0, uint32_t id1, uint32_t id2, float *cover)
 {
-    /* light samples hash the sample's identity: pixel and index, or for
-     * the adaptive lattice the point's own coordinates */
-    trace_begin_sample(&w->ctx, id[0], id[1], id[2]);
+    trace_begin_sample(&w->ctx, id0, id1, id2);
     const scene *sc = j->scene;
     float t = sc->time + s.time * sc->shutter_seconds;
     camera_frame moved;
@@ -164,8 +167,8 @@ static void sample_range(const job *j, worker_state *w, int x, int y, int k0, in
     for (int k = k0; k < k1; k++) {
         float c;
         pixel_sample s = sampler_get(&j->smp, x, y, k);
-        const uint32_t id[3] = {(uint32_t)x, (uint32_t)y, (uint32_t)k};
-        *sum = v3_add(*sum, trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, id, &c));
+        *sum = v3_add(*sum, trace_sample(j, w, (float)x + s.fx, (float)y + s.fy, s, (uint32_t)x,
+                                         (uint32_t)y, (uint32_t)k, &c));
         *cover += c;
     }
 }
@@ -212,7 +215,7 @@ static void lattice_trace(const job *j, worker_state *w, int x, int y, int i, in
     const uint32_t id[3] = {(uint32_t)x * (uint32_t)n + (uint32_t)i,
                             (uint32_t)y * (uint32_t)n + (uint32_t)k, 0x80000000u};
     pixel_sample s = sampler_point(id[0], id[1], fx, fy);
-    p->c = trace_sample(j, w, (float)x + fx, (float)y + fy, s, id, &p->cover);
+    p->c = trace_sample(j, w, (float)x + fx, (float)y + fy, s, id[0], id[1], id[2], &p->cover);
     glint_transfer tf = j->settings->transfer;
     p->shown[0] = image_display_value(p->c.x, tf);
     p->shown[1] = image_display_value(p->c.y, tf);
@@ -304,7 +307,7 @@ static void centre_sample(const job *j, worker_state *w, int x, int y, vec3 *sum
     const uint32_t id[3] = {(uint32_t)x * (uint32_t)n + (uint32_t)h,
                             (uint32_t)y * (uint32_t)n + (uint32_t)h, 0x80000000u};
     pixel_sample s = sampler_point(id[0], id[1], 0.5f, 0.5f);
-    *sum = trace_sample(j, w, (float)x + 0.5f, (float)y + 0.5f, s, id, cover);
+    *sum = trace_sample(j, w, (float)x + 0.5f, (float)y + 0.5f, s, id[0], id[1], id[2], cover);
 }
 
 /* A progressive pass over tile `item` (render_work.accum): grid and jitter

@@ -45,12 +45,13 @@ static bool adc_keep(trace_ctx *ctx, float share, float k, float total)
     return true;
 }
 
-vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
+/* Radiance along r, whose nearest hit is *hitp (NULL: it hit nothing). */
+static vec3 trace_hit(trace_ctx *ctx, const ray *r, int depth, const scene_hit *hitp)
 {
     const scene *s = ctx->scene;
-    scene_hit hit;
-    if (!scene_intersect(s, r, &hit))
+    if (!hitp)
         return shade_segment(s, r, INFINITY, NULL, s->background);
+    scene_hit hit = *hitp;
 
     shade_point sp;
     shade_prepare(ctx, r, &hit, &sp);
@@ -79,9 +80,16 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
     return shade_segment(s, r, hit.h.t, &sp, c);
 }
 
+vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
+{
+    scene_hit hit;
+    return trace_hit(ctx, r, depth, scene_intersect(ctx->scene, r, &hit) ? &hit : NULL);
+}
+
 vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage)
 {
     scene_hit hit;
-    *coverage = scene_intersect(ctx->scene, r, &hit) ? 1.0f : 0.0f;
-    return whitted_trace(ctx, r, 0);
+    bool found = scene_intersect(ctx->scene, r, &hit);
+    *coverage = found ? 1.0f : 0.0f;
+    return trace_hit(ctx, r, 0, found ? &hit : NULL);
 }
