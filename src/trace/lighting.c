@@ -99,7 +99,7 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
     vec3 specular = v3s(0.0f);
     for (int i = 0; i < s->nlights; i++)
         add_light(ctx, sp, i, event, &diffuse, &specular);
-    float w = fmaxf(0.0f, 1.0f - m->transmit);
+    float w = maxf(1.0f - m->transmit, 0.0f);
     vec3 c = v3_add(v3_scale(v3_mul(diffuse, sp->base), w), specular);
     return v3_add(c, m->emission);
 }

@@ -38,7 +38,7 @@ static void split(const shade_point *sp, float *kr, float *kt, vec3 *tdir)
  * sample costs at most max_depth / bailout secondary rays. */
 static bool adc_keep(trace_ctx *ctx, float share, float k, float total)
 {
-    float w = share * k / fmaxf(1.0f, total);
+    float w = share * k / maxf(total, 1.0f);
     if (!(k > 0.0f) || w < ctx->bailout)
         return false;
     ctx->weight = w;
@@ -51,10 +51,8 @@ static vec3 trace_hit(trace_ctx *ctx, const ray *r, int depth, const scene_hit *
     const scene *s = ctx->scene;
     if (!hitp)
         return shade_segment(s, r, INFINITY, NULL, s->background);
-    scene_hit hit = *hitp;
-
     shade_point sp;
-    shade_prepare(ctx, r, &hit, &sp);
+    shade_prepare(ctx, r, hitp, &sp);
     float kr, kt;
     vec3 tdir;
     split(&sp, &kr, &kt, &tdir);
@@ -77,7 +75,7 @@ static vec3 trace_hit(trace_ctx *ctx, const ray *r, int depth, const scene_hit *
         }
         ctx->weight = share;
     }
-    return shade_segment(s, r, hit.h.t, &sp, c);
+    return shade_segment(s, r, hitp->h.t, &sp, c);
 }
 
 vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
