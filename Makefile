@@ -17,7 +17,7 @@ EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 EXR_LIBS   := $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore-3_1)
 
 CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXR_CFLAGS)
-CFLAGS   := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswitch-enum -Werror=implicit-function-declaration -g -pthread
+CFLAGS   := -std=c11 -fno-math-errno -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswitch-enum -Werror=implicit-function-declaration -g -pthread
 ifeq ($(SAN),1)
 CFLAGS   += -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 LDFLAGS  += -fsanitize=address,undefined
