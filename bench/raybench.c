@@ -169,9 +169,18 @@ static tris subdivide(const tris *in)
 /* mesh_init on fresh copies of the arrays; returns its wall time. */
 static double glint_build(const tris *t, size_t *bytes, int *kept);
 
-/* glint_build with the process pinned to its first CPU, so that the build
- * runs on one thread; the affinity is restored after. */
-static double glint_build_one_cpu(const tris *t)
+/* What a build row builds: glint's structure and Embree's over the same
+ * primitives, each build timed on its own (wall seconds). */
+typedef struct subject {
+    const char *name; /* in the row's label, with the count */
+    double (*glint)(const void *data);
+    double (*embree)(RTCDevice dev, const void *data);
+    const void *data;
+} subject;
+
+/* sub's glint build with the process pinned to its first CPU, so that the
+ * build runs on one thread; the affinity is restored after. */
+static double glint_build_one_cpu(const subject *sub)
 {
     cpu_set_t all, one;
     if (sched_getaffinity(0, sizeof all, &all) != 0)
@@ -184,7 +193,7 @@ static double glint_build_one_cpu(const tris *t)
         }
     if (sched_setaffinity(0, sizeof one, &one) != 0)
         die("sched_setaffinity failed");
-    double dt = glint_build(t, NULL, NULL);
+    double dt = sub->glint(sub->data);
     sched_setaffinity(0, sizeof all, &all);
     return dt;
 }
@@ -479,7 +488,7 @@ static void ratio_cell(char *buf, size_t n, double r, double goal, bool at_least
 }
 
 typedef struct opts {
-    int runs, threads, width, height, subdiv;
+    int runs, threads, width, height, subdiv, spheres;
     size_t nrays;
     const char *mesh;
     bool mesh_path, trace, build, memory;
@@ -587,29 +596,100 @@ static bool trace_rows(const opts *o, const targets *tg, aabb bounds)
     return ok;
 }
 
-/* Build times: glint's mesh_init against Embree's commit, both on all
- * threads and both on one, alternating. */
-static void build_rows(const opts *o, const tris *t, const char *name, RTCDevice all, RTCDevice one)
+/* ---- build subjects: a mesh, and spheres ---- */
+
+static double mesh_glint(const void *data) { return glint_build(data, NULL, NULL); }
+
+static double mesh_embree(RTCDevice dev, const void *data)
+{
+    double dt;
+    rtcReleaseScene(embree_scene(dev, data, &dt));
+    return dt;
+}
+
+/* n spheres as spheres.c (row 7) places them: centres uniform in a box,
+ * one radius making their volume 3 % of the box's. */
+typedef struct spheres {
+    int n;
+    float (*xyzr)[4];
+    scene *s; /* glint's scene of them, built again by each timing */
+} spheres;
+
+static spheres spheres_make(int n)
+{
+    spheres sp = {n, xmalloc(sizeof *sp.xyzr * (size_t)n), scene_new()};
+    if (!sp.s)
+        die("out of memory");
+    double box = 40.0 * 30.0 * 50.0;
+    float radius = (float)cbrt(0.03 * box / n / (4.0 / 3.0 * M_PI));
+    material m = material_default();
+    int mi = scene_add_material(sp.s, &m);
+    rng r = rng_seed(12345, 1);
+    for (int i = 0; i < n; i++) {
+        vec3 c = v3(-20 + 40 * rng_float(&r), -15 + 30 * rng_float(&r), -80 + 50 * rng_float(&r));
+        shape sh = shape_sphere(c, radius);
+        if (scene_add_object(sp.s, &sh, mi, -1) < 0)
+            die("out of memory");
+        sp.xyzr[i][0] = c.x, sp.xyzr[i][1] = c.y, sp.xyzr[i][2] = c.z, sp.xyzr[i][3] = radius;
+    }
+    return sp;
+}
+
+/* scene_build as a render does it (object bounds, the binned SAH build,
+ * collapsing to the wide BVH). */
+static double spheres_glint(const void *data)
+{
+    const spheres *sp = data;
+    glint_error err = {0};
+    double t0 = now();
+    if (scene_build(sp->s, &err) != GLINT_OK)
+        die(err.msg);
+    return now() - t0;
+}
+
+/* Embree's own sphere primitive (RTC_GEOMETRY_TYPE_SPHERE_POINT), high
+ * build quality, on a shared (x, y, z, r) buffer. */
+static double spheres_embree(RTCDevice dev, const void *data)
+{
+    const spheres *sp = data;
+    RTCScene sc = rtcNewScene(dev);
+    rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, sp->xyzr, 0,
+                               sizeof *sp->xyzr, (size_t)sp->n);
+    double t0 = now();
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(sc, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(sc);
+    double dt = now() - t0;
+    rtcReleaseScene(sc);
+    return dt;
+}
+
+/* Build times of glint against Embree, both on all threads and both on
+ * one, alternating. */
+static void build_rows(const opts *o, const subject *sub, RTCDevice all, RTCDevice one)
 {
     double *ga = xmalloc(sizeof(double) * (size_t)o->runs);
     double *g1 = xmalloc(sizeof(double) * (size_t)o->runs);
     double *ea = xmalloc(sizeof(double) * (size_t)o->runs);
     double *e1 = xmalloc(sizeof(double) * (size_t)o->runs);
     /* one untimed build of each first: page-faults, thread pools */
-    glint_build(t, NULL, NULL);
-    double dt;
-    rtcReleaseScene(embree_scene(all, t, &dt));
-    rtcReleaseScene(embree_scene(one, t, &dt));
+    sub->glint(sub->data);
+    sub->embree(all, sub->data);
+    sub->embree(one, sub->data);
     for (int r = 0; r < o->runs; r++) {
         if (r % 2 == 0) {
-            ga[r] = glint_build(t, NULL, NULL);
-            g1[r] = glint_build_one_cpu(t);
+            ga[r] = sub->glint(sub->data);
+            g1[r] = glint_build_one_cpu(sub);
         }
-        rtcReleaseScene(embree_scene(all, t, &ea[r]));
-        rtcReleaseScene(embree_scene(one, t, &e1[r]));
+        ea[r] = sub->embree(all, sub->data);
+        e1[r] = sub->embree(one, sub->data);
         if (r % 2 == 1) {
-            ga[r] = glint_build(t, NULL, NULL);
-            g1[r] = glint_build_one_cpu(t);
+            ga[r] = sub->glint(sub->data);
+            g1[r] = glint_build_one_cpu(sub);
         }
     }
     double mga = median(ga, o->runs), mg1 = median(g1, o->runs);
@@ -618,13 +698,12 @@ static void build_rows(const opts *o, const tris *t, const char *name, RTCDevice
     snprintf(cg, sizeof cg, "%.4f", mga);
     snprintf(ce, sizeof ce, "%.4f", mea);
     ratio_cell(cr, sizeof cr, mga / mea, 1.0, false);
-    snprintf(label, sizeof label, "BVH build, %s (%d triangles), s: both %d threads", name,
-             t->ntris, o->threads);
+    snprintf(label, sizeof label, "BVH build, %s, s: both %d threads", sub->name, o->threads);
     row("3", label, cg, ce, cr, "glint ÷ Embree ≤ 1.0");
     snprintf(cg, sizeof cg, "%.4f", mg1);
     snprintf(ce, sizeof ce, "%.4f", me1);
     ratio_cell(cr, sizeof cr, mg1 / me1, 1.0, false);
-    snprintf(label, sizeof label, "BVH build, %s, s: both 1 thread", name);
+    snprintf(label, sizeof label, "BVH build, %s, s: both 1 thread", sub->name);
     row("3", label, cg, ce, cr, "glint ÷ Embree ≤ 1.0");
     free(ga);
     free(g1);
@@ -784,7 +863,7 @@ static void usage(int code)
 {
     fprintf(code ? stderr : stdout,
             "usage: raybench [--runs N] [--rays N] [--size WxH] [--threads N] [--subdiv N]\n"
-            "                [--mesh FILE] [--glint-path scene|mesh] [--only trace,build,memory]\n"
+            "                [--spheres N] [--mesh FILE] [--glint-path scene|mesh] [--only trace,build,memory]\n"
             "       raybench --version\n");
     exit(code);
 }
@@ -793,7 +872,7 @@ int main(int argc, char **argv)
 {
     if (argc == 4 && strcmp(argv[1], "--peak-child") == 0)
         return peak_child(argv[2], argv[3]);
-    opts o = {5, glint_default_threads(), 1920, 1080, 2, 2000000,
+    opts o = {5, glint_default_threads(), 1920, 1080, 2, 1000000, 2000000,
               "/usr/share/glmark2/models/bunny.obj", false, true, true, true};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -820,6 +899,8 @@ int main(int argc, char **argv)
             o.threads = atoi(v);
         else if (strcmp(a, "--subdiv") == 0)
             o.subdiv = atoi(v);
+        else if (strcmp(a, "--spheres") == 0)
+            o.spheres = atoi(v);
         else if (strcmp(a, "--mesh") == 0)
             o.mesh = v;
         else if (strcmp(a, "--glint-path") == 0) {
@@ -834,7 +915,7 @@ int main(int argc, char **argv)
             usage(2);
     }
     if (o.runs < 1 || o.threads < 1 || o.threads > MAX_THREADS || o.width < 1 || o.height < 1 ||
-        o.nrays < 1 || o.subdiv < 0 || o.subdiv > 3)
+        o.nrays < 1 || o.subdiv < 0 || o.subdiv > 3 || o.spheres < 0)
         usage(2);
 
     glint_error err = {0};
@@ -883,9 +964,21 @@ int main(int argc, char **argv)
         snprintf(bigname, sizeof bigname, "bunny, each triangle in %d", 1 << (2 * o.subdiv));
     if (o.build) {
         RTCDevice one = embree_device("threads=1", NULL);
-        build_rows(&o, &bunny, "bunny", dev, one);
-        if (o.subdiv > 0)
-            build_rows(&o, &big, bigname, dev, one);
+        char label[200];
+        snprintf(label, sizeof label, "bunny (%d triangles)", bunny.ntris);
+        build_rows(&o, &(subject){label, mesh_glint, mesh_embree, &bunny}, dev, one);
+        if (o.subdiv > 0) {
+            snprintf(label, sizeof label, "%s (%d triangles)", bigname, big.ntris);
+            build_rows(&o, &(subject){label, mesh_glint, mesh_embree, &big}, dev, one);
+        }
+        if (o.spheres > 0) {
+            spheres sp = spheres_make(o.spheres);
+            snprintf(label, sizeof label, "%d random spheres (scene_build; Embree: sphere points)",
+                     o.spheres);
+            build_rows(&o, &(subject){label, spheres_glint, spheres_embree, &sp}, dev, one);
+            scene_free(sp.s);
+            free(sp.xyzr);
+        }
         rtcReleaseDevice(one);
     }
     if (o.memory) {
