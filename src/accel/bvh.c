@@ -58,15 +58,19 @@ static int new_node(build *b)
  * `axis` come first; returns the first index of the upper part. */
 static int partition(build *b, int lo, int hi, int axis, float split)
 {
+    /* The same steps as "below: i++; else swap i and j, j--", written
+     * without a branch on the comparison, which goes either way at random. */
+    const float *c = &b->centers[0].x + axis;
+    int32_t *prims = b->prims;
     int i = lo, j = hi - 1;
     while (i <= j) {
-        if (v3_at(b->centers[b->prims[i]], axis) < split) {
-            i++;
-        } else {
-            int32_t t = b->prims[i];
-            b->prims[i] = b->prims[j];
-            b->prims[j--] = t;
-        }
+        int32_t pi = prims[i], pj = prims[j];
+        int below = c[3 * (size_t)pi] < split;
+        int32_t x = (pi ^ pj) & (below - 1); /* 0 when below, else what swaps them */
+        prims[i] = pi ^ x;
+        prims[j] = pj ^ x;
+        i += below;
+        j -= 1 - below;
     }
     return i;
 }
@@ -103,7 +107,7 @@ static void median_split(build *b, int lo, int hi, int axis, int *mid)
 /* Cost of testing n primitives: they are tested block-wide at a time. */
 static float leaf_cost(const build *b, int n)
 {
-    return COST_INTERSECT * (float)((n + b->block - 1) / b->block);
+    return COST_INTERSECT * (float)(b->block == 1 ? n : (n + b->block - 1) / b->block);
 }
 
 /* Boxes as the binning loops use them: with SSE, lo and hi in one
@@ -142,13 +146,29 @@ static inline aabb box4_aabb(box4 b)
     return (aabb){{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
 }
 
+/* aabb_area(box4_aabb(b)), computed in the register with the same
+ * operations in the same order. */
+static inline float box4_area(box4 b)
+{
+    if (_mm_movemask_ps(_mm_cmpgt_ps(b.lo, b.hi)) & 7)
+        return 0.0f; /* empty */
+    __m128 e = _mm_sub_ps(b.hi, b.lo);                                  /* x y z */
+    __m128 p = _mm_mul_ps(e, _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1))); /* xy yz zx */
+    float xy = _mm_cvtss_f32(p), yz = _mm_cvtss_f32(_mm_shuffle_ps(p, p, 1));
+    float zx = _mm_cvtss_f32(_mm_shuffle_ps(p, p, 2));
+    return 2.0f * (xy + yz + zx);
+}
+
 /* Bin k on each axis of centre c: (c - cmin) * scale, truncated, in
  * [0, nbins - 1]; NaN (a zero extent's 0 * inf) goes to 0. */
-static inline void bin_of(__m128 c, __m128 cmin, __m128 scale, __m128 top, int k[4])
+static inline void bin_of(__m128 c, __m128 cmin, __m128 scale, __m128 top, int k[3])
 {
     __m128 f = _mm_mul_ps(_mm_sub_ps(c, cmin), scale);
     f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top); /* max_ps gives 0 for NaN */
-    _mm_storeu_si128((__m128i *)k, _mm_cvttps_epi32(f));
+    __m128i i = _mm_cvttps_epi32(f);
+    k[0] = _mm_cvtsi128_si32(i);
+    k[1] = _mm_cvtsi128_si32(_mm_shuffle_epi32(i, _MM_SHUFFLE(1, 1, 1, 1)));
+    k[2] = _mm_cvtsi128_si32(_mm_shuffle_epi32(i, _MM_SHUFFLE(2, 2, 2, 2)));
 }
 #else
 typedef aabb box4;
@@ -158,7 +178,8 @@ static inline vec3 point4_load(const vec3 *c) { return *c; }
 static inline box4 box4_union(box4 a, box4 b) { return aabb_union(a, b); }
 static inline box4 box4_grow(box4 a, vec3 p) { return aabb_grow(a, p); }
 static inline aabb box4_aabb(box4 b) { return b; }
-static inline void bin_of(vec3 c, vec3 cmin, vec3 scale, vec3 top, int k[4])
+static inline float box4_area(box4 b) { return aabb_area(b); }
+static inline void bin_of(vec3 c, vec3 cmin, vec3 scale, vec3 top, int k[3])
 {
     for (int a = 0; a < 3; a++) {
         float f = (v3_at(c, a) - v3_at(cmin, a)) * v3_at(scale, a);
@@ -193,46 +214,54 @@ static void bin_prims(const build *b, int lo, int hi, vec3 cmin, const float sca
 #endif
     for (int i = lo; i < hi; i++) {
         int32_t p = b->prims[i];
-        int k[4];
+        int k[3];
         bin_of(point4_load(&b->centers[p]), cmin4, scale4, top4, k);
         box4 box = box4_load(&b->boxes[p]);
-        for (int a = 0; a < 3; a++) {
-            out->n[a][k[a]]++;
-            out->box[a][k[a]] = box4_union(out->box[a][k[a]], box);
-        }
+        out->n[0][k[0]]++;
+        out->box[0][k[0]] = box4_union(out->box[0][k[0]], box);
+        out->n[1][k[1]]++;
+        out->box[1][k[1]] = box4_union(out->box[1][k[1]], box);
+        out->n[2][k[2]]++;
+        out->box[2][k[2]] = box4_union(out->box[2][k[2]], box);
     }
 }
 
 /* The planes between the bins of axis a, swept from both sides; keeps the
- * cheapest below *best (relative to the parent's area). */
+ * cheapest below *best (relative to the parent's area). Only the bins that
+ * hold something are visited: the planes between two of them in a row
+ * divide the primitives alike and cost the same, and the first of them,
+ * the one just after the lower bin, is the one kept (ties keep the first
+ * plane), so this finds what a sweep over every plane would. */
 static void sweep_axis(const build *b, const bins *bn, int a, float area, float cmin, float scale,
                        float *best, int *axis, float *plane)
 {
-    int nb = bn->nbins;
+    int used[BINS], m = 0;
+    for (int k = 0; k < bn->nbins; k++) { /* without a branch, which would go either way */
+        used[m] = k;
+        m += bn->n[a][k] > 0;
+    }
     float right_area[BINS];
     int right_n[BINS];
     box4 acc = box4_empty();
     int cnt = 0;
-    for (int i = nb - 1; i > 0; i--) {
-        acc = box4_union(acc, bn->box[a][i]);
-        cnt += bn->n[a][i];
-        right_area[i] = aabb_area(box4_aabb(acc));
-        right_n[i] = cnt;
+    for (int g = m - 1; g > 0; g--) {
+        acc = box4_union(acc, bn->box[a][used[g]]);
+        cnt += bn->n[a][used[g]];
+        right_area[g] = box4_area(acc);
+        right_n[g] = cnt;
     }
     acc = box4_empty();
     cnt = 0;
-    for (int i = 1; i < nb; i++) {
-        acc = box4_union(acc, bn->box[a][i - 1]);
-        cnt += bn->n[a][i - 1];
-        if (cnt == 0 || right_n[i] == 0)
-            continue;
-        float cost = aabb_area(box4_aabb(acc)) * leaf_cost(b, cnt) +
-                     right_area[i] * leaf_cost(b, right_n[i]);
+    for (int g = 0; g + 1 < m; g++) {
+        acc = box4_union(acc, bn->box[a][used[g]]);
+        cnt += bn->n[a][used[g]];
+        float cost = box4_area(acc) * leaf_cost(b, cnt) +
+                     right_area[g + 1] * leaf_cost(b, right_n[g + 1]);
         cost = area > 0.0f ? COST_TRAVERSE + cost / area : INFINITY;
         if (cost < *best) {
             *best = cost;
             *axis = a;
-            *plane = cmin + (float)i / scale;
+            *plane = cmin + (float)(used[g] + 1) / scale;
         }
     }
 }
