@@ -26,12 +26,23 @@
 #define COST_TRAVERSE 1.2f /* a node visit against one leaf test (or block) */
 #define COST_INTERSECT 1.0f
 
+/* A primitive as the build moves it: its box and its index in 32 bytes,
+ * so that each pass over a node reads its primitives in sequence rather
+ * than gathering them through their indices from all over memory. The
+ * index takes the fourth lane of hi, which the box arithmetic masks off. */
+typedef struct primref {
+    float lo[4]; /* x y z 0 */
+    float hi[3];
+    int32_t id;
+} __attribute__((aligned(16))) primref;
+
+/* A centre coordinate as aabb_center computes it. */
+static inline float ref_center(const primref *r, int axis) { return (r->lo[axis] + r->hi[axis]) * 0.5f; }
+
 typedef struct build {
-    const aabb *boxes;
     int block;
     int max_leaf; /* most primitives a leaf takes */
-    vec3 *centers;
-    int32_t *prims;
+    primref *refs;
     bvh_node *nodes;
     int nnodes, cap;
     int spawn_depth; /* a second child this deep or less is built on a thread of its own */
@@ -54,23 +65,20 @@ static int new_node(build *b)
     return b->nnodes++;
 }
 
-/* Partitions prims[lo, hi) so that those with centre below `split` on
+/* Partitions refs[lo, hi) so that those with centre below `split` on
  * `axis` come first; returns the first index of the upper part. */
 static int partition(build *b, int lo, int hi, int axis, float split)
 {
-    /* The same steps as "below: i++; else swap i and j, j--", written
-     * without a branch on the comparison, which goes either way at random. */
-    const float *c = &b->centers[0].x + axis;
-    int32_t *prims = b->prims;
+    primref *r = b->refs;
     int i = lo, j = hi - 1;
     while (i <= j) {
-        int32_t pi = prims[i], pj = prims[j];
-        int below = c[3 * (size_t)pi] < split;
-        int32_t x = (pi ^ pj) & (below - 1); /* 0 when below, else what swaps them */
-        prims[i] = pi ^ x;
-        prims[j] = pj ^ x;
-        i += below;
-        j -= 1 - below;
+        if (ref_center(&r[i], axis) < split) {
+            i++;
+        } else {
+            primref t = r[i];
+            r[i] = r[j];
+            r[j--] = t;
+        }
     }
     return i;
 }
@@ -79,19 +87,20 @@ static int partition(build *b, int lo, int hi, int axis, float split)
  * (quickselect); the fallback when binning cannot separate the centres. */
 static void median_split(build *b, int lo, int hi, int axis, int *mid)
 {
+    primref *refs = b->refs;
     int k = (lo + hi) / 2, l = lo, r = hi - 1;
     while (l < r) {
-        float pivot = v3_at(b->centers[b->prims[(l + r) / 2]], axis);
+        float pivot = ref_center(&refs[(l + r) / 2], axis);
         int i = l, j = r;
         while (i <= j) {
-            while (v3_at(b->centers[b->prims[i]], axis) < pivot)
+            while (ref_center(&refs[i], axis) < pivot)
                 i++;
-            while (v3_at(b->centers[b->prims[j]], axis) > pivot)
+            while (ref_center(&refs[j], axis) > pivot)
                 j--;
             if (i <= j) {
-                int32_t t = b->prims[i];
-                b->prims[i++] = b->prims[j];
-                b->prims[j--] = t;
+                primref t = refs[i];
+                refs[i++] = refs[j];
+                refs[j--] = t;
             }
         }
         if (k <= j)
@@ -120,16 +129,15 @@ typedef struct box4 {
 
 static inline box4 box4_empty(void) { return (box4){_mm_set1_ps(FLT_MAX), _mm_set1_ps(-FLT_MAX)}; }
 
-/* aabb is six floats: lo.x lo.y lo.z hi.x hi.y hi.z; the two loads stay
- * inside it. */
-static inline box4 box4_load(const aabb *b)
+/* A primitive's box, the index masked off hi's fourth lane. */
+static inline box4 box4_load(const primref *r)
 {
-    __m128 hi = _mm_loadu_ps(&b->lo.z); /* lo.z hi.x hi.y hi.z */
-    return (box4){_mm_loadu_ps(&b->lo.x), _mm_shuffle_ps(hi, hi, _MM_SHUFFLE(3, 3, 2, 1))};
+    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    return (box4){_mm_load_ps(r->lo), _mm_and_ps(_mm_load_ps(r->hi), xyz)};
 }
 
-/* A centre (a vec3 in an array padded by one float) as a point box. */
-static inline __m128 point4_load(const vec3 *c) { return _mm_loadu_ps(&c->x); }
+/* Its centre, as ref_center computes each coordinate. */
+static inline __m128 box4_center(box4 b) { return _mm_mul_ps(_mm_add_ps(b.lo, b.hi), _mm_set1_ps(0.5f)); }
 
 static inline box4 box4_union(box4 a, box4 b)
 {
@@ -173,8 +181,11 @@ static inline void bin_of(__m128 c, __m128 cmin, __m128 scale, __m128 top, int k
 #else
 typedef aabb box4;
 static inline box4 box4_empty(void) { return aabb_empty(); }
-static inline box4 box4_load(const aabb *b) { return *b; }
-static inline vec3 point4_load(const vec3 *c) { return *c; }
+static inline box4 box4_load(const primref *r)
+{
+    return (aabb){{r->lo[0], r->lo[1], r->lo[2]}, {r->hi[0], r->hi[1], r->hi[2]}};
+}
+static inline vec3 box4_center(box4 b) { return aabb_center(b); }
 static inline box4 box4_union(box4 a, box4 b) { return aabb_union(a, b); }
 static inline box4 box4_grow(box4 a, vec3 p) { return aabb_grow(a, p); }
 static inline aabb box4_aabb(box4 b) { return b; }
@@ -213,10 +224,9 @@ static void bin_prims(const build *b, int lo, int hi, vec3 cmin, const float sca
     vec3 cmin4 = cmin, scale4 = v3(scale[0], scale[1], scale[2]), top4 = v3s(top);
 #endif
     for (int i = lo; i < hi; i++) {
-        int32_t p = b->prims[i];
         int k[3];
-        bin_of(point4_load(&b->centers[p]), cmin4, scale4, top4, k);
-        box4 box = box4_load(&b->boxes[p]);
+        box4 box = box4_load(&b->refs[i]);
+        bin_of(box4_center(box), cmin4, scale4, top4, k);
         out->n[0][k[0]]++;
         out->box[0][k[0]] = box4_union(out->box[0][k[0]], box);
         out->n[1][k[1]]++;
@@ -355,9 +365,9 @@ static int build_node(build *b, int lo, int hi, int depth)
         return -1;
     box4 bx = box4_empty(), cbx = box4_empty();
     for (int i = lo; i < hi; i++) {
-        int32_t p = b->prims[i];
-        bx = box4_union(bx, box4_load(&b->boxes[p]));
-        cbx = box4_grow(cbx, point4_load(&b->centers[p]));
+        box4 box = box4_load(&b->refs[i]);
+        bx = box4_union(bx, box);
+        cbx = box4_grow(cbx, box4_center(box));
     }
     aabb box = box4_aabb(bx), cbox = box4_aabb(cbx);
     int n = hi - lo, mid;
@@ -440,30 +450,33 @@ glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cp
     if (n <= 0)
         return GLINT_OK;
     block = block > 0 ? block : 1;
-    build b = {boxes, block, block > 1 ? LEAF_BLOCKS * block : MAX_LEAF, NULL, NULL, NULL, 0, 0,
+    build b = {block, block > 1 ? LEAF_BLOCKS * block : MAX_LEAF, NULL, NULL, 0, 0,
                spawn_depth(cpus)};
-    b.centers = malloc(sizeof *b.centers * (size_t)n + sizeof(float)); /* point4_load reads 4 */
-    b.prims = malloc(sizeof *b.prims * (size_t)n);
+    b.refs = malloc(sizeof *b.refs * (size_t)n);
+    out->prims = malloc(sizeof *out->prims * (size_t)n);
     b.cap = 2 * (n / b.max_leaf + 1) + 1;
     b.nodes = malloc(sizeof *b.nodes * (size_t)b.cap);
-    if (!b.centers || !b.prims || !b.nodes)
+    if (!b.refs || !out->prims || !b.nodes)
         goto nomem;
     for (int i = 0; i < n; i++) {
-        b.prims[i] = i;
-        b.centers[i] = aabb_center(boxes[i]);
+        primref *r = &b.refs[i];
+        *r = (primref){{boxes[i].lo.x, boxes[i].lo.y, boxes[i].lo.z, 0.0f},
+                       {boxes[i].hi.x, boxes[i].hi.y, boxes[i].hi.z}, i};
     }
     if (build_node(&b, 0, n, 0) < 0)
         goto nomem;
-    free(b.centers);
+    for (int i = 0; i < n; i++)
+        out->prims[i] = b.refs[i].id;
+    free(b.refs);
     out->nodes = b.nodes;
     out->nnodes = b.nnodes;
-    out->prims = b.prims;
     out->nprims = n;
     return GLINT_OK;
 nomem:
-    free(b.centers);
-    free(b.prims);
+    free(b.refs);
+    free(out->prims);
     free(b.nodes);
+    memset(out, 0, sizeof *out);
     return err_nomem(err);
 }
 
