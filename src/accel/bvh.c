@@ -65,24 +65,6 @@ static int new_node(build *b)
     return b->nnodes++;
 }
 
-/* Partitions refs[lo, hi) so that those with centre below `split` on
- * `axis` come first; returns the first index of the upper part. */
-static int partition(build *b, int lo, int hi, int axis, float split)
-{
-    primref *r = b->refs;
-    int i = lo, j = hi - 1;
-    while (i <= j) {
-        if (ref_center(&r[i], axis) < split) {
-            i++;
-        } else {
-            primref t = r[i];
-            r[i] = r[j];
-            r[j--] = t;
-        }
-    }
-    return i;
-}
-
 /* Puts the median primitive by centre on axis at the middle of [lo, hi)
  * (quickselect); the fallback when binning cannot separate the centres. */
 static void median_split(build *b, int lo, int hi, int axis, int *mid)
@@ -199,6 +181,51 @@ static inline void bin_of(vec3 c, vec3 cmin, vec3 scale, vec3 top, int k[3])
 }
 #endif
 
+/* The bounds of a node's primitives and of their centres. */
+typedef struct bounds {
+    box4 box, cbox;
+} bounds;
+
+static void bounds_of(const build *b, int lo, int hi, bounds *out)
+{
+    box4 bx = box4_empty(), cbx = box4_empty();
+    for (int i = lo; i < hi; i++) {
+        box4 box = box4_load(&b->refs[i]);
+        bx = box4_union(bx, box);
+        cbx = box4_grow(cbx, box4_center(box));
+    }
+    *out = (bounds){bx, cbx};
+}
+
+/* Partitions refs[lo, hi) so that those with centre below `split` on
+ * `axis` come first; returns the first index of the upper part. The
+ * bounds of each part are gathered on the way, which spares each child a
+ * pass of its own over its primitives. */
+static int partition(build *b, int lo, int hi, int axis, float split, bounds *below,
+                     bounds *above)
+{
+    primref *r = b->refs;
+    bounds l = {box4_empty(), box4_empty()}, u = l;
+    int i = lo, j = hi - 1;
+    while (i <= j) {
+        box4 box = box4_load(&r[i]);
+        if (ref_center(&r[i], axis) < split) {
+            l.box = box4_union(l.box, box);
+            l.cbox = box4_grow(l.cbox, box4_center(box));
+            i++;
+        } else {
+            u.box = box4_union(u.box, box);
+            u.cbox = box4_grow(u.cbox, box4_center(box));
+            primref t = r[i];
+            r[i] = r[j];
+            r[j--] = t;
+        }
+    }
+    *below = l;
+    *above = u;
+    return i;
+}
+
 /* Primitive counts and bounds per bin, on each of the three axes. */
 typedef struct bins {
     int nbins;
@@ -298,18 +325,20 @@ static float best_split(const build *b, int lo, int hi, aabb box, aabb cbox, int
     return best;
 }
 
-static int build_node(build *b, int lo, int hi, int depth);
+static int build_node(build *b, int lo, int hi, int depth, const bounds *given);
 
 /* A subtree built on its own thread into its own node array. */
 typedef struct subtree {
     build b;
     int lo, hi, depth, root;
+    bounds given;
+    bool has_bounds;
 } subtree;
 
 static void *subtree_run(void *arg)
 {
     subtree *t = arg;
-    t->root = build_node(&t->b, t->lo, t->hi, t->depth);
+    t->root = build_node(&t->b, t->lo, t->hi, t->depth, t->has_bounds ? &t->given : NULL);
     return NULL;
 }
 
@@ -333,14 +362,17 @@ static int adopt(build *b, const subtree *t)
  * made (the first follows it directly); returns the second's index. Near
  * the root the second is built on another thread at the same time and then
  * appended, so the nodes come out in the same order as on one thread. */
-static int build_children(build *b, int lo, int mid, int hi, int depth)
+static int build_children(build *b, int lo, int mid, int hi, int depth, const bounds *lb,
+                          const bounds *ub)
 {
     if (depth > b->spawn_depth || hi - mid < PAR_MIN || mid - lo < PAR_MIN) {
-        if (build_node(b, lo, mid, depth) < 0)
+        if (build_node(b, lo, mid, depth, lb) < 0)
             return -1;
-        return build_node(b, mid, hi, depth);
+        return build_node(b, mid, hi, depth, ub);
     }
-    subtree t = {*b, mid, hi, depth, -1};
+    subtree t = {*b, mid, hi, depth, -1, {box4_empty(), box4_empty()}, ub != NULL};
+    if (ub)
+        t.given = *ub;
     t.b.nnodes = 0;
     t.b.cap = 2 * ((hi - mid) / b->max_leaf + 1) + 1;
     t.b.nodes = malloc(sizeof *t.b.nodes * (size_t)t.b.cap);
@@ -348,7 +380,7 @@ static int build_children(build *b, int lo, int mid, int hi, int depth)
         return -1;
     pthread_t th;
     bool threaded = pthread_create(&th, NULL, subtree_run, &t) == 0;
-    int first = build_node(b, lo, mid, depth);
+    int first = build_node(b, lo, mid, depth, lb);
     if (threaded)
         pthread_join(th, NULL);
     else
@@ -358,18 +390,21 @@ static int build_children(build *b, int lo, int mid, int hi, int depth)
     return second;
 }
 
-static int build_node(build *b, int lo, int hi, int depth)
+/* given: the bounds of refs[lo, hi) when the parent's partition gathered
+ * them (NULL: worked out here). */
+static int build_node(build *b, int lo, int hi, int depth, const bounds *given)
 {
     int self = new_node(b);
     if (self < 0)
         return -1;
-    box4 bx = box4_empty(), cbx = box4_empty();
-    for (int i = lo; i < hi; i++) {
-        box4 box = box4_load(&b->refs[i]);
-        bx = box4_union(bx, box);
-        cbx = box4_grow(cbx, box4_center(box));
-    }
-    aabb box = box4_aabb(bx), cbox = box4_aabb(cbx);
+    bounds bd;
+    if (given)
+        bd = *given;
+    else
+        bounds_of(b, lo, hi, &bd);
+    aabb box = box4_aabb(bd.box), cbox = box4_aabb(bd.cbox);
+    bounds lb, ub;
+    bool gathered = false;
     int n = hi - lo, mid;
     b->nodes[self].box = box;
     /* The median fallback splits along the axis of largest centre extent. */
@@ -394,9 +429,10 @@ static int build_node(build *b, int lo, int hi, int depth)
         }
         if (n <= b->max_leaf && leaf_cost(b, n) <= split)
             goto leaf;
-        mid = partition(b, lo, hi, axis, plane);
+        mid = partition(b, lo, hi, axis, plane, &lb, &ub);
         if (mid == lo || mid == hi)
             goto split_median;
+        gathered = true;
         goto recurse;
     }
 split_median:
@@ -404,7 +440,8 @@ split_median:
 recurse:
     b->nodes[self].axis = (uint8_t)axis;
     b->nodes[self].count = 0;
-    int second = build_children(b, lo, mid, hi, depth + 1);
+    int second = build_children(b, lo, mid, hi, depth + 1, gathered ? &lb : NULL,
+                                gathered ? &ub : NULL);
     if (second < 0)
         return -1;
     b->nodes[self].index = second;
@@ -463,7 +500,7 @@ glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cp
         *r = (primref){{boxes[i].lo.x, boxes[i].lo.y, boxes[i].lo.z, 0.0f},
                        {boxes[i].hi.x, boxes[i].hi.y, boxes[i].hi.z}, i};
     }
-    if (build_node(&b, 0, n, 0) < 0)
+    if (build_node(&b, 0, n, 0, NULL) < 0)
         goto nomem;
     for (int i = 0; i < n; i++)
         out->prims[i] = b.refs[i].id;
