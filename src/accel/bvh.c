@@ -2,6 +2,7 @@
 #include "bvh.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <sched.h>
@@ -50,6 +51,11 @@ typedef struct build {
 
 /* Subtrees smaller than this are not worth a thread. */
 #define PAR_MIN 4096
+
+/* Room for the nodes of a tree over n primitives: at most 2n - 1 (leaves
+ * of one), reserved at once so that the array never moves; the pages of
+ * what stays unused are never touched. */
+static int node_room(int n) { return n < INT_MAX / 2 ? 2 * n : INT_MAX; }
 
 static int new_node(build *b)
 {
@@ -374,7 +380,7 @@ static int build_children(build *b, int lo, int mid, int hi, int depth, const bo
     if (ub)
         t.given = *ub;
     t.b.nnodes = 0;
-    t.b.cap = 2 * ((hi - mid) / b->max_leaf + 1) + 1;
+    t.b.cap = node_room(hi - mid);
     t.b.nodes = malloc(sizeof *t.b.nodes * (size_t)t.b.cap);
     if (!t.b.nodes)
         return -1;
@@ -491,7 +497,7 @@ glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cp
                spawn_depth(cpus)};
     b.refs = malloc(sizeof *b.refs * (size_t)n);
     out->prims = malloc(sizeof *out->prims * (size_t)n);
-    b.cap = 2 * (n / b.max_leaf + 1) + 1;
+    b.cap = node_room(n);
     b.nodes = malloc(sizeof *b.nodes * (size_t)b.cap);
     if (!b.refs || !out->prims || !b.nodes)
         goto nomem;
