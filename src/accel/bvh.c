@@ -314,12 +314,39 @@ static void sweep_axis(const build *b, const bins *bn, int a, float area, float 
  * parent's area, or INFINITY when no plane separates the centres. A node
  * of n < BINS primitives gets max(n, 8) bins: more would mostly stay
  * empty, and sweeping them costs more than binning the primitives. */
+/* best_split for two primitives, without the bins: on every axis where
+ * their centres differ they fall into the first and the last of the eight
+ * bins, so every such axis splits them alike, at the same cost, and the
+ * first of them is kept, at the plane after its first bin. */
+static float split_pair(const build *b, int lo, aabb box, aabb cbox, int *axis, float *plane)
+{
+    vec3 ext = aabb_extent(cbox);
+    int a = v3_at(ext, 0) > 0.0f ? 0 : v3_at(ext, 1) > 0.0f ? 1 : v3_at(ext, 2) > 0.0f ? 2 : -1;
+    if (a < 0)
+        return INFINITY;
+    box4 p = box4_load(&b->refs[lo]), q = box4_load(&b->refs[lo + 1]);
+    bool p_first = ref_center(&b->refs[lo], a) <= ref_center(&b->refs[lo + 1], a);
+    box4 first = p_first ? p : q, second = p_first ? q : p;
+    float area = aabb_area(box);
+    float cost = box4_area(box4_union(box4_empty(), first)) * leaf_cost(b, 1) +
+                 box4_area(box4_union(box4_empty(), second)) * leaf_cost(b, 1);
+    cost = area > 0.0f ? COST_TRAVERSE + cost / area : INFINITY;
+    if (!(cost < INFINITY))
+        return INFINITY;
+    float scale = 8.0f / v3_at(ext, a);
+    *axis = a;
+    *plane = v3_at(cbox.lo, a) + 1.0f / scale;
+    return cost;
+}
+
 static float best_split(const build *b, int lo, int hi, aabb box, aabb cbox, int *axis,
                         float *plane)
 {
     float best = INFINITY, scale[3];
     bins bn;
     int n = hi - lo;
+    if (n == 2)
+        return split_pair(b, lo, box, cbox, axis, plane);
     bn.nbins = n >= BINS ? BINS : n > 8 ? n : 8;
     vec3 ext = aabb_extent(cbox);
     for (int a = 0; a < 3; a++)
