@@ -52,10 +52,17 @@ typedef struct build {
 /* Subtrees smaller than this are not worth a thread. */
 #define PAR_MIN 4096
 
-/* Room for the nodes of a tree over n primitives: at most 2n - 1 (leaves
- * of one), reserved at once so that the array never moves; the pages of
- * what stays unused are never touched. */
-static int node_room(int n) { return n < INT_MAX / 2 ? 2 * n : INT_MAX; }
+/* Room for the nodes of a tree over n primitives, reserved at once so
+ * that the array rarely moves (the pages of what stays unused are never
+ * touched): at most 2n - 1 (leaves of one), which trees of single
+ * primitives come close to (1.73n for 10^6 random spheres); trees of
+ * blocks have leaves of several, and start at n / 2. */
+static int node_room(const build *b, int n)
+{
+    if (b->block > 1)
+        return n / 2 + 1;
+    return n < INT_MAX / 2 ? 2 * n : INT_MAX;
+}
 
 static int new_node(build *b)
 {
@@ -407,7 +414,7 @@ static int build_children(build *b, int lo, int mid, int hi, int depth, const bo
     if (ub)
         t.given = *ub;
     t.b.nnodes = 0;
-    t.b.cap = node_room(hi - mid);
+    t.b.cap = node_room(b, hi - mid);
     t.b.nodes = malloc(sizeof *t.b.nodes * (size_t)t.b.cap);
     if (!t.b.nodes)
         return -1;
@@ -524,7 +531,7 @@ glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cp
                spawn_depth(cpus)};
     b.refs = malloc(sizeof *b.refs * (size_t)n);
     out->prims = malloc(sizeof *out->prims * (size_t)n);
-    b.cap = node_room(n);
+    b.cap = node_room(&b, n);
     b.nodes = malloc(sizeof *b.nodes * (size_t)b.cap);
     if (!b.refs || !out->prims || !b.nodes)
         goto nomem;
