@@ -33,7 +33,12 @@ int roots_quadratic(const double c[3], double lo, double hi, double out[2])
 
 /* The one root of p in [a, b], where p(a) = fa and p(b) have opposite
  * signs and p is monotonic: Newton from the secant point, bisecting
- * whenever a step would leave the bracket, which shrinks every step. */
+ * whenever a step would leave the bracket, which shrinks every step. A
+ * step too small to count ends the search even when it leaves the
+ * bracket: x has just become one of its ends, and a converged x lies so
+ * close to the root that rounding moves the step onto or past it (to
+ * bisect then would throw x away and take some fifty halvings to come
+ * back to it). */
 static double bracketed(const double *c, const double *dc, int deg, double a, double b,
                         double fa, double fb)
 {
@@ -51,8 +56,11 @@ static double bracketed(const double *c, const double *dc, int deg, double a, do
             b = x;
         double df = roots_eval(dc, deg - 1, x);
         double nx = df != 0.0 ? x - f / df : 0.5 * (a + b);
-        if (!(nx > a && nx < b))
+        if (!(nx > a && nx < b)) {
+            if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(x)))
+                return x;
             nx = 0.5 * (a + b);
+        }
         if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(nx)) || nx == a || nx == b)
             return nx;
         x = nx;
