@@ -225,6 +225,8 @@ bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit);
 void disk_surface(const struct disk *s, vec3 p, surface *out);
 bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit);
 void torus_surface(const struct torus *s, vec3 p, surface *out);
+/* The same without (u, v) (left 0), which cost two arc tangents. */
+void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out);
 
 /* Crossings of the convex solids: the whole line's entry and exit, of
  * which those after r->tmin are kept (convex_crossings, shape.c). Each

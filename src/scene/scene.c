@@ -400,10 +400,15 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
     const object *o = &s->objects[hit->object];
     out->color = v3s(1.0f);
     if (o->xform < 0) {
-        /* An untextured sphere needs no (u, v): its normal alone, as
-         * shape_surface would compute it. */
+        /* An untextured sphere or torus needs no (u, v): its normal
+         * alone, as shape_surface would compute it. */
         if (o->shape.kind == SHAPE_SPHERE && !material_uses_uv(scene_hit_material(s, hit))) {
             sphere_surface_no_uv(&o->shape.sphere, ray_at(r, hit->h.t), out);
+            out->ng = out->n;
+            return;
+        }
+        if (o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit))) {
+            torus_surface_no_uv(&o->shape.torus, ray_at(r, hit->h.t), out);
             out->ng = out->n;
             return;
         }
@@ -419,7 +424,13 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
         x = &moved;
     }
     ray lr = scene_object_ray(s, o, r);
-    shape_surface(&o->shape, &lr, &hit->h, out);
+    /* A turned torus without texture, likewise. */
+    if (o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit))) {
+        torus_surface_no_uv(&o->shape.torus, ray_at(&lr, hit->h.t), out);
+        out->ng = out->n;
+    } else {
+        shape_surface(&o->shape, &lr, &hit->h, out);
+    }
     if (o->material >= 0)
         out->color = v3s(1.0f);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
