@@ -95,18 +95,22 @@ static bool is_number_form(const char *s, size_t n)
                                    is_one_of(s, n, inf_forms) || is_one_of(s, n, nan_forms));
 }
 
+/* Every number form starts with a digit, a sign or a point, and no null or
+ * boolean form does: the first character says which to look for. */
 ynode_kind ydoc_plain_kind(const char *s, size_t len, bool *is_true, bool *is_int)
 {
     *is_true = false;
     *is_int = false;
-    if (is_one_of(s, len, null_forms))
-        return YNODE_NULL;
-    if (is_one_of(s, len, true_forms)) {
-        *is_true = true;
-        return YNODE_BOOL;
+    char c = len ? s[0] : '\0';
+    if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.')) {
+        if (is_one_of(s, len, null_forms))
+            return YNODE_NULL;
+        if (is_one_of(s, len, true_forms)) {
+            *is_true = true;
+            return YNODE_BOOL;
+        }
+        return is_one_of(s, len, false_forms) ? YNODE_BOOL : YNODE_STRING;
     }
-    if (is_one_of(s, len, false_forms))
-        return YNODE_BOOL;
     if (is_number_form(s, len)) {
         *is_int = len <= NUMBER_MAX_LEN && is_int_form(s, len);
         return YNODE_NUMBER;
