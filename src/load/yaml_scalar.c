@@ -96,13 +96,17 @@ static bool is_number_form(const char *s, size_t n)
 }
 
 /* Every number form starts with a digit, a sign or a point, and no null or
- * boolean form does: the first character says which to look for. */
+ * boolean form does (they start with one of ~nNtTfF, or are empty): the
+ * first character says which to look for. */
 ynode_kind ydoc_plain_kind(const char *s, size_t len, bool *is_true, bool *is_int)
 {
     *is_true = false;
     *is_int = false;
     char c = len ? s[0] : '\0';
     if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.')) {
+        if (c != '\0' && c != '~' && c != 'n' && c != 'N' && c != 't' && c != 'T' && c != 'f' &&
+            c != 'F')
+            return YNODE_STRING;
         if (is_one_of(s, len, null_forms))
             return YNODE_NULL;
         if (is_one_of(s, len, true_forms)) {
@@ -174,6 +178,8 @@ void ydoc_describe(const ydoc *d, const ynode *n, char *buf, size_t cap)
 bool ydoc_is_special(const ydoc *d, const ynode *n)
 {
     const char *s = ydoc_text(d, n);
+    if (n->count > 0 && s[0] >= '0' && s[0] <= '9') /* each form starts with '.', '+' or '-' */
+        return false;
     return is_one_of(s, n->count, inf_forms) || is_one_of(s, n->count, nan_forms);
 }
 
