@@ -1000,7 +1000,8 @@ Test(load, numbers_read_as_strtof_does)
     const ynode *seq = ydoc_node(d, d->root);
     cr_assert_eq(seq->count, sizeof forms / sizeof *forms);
     for (uint32_t i = 0; i < seq->count; i++) {
-        float got = ydoc_float(d, ydoc_node(d, ydoc_item(d, seq, i))), want = strtof(forms[i], NULL);
+        float got = ydoc_float(d, ydoc_node(d, ydoc_item(d, seq, i)));
+        float want = strtof(forms[i], NULL);
         cr_assert(memcmp(&got, &want, sizeof got) == 0, "%s: %a, strtof %a", forms[i], (double)got,
                   (double)want);
     }

@@ -37,7 +37,8 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
     double ext[3] = {1.01 * (R + rm), 1.01 * rm, 1.01 * (R + rm)};
     /* First the line against the ball of radius ext[0] round the centre,
      * which costs no division: most rays that reach this test pass by. */
-    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], od = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double od = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
     double oo = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
     if (od * od < dd * (oo - ext[0] * ext[0]))
         return false;
