@@ -59,6 +59,40 @@ Test(roots, close_and_double_roots)
     ASSERT_NEAR(r[2], 3, 1e-12);
 }
 
+/* The first root alone (max 1), which for a quartic bending towards zero
+ * is found by Newton's method from lo without the turning point ahead,
+ * against the first of all the roots (max 4), which always goes by the
+ * turning points: over many quartics, some with two real roots, some with
+ * none, and intervals that start before, between and after the roots. */
+Test(roots, first_root_alone_agrees_with_all)
+{
+    uint32_t seed = 12345;
+    int found = 0;
+    for (int k = 0; k < 20000; k++) {
+        double v[6];
+        for (int i = 0; i < 6; i++) {
+            seed = seed * 1664525u + 1013904223u;
+            v[i] = (double)(seed >> 8) / (double)(1u << 24) * 4.0 - 2.0;
+        }
+        /* (x - v0)(x - v1) times x^2 - 2 v2 x + v2^2 + v3 (v3 > 0: no real roots) or the
+         * real pair v2 +- |v3| */
+        double m = v[3] > 0 ? v[2] * v[2] + v[3] : v[2] * v[2] - v[3] * v[3];
+        double p[3] = {v[0] * v[1], -(v[0] + v[1]), 1}, q[3] = {m, -2.0 * v[2], 1};
+        double c[5] = {0};
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                c[i + j] += p[i] * q[j];
+        double lo = v[4], hi = lo + 1.0 + fabs(v[5]) * 2.0, one[4], all[4];
+        int n1 = roots_quartic(c, lo, hi, one, 1), n4 = roots_quartic(c, lo, hi, all, 4);
+        cr_assert_eq(n1, n4 > 0 ? 1 : 0, "quartic %d: %d first roots, %d in all", k, n1, n4);
+        if (n1) {
+            ASSERT_NEAR(one[0], all[0], 1e-9);
+            found++;
+        }
+    }
+    cr_assert_gt(found, 5000);
+}
+
 /* ---- cone ----------------------------------------------------------------- */
 
 /* Pointed: base at the origin, radius 1, height 2, so R(y) = 1 - y/2 and

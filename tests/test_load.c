@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "load/assets.h"
 #include "load/load.h"
+#include "load/yaml_doc.h"
 #include "scene/scene.h"
 #include "film.h"
 #include "load_check.h"
@@ -976,4 +977,33 @@ Test(load, dash_reads_the_scene_from_standard_input)
     close(saved);
     close(fd);
     remove(path);
+}
+
+/* Numbers as the loader reads them are the floats nearest their decimals,
+ * as strtof gives them, whether or not they are short enough for the
+ * quick conversion (seven digits or fewer, no exponent). */
+Test(load, numbers_read_as_strtof_does)
+{
+    static const char *const forms[] = {
+        "0", "-0", "+0.0", "1", "0.1", "-0.3", "0.42", "49.5", "-48.75", "1920", "3.1415927",
+        "0.0000001", "9999999", "999999.9", ".5", "5.", "-.25", "16777217", "0.1000000001",
+        "1e-3", "2.5E+2", "123456789012", "0.30000000000000004", "1.17549435e-38"};
+    char text[1024];
+    size_t o = 0;
+    o += (size_t)snprintf(text + o, sizeof text - o, "[");
+    for (size_t i = 0; i < sizeof forms / sizeof *forms; i++)
+        o += (size_t)snprintf(text + o, sizeof text - o, "%s%s", i ? ", " : "", forms[i]);
+    snprintf(text + o, sizeof text - o, "]");
+    ydoc *d = NULL;
+    glint_error err = {0};
+    cr_assert_eq(ydoc_parse(text, strlen(text), "numbers", &d, &err), GLINT_OK, "%s", err.msg);
+    const ynode *seq = ydoc_node(d, d->root);
+    cr_assert_eq(seq->count, sizeof forms / sizeof *forms);
+    for (uint32_t i = 0; i < seq->count; i++) {
+        float got = ydoc_float(d, ydoc_node(d, ydoc_item(d, seq, i)));
+        float want = strtof(forms[i], NULL);
+        cr_assert(memcmp(&got, &want, sizeof got) == 0, "%s: %a, strtof %a", forms[i], (double)got,
+                  (double)want);
+    }
+    ydoc_free(d);
 }

@@ -667,3 +667,41 @@ Test(shapes, triangle_check_tells_too_large_from_degenerate)
     cr_expect_eq(triangle_check(o, v3(1e-30f, 0, 0), v3(0, 1e-30f, 0)), TRIANGLE_DEGENERATE);
     cr_expect_eq(triangle_check(o, v3(INFINITY, 0, 0), v3(0, 1, 0)), TRIANGLE_DEGENERATE);
 }
+
+/* A torus turned, stretched and moved: its box (shape_bounds_mapped) holds
+ * every point of the mapped surface, and each face comes within 1e-3 of
+ * the torus's size of the farthest of 360 x 360 points sampled on it. */
+Test(shapes, turned_torus_bounds_hold_it_tightly)
+{
+    shape t = shape_torus(v3(0.1f, -0.2f, 0.3f), 0.32f, 0.1f);
+    rng g = rng_seed(7, 1);
+    for (int k = 0; k < 20; k++) {
+        xform rx = xform_rotate(v3(1, 0, 0), 360.0f * rng_float(&g));
+        xform ry = xform_rotate(v3(0, 1, 0), 360.0f * rng_float(&g));
+        xform sc = xform_scale(v3(1.0f + rng_float(&g), 1.0f, 0.5f + rng_float(&g)));
+        xform tr = xform_translate(v3(-49.5f + 99.0f * rng_float(&g), 0.42f, 20.0f));
+        xform a = xform_then(&sc, &rx), b = xform_then(&a, &ry), x = xform_then(&b, &tr);
+        aabb box = shape_bounds_mapped(&t, &x.fwd);
+        aabb seen = aabb_empty();
+        for (int i = 0; i < 360; i++)
+            for (int j = 0; j < 360; j++) {
+                double u = i * M_PI / 180.0, v = j * M_PI / 180.0;
+                double rho = 0.32 + 0.1 * cos(v);
+                vec3 p = v3((float)(0.1 + rho * sin(u)), (float)(-0.2 + 0.1 * sin(v)),
+                            (float)(0.3 + rho * cos(u)));
+                seen = aabb_grow(seen, mat4_point(&x.fwd, p));
+            }
+        float lo[3] = {box.lo.x, box.lo.y, box.lo.z}, hi[3] = {box.hi.x, box.hi.y, box.hi.z};
+        float slo[3] = {seen.lo.x, seen.lo.y, seen.lo.z};
+        float shi[3] = {seen.hi.x, seen.hi.y, seen.hi.z};
+        const float tol = 1e-3f * 2.0f * 0.42f; /* of the torus's size */
+        for (int a3 = 0; a3 < 3; a3++) {
+            cr_assert(lo[a3] <= slo[a3] && hi[a3] >= shi[a3],
+                      "turn %d axis %d: [%g, %g] misses [%g, %g]", k, a3, (double)lo[a3],
+                      (double)hi[a3], (double)slo[a3], (double)shi[a3]);
+            cr_assert(slo[a3] - lo[a3] < tol && hi[a3] - shi[a3] < tol,
+                      "turn %d axis %d: [%g, %g] is loose round [%g, %g]", k, a3, (double)lo[a3],
+                      (double)hi[a3], (double)slo[a3], (double)shi[a3]);
+        }
+    }
+}

@@ -510,9 +510,18 @@ static int spawn_depth(int cpus)
     return d;
 }
 
+static glint_rc build_tree(bvh *out, const aabb *boxes, int n, int block, int max_leaf,
+                           int cpus, glint_error *err);
+
 glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err)
 {
     return bvh_build_blocked(out, boxes, n, 1, err);
+}
+
+glint_rc bvh_build_leaves(bvh *out, const aabb *boxes, int n, int max_leaf, glint_error *err)
+{
+    max_leaf = max_leaf < 1 ? 1 : max_leaf > MAX_LEAF ? MAX_LEAF : max_leaf;
+    return build_tree(out, boxes, n, 1, max_leaf, 0, err);
 }
 
 glint_rc bvh_build_blocked(bvh *out, const aabb *boxes, int n, int block, glint_error *err)
@@ -523,12 +532,18 @@ glint_rc bvh_build_blocked(bvh *out, const aabb *boxes, int n, int block, glint_
 glint_rc bvh_build_threads(bvh *out, const aabb *boxes, int n, int block, int cpus,
                            glint_error *err)
 {
+    block = block > 0 ? block : 1;
+    return build_tree(out, boxes, n, block, block > 1 ? LEAF_BLOCKS * block : MAX_LEAF, cpus,
+                      err);
+}
+
+static glint_rc build_tree(bvh *out, const aabb *boxes, int n, int block, int max_leaf,
+                           int cpus, glint_error *err)
+{
     memset(out, 0, sizeof *out);
     if (n <= 0)
         return GLINT_OK;
-    block = block > 0 ? block : 1;
-    build b = {block, block > 1 ? LEAF_BLOCKS * block : MAX_LEAF, NULL, NULL, 0, 0,
-               spawn_depth(cpus)};
+    build b = {block, max_leaf, NULL, NULL, 0, 0, spawn_depth(cpus)};
     b.refs = malloc(sizeof *b.refs * (size_t)n);
     out->prims = malloc(sizeof *out->prims * (size_t)n);
     b.cap = node_room(&b, n);

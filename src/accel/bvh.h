@@ -43,6 +43,9 @@ typedef struct bvh {
 /* Builds over n primitives with the given boxes (none may be empty). An
  * n of 0 gives an empty hierarchy (nnodes 0). */
 glint_rc bvh_build(bvh *out, const aabb *boxes, int n, glint_error *err);
+/* The same with at most max_leaf primitives to a leaf (bvh_build allows
+ * four): 1 suits primitives that cost several node visits to test. */
+glint_rc bvh_build_leaves(bvh *out, const aabb *boxes, int n, int max_leaf, glint_error *err);
 /* The same for primitives that are tested `block` at a time (a mesh's
  * triangles, four to a tri4): the cost model counts a leaf's blocks, not
  * its primitives, so leaves fill up to a whole block. */

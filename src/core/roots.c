@@ -33,7 +33,12 @@ int roots_quadratic(const double c[3], double lo, double hi, double out[2])
 
 /* The one root of p in [a, b], where p(a) = fa and p(b) have opposite
  * signs and p is monotonic: Newton from the secant point, bisecting
- * whenever a step would leave the bracket, which shrinks every step. */
+ * whenever a step would leave the bracket, which shrinks every step. A
+ * step too small to count ends the search even when it leaves the
+ * bracket: x has just become one of its ends, and a converged x lies so
+ * close to the root that rounding moves the step onto or past it (to
+ * bisect then would throw x away and take some fifty halvings to come
+ * back to it). */
 static double bracketed(const double *c, const double *dc, int deg, double a, double b,
                         double fa, double fb)
 {
@@ -51,8 +56,11 @@ static double bracketed(const double *c, const double *dc, int deg, double a, do
             b = x;
         double df = roots_eval(dc, deg - 1, x);
         double nx = df != 0.0 ? x - f / df : 0.5 * (a + b);
-        if (!(nx > a && nx < b))
+        if (!(nx > a && nx < b)) {
+            if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(x)))
+                return x;
             nx = 0.5 * (a + b);
+        }
         if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(nx)) || nx == a || nx == b)
             return nx;
         x = nx;
@@ -88,10 +96,50 @@ int roots_cubic(const double c[4], double lo, double hi, double out[3])
     return between(c, dc, 3, lo, hi, crit, ncrit, out, 3);
 }
 
+/* The first root of the quartic c in (lo, e) when, with s the sign of
+ * p(lo), s p falls at lo and bends upward all the way to e (e is the
+ * first turning point of the cubic p', or hi): Newton's method from lo
+ * then climbs to the root from below and never passes it, each tangent
+ * lying under the curve (Fourier's condition), so no bracket is needed
+ * and the quartic's turning point ahead need not be found. Returns 1 with
+ * *root; 0 when s p stays positive on [lo, e) (a tangent reaches e, or
+ * p' turns first); -1 when rounding left the path, for the general
+ * search to decide. */
+static int convex_first(const double *c, const double *dc, double lo, double e, double f0,
+                        double *root)
+{
+    double s = f0 < 0.0 ? -1.0 : 1.0, x = lo, f = f0;
+    for (int it = 0; it < 60; it++) {
+        double df = roots_eval(dc, 3, x);
+        if (!(s * df < 0.0))
+            return 0;
+        double nx = x - f / df;
+        if (!(nx < e))
+            return 0;
+        if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(nx))) {
+            *root = nx;
+            return nx > lo ? 1 : -1;
+        }
+        double nf = roots_eval(c, 4, nx);
+        if (nf == 0.0) {
+            *root = nx;
+            return 1;
+        }
+        if (s * nf < 0.0) { /* rounding put nx past the root: it is bracketed */
+            *root = bracketed(c, dc, 4, x, nx, f, nf);
+            return 1;
+        }
+        x = nx;
+        f = nf;
+    }
+    return -1;
+}
+
 /* The quartic's turning points (the cubic's roots) are found one at a
  * time, in order, and each piece between two of them is searched as soon
  * as its end is known, so asking for the first root alone skips the
- * turning points beyond it. */
+ * turning points beyond it; and for the first root alone, when the
+ * quartic bends towards zero from lo on, convex_first needs none. */
 int roots_quartic(const double c[5], double lo, double hi, double out[4], int max)
 {
     if (c[4] == 0.0) {
@@ -107,6 +155,11 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
     int nbend = roots_quadratic(ddc, lo, hi, bend), n = 0;
     double x0 = lo, f0 = roots_eval(c, 4, lo);  /* start of the quartic's piece */
     double y0 = lo, g0 = roots_eval(dc, 3, lo); /* start of the cubic's */
+    if (max == 1 && f0 != 0.0 && (f0 > 0.0) == (roots_eval(ddc, 2, lo) > 0.0)) {
+        int k = convex_first(c, dc, lo, nbend > 0 ? bend[0] : hi, f0, out);
+        if (k > 0 || (k == 0 && nbend == 0))
+            return k;
+    }
     for (int i = 0; i <= nbend; i++) {
         double y1 = i < nbend ? bend[i] : hi, g1 = roots_eval(dc, 3, y1);
         if ((g0 < 0.0 && g1 > 0.0) || (g0 > 0.0 && g1 < 0.0)) {

@@ -171,6 +171,63 @@ aabb shape_bounds(const shape *s)
     return aabb_empty();
 }
 
+static aabb corner_bounds(aabb b, const mat4 *m)
+{
+    if (aabb_is_empty(b))
+        return b;
+    aabb r = aabb_empty();
+    for (int i = 0; i < 8; i++) {
+        vec3 c = v3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
+        r = aabb_grow(r, mat4_point(m, c));
+    }
+    return r;
+}
+
+/* A torus is its centre circle (radius R in the xz plane) swept by a ball
+ * of radius r, so its image is the mapped circle, an ellipse reaching
+ * R sqrt(m_ix^2 + m_iz^2) along axis i, swept by the mapped ball, an
+ * ellipsoid reaching r |row i|; a sphere is the ball alone. The extents
+ * are worked out in double and the box is grown by 1e-5 of them and of
+ * the centre's distance from the origin, far more than float rounding, so
+ * that it holds the shape as the single-precision transforms place it. */
+static aabb swept_bounds(const mat4 *m, vec3 center, float R, float r)
+{
+    const float(*a)[4] = m->m;
+    vec3 c = mat4_point(m, center);
+    float lo[3], hi[3], cc[3] = {c.x, c.y, c.z};
+    for (int i = 0; i < 3; i++) {
+        double x = a[i][0], y = a[i][1], z = a[i][2];
+        double e = R * sqrt(x * x + z * z) + r * sqrt(x * x + y * y + z * z);
+        e += 1e-5 * (e + fabs(cc[i]));
+        lo[i] = (float)(cc[i] - e);
+        hi[i] = (float)(cc[i] + e);
+    }
+    return (aabb){v3(lo[0], lo[1], lo[2]), v3(hi[0], hi[1], hi[2])};
+}
+
+aabb shape_bounds_mapped(const shape *s, const mat4 *m)
+{
+    switch (s->kind) {
+    case SHAPE_TORUS:
+        return swept_bounds(m, s->torus.center, s->torus.major, s->torus.minor);
+    case SHAPE_SPHERE:
+        return swept_bounds(m, s->sphere.center, 0.0f, s->sphere.radius);
+    case SHAPE_PLANE:
+    case SHAPE_QUAD:
+    case SHAPE_BOX:
+    case SHAPE_CYLINDER:
+    case SHAPE_TRIANGLE:
+    case SHAPE_MESH:
+    case SHAPE_CONE:
+    case SHAPE_DISK:
+    case SHAPE_POLYHEDRON:
+    case SHAPE_CSG:
+    case SHAPE_COUNT:
+        break;
+    }
+    return corner_bounds(shape_bounds(s), m);
+}
+
 bool shape_is_convex(const shape *s)
 {
     switch (s->kind) {

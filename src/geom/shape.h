@@ -28,6 +28,7 @@
 
 #include <stdbool.h>
 #include "core/aabb.h"
+#include "core/mat4.h"
 #include "core/ray.h"
 
 typedef enum shape_kind {
@@ -181,6 +182,11 @@ bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out);
 aabb shape_bounds(const shape *s);
+/* The box of the shape carried by the affine map m (object to world):
+ * round a torus or a sphere the image's own extent, a little enlarged for
+ * rounding (much tighter than the box round its turned box); round any
+ * other shape the box of its box's mapped corners. */
+aabb shape_bounds_mapped(const shape *s, const mat4 *m);
 /* True when a ray leaving the surface can never meet the shape again. */
 bool shape_is_convex(const shape *s);
 /* Whether the shape bounds a solid, so that it can be an operand of csg:
@@ -219,6 +225,8 @@ bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit);
 void disk_surface(const struct disk *s, vec3 p, surface *out);
 bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit);
 void torus_surface(const struct torus *s, vec3 p, surface *out);
+/* The same without (u, v) (left 0), which cost two arc tangents. */
+void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out);
 
 /* Crossings of the convex solids: the whole line's entry and exit, of
  * which those after r->tmin are kept (convex_crossings, shape.c). Each

@@ -35,6 +35,13 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
                    (double)r->o.z - s->center.z};
     double d[3] = {r->d.x, r->d.y, r->d.z};
     double ext[3] = {1.01 * (R + rm), 1.01 * rm, 1.01 * (R + rm)};
+    /* First the line against the ball of radius ext[0] round the centre,
+     * which costs no division: most rays that reach this test pass by. */
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double od = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+    double oo = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
+    if (od * od < dd * (oo - ext[0] * ext[0]))
+        return false;
     double t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; a++) {
         if (d[a] == 0.0) {
@@ -136,13 +143,12 @@ static double field(double R2, double r2, const double p[3], double g[3])
 
 /* The point is moved onto the surface by two Newton steps along the
  * gradient (shape.h); the normal is the gradient there, which points out
- * of the tube. u runs once round the y axis (0.5 facing +z), v once round
- * the tube (0.5 on the outer equator, rising over the top). */
-void torus_surface(const struct torus *s, vec3 p, surface *out)
+ * of the tube. q is left as the point relative to the centre. */
+static void torus_point(const struct torus *s, vec3 p, surface *out, double q[3])
 {
     double R2 = (double)s->major * s->major, r2 = (double)s->minor * s->minor;
-    double q[3] = {(double)p.x - s->center.x, (double)p.y - s->center.y,
-                   (double)p.z - s->center.z};
+    q[0] = (double)p.x - s->center.x, q[1] = (double)p.y - s->center.y;
+    q[2] = (double)p.z - s->center.z;
     double g[3];
     for (int i = 0; i < 2; i++) {
         double f = field(R2, r2, q, g);
@@ -158,6 +164,21 @@ void torus_surface(const struct torus *s, vec3 p, surface *out)
                 (float)(q[2] + s->center.z));
     out->n = gl > 0.0 ? v3((float)(g[0] / gl), (float)(g[1] / gl), (float)(g[2] / gl))
                       : v3(0.0f, 1.0f, 0.0f);
+}
+
+void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out)
+{
+    double q[3];
+    torus_point(s, p, out, q);
+    out->u = out->v = 0.0f;
+}
+
+/* u runs once round the y axis (0.5 facing +z), v once round the tube (0.5
+ * on the outer equator, rising over the top). */
+void torus_surface(const struct torus *s, vec3 p, surface *out)
+{
+    double q[3];
+    torus_point(s, p, out, q);
     double rho = sqrt(q[0] * q[0] + q[2] * q[2]);
     out->u = 0.5f + (float)(atan2(q[0], q[2]) * (0.5 / M_PI));
     out->v = 0.5f + (float)(atan2(q[1], rho - s->major) * (0.5 / M_PI));

@@ -18,10 +18,13 @@
 
 /* ---- scalars ---------------------------------------------------------- */
 
+/* Forms whose first character differs are passed over without measuring
+ * them: most scalars are numbers and names, which match none. */
 static bool is_one_of(const char *s, size_t n, const char *const *list)
 {
+    char first = n ? s[0] : '\0';
     for (; *list; list++)
-        if (strlen(*list) == n && memcmp(s, *list, n) == 0)
+        if ((*list)[0] == first && strlen(*list) == n && memcmp(s, *list, n) == 0)
             return true;
     return false;
 }
@@ -33,22 +36,30 @@ static const char *const inf_forms[] = {".inf", ".Inf", ".INF", "+.inf", "+.Inf"
                                         "-.inf", "-.Inf", "-.INF", NULL};
 static const char *const nan_forms[] = {".nan", ".NaN", ".NAN", NULL};
 
-static size_t digits(const char *s, size_t n, size_t i, const char *set)
+/* Whether c is a digit in base 8, 10 or 16. */
+static bool is_digit(char c, int base)
+{
+    if (c >= '0' && c <= '9')
+        return c - '0' < base;
+    return base == 16 && ((c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F'));
+}
+
+static size_t digits(const char *s, size_t n, size_t i, int base)
 {
     size_t j = i;
-    while (j < n && s[j] && strchr(set, s[j]))
+    while (j < n && is_digit(s[j], base))
         j++;
     return j - i;
 }
 
-#define DEC "0123456789"
-#define HEX "0123456789abcdefABCDEF"
+#define DEC 10
+#define HEX 16
 
 /* The core schema's integer forms: [-+]?[0-9]+ | 0o[0-7]+ | 0x[0-9a-fA-F]+. */
 static bool is_int_form(const char *s, size_t n)
 {
     if (n > 2 && s[0] == '0' && (s[1] == 'o' || s[1] == 'x'))
-        return digits(s, n, 2, s[1] == 'o' ? "01234567" : HEX) == n - 2;
+        return digits(s, n, 2, s[1] == 'o' ? 8 : HEX) == n - 2;
     size_t i = (n > 0 && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
     return n > i && digits(s, n, i, DEC) == n - i;
 }
@@ -84,18 +95,26 @@ static bool is_number_form(const char *s, size_t n)
                                    is_one_of(s, n, inf_forms) || is_one_of(s, n, nan_forms));
 }
 
+/* Every number form starts with a digit, a sign or a point, and no null or
+ * boolean form does (they start with one of ~nNtTfF, or are empty): the
+ * first character says which to look for. */
 ynode_kind ydoc_plain_kind(const char *s, size_t len, bool *is_true, bool *is_int)
 {
     *is_true = false;
     *is_int = false;
-    if (is_one_of(s, len, null_forms))
-        return YNODE_NULL;
-    if (is_one_of(s, len, true_forms)) {
-        *is_true = true;
-        return YNODE_BOOL;
+    char c = len ? s[0] : '\0';
+    if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.')) {
+        if (c != '\0' && c != '~' && c != 'n' && c != 'N' && c != 't' && c != 'T' && c != 'f' &&
+            c != 'F')
+            return YNODE_STRING;
+        if (is_one_of(s, len, null_forms))
+            return YNODE_NULL;
+        if (is_one_of(s, len, true_forms)) {
+            *is_true = true;
+            return YNODE_BOOL;
+        }
+        return is_one_of(s, len, false_forms) ? YNODE_BOOL : YNODE_STRING;
     }
-    if (is_one_of(s, len, false_forms))
-        return YNODE_BOOL;
     if (is_number_form(s, len)) {
         *is_int = len <= NUMBER_MAX_LEN && is_int_form(s, len);
         return YNODE_NUMBER;
@@ -159,13 +178,46 @@ void ydoc_describe(const ydoc *d, const ynode *n, char *buf, size_t cap)
 bool ydoc_is_special(const ydoc *d, const ynode *n)
 {
     const char *s = ydoc_text(d, n);
+    if (n->count > 0 && s[0] >= '0' && s[0] <= '9') /* each form starts with '.', '+' or '-' */
+        return false;
     return is_one_of(s, n->count, inf_forms) || is_one_of(s, n->count, nan_forms);
+}
+
+/* A plain decimal of at most seven digits ([-+]?, digits, a point
+ * anywhere among them): its digits m and 10^k (k digits after the point)
+ * are exact floats, so m / 10^k rounds once, to the float nearest the
+ * decimal, which is what strtof gives (Clinger, "How to Read Floating
+ * Point Numbers Accurately", PLDI 1990). False for any other form. */
+static bool short_decimal(const char *s, size_t len, float *out)
+{
+    static const float tens[] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f, 1e6f, 1e7f};
+    size_t i = len > 0 && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+    long m = 0;
+    int ndig = 0, frac = -1;
+    for (; i < len; i++) {
+        if (s[i] == '.' && frac < 0) {
+            frac = 0;
+            continue;
+        }
+        if (s[i] < '0' || s[i] > '9' || ++ndig > 7)
+            return false;
+        m = m * 10 + (s[i] - '0');
+        frac += frac >= 0;
+    }
+    if (ndig == 0)
+        return false;
+    float v = (float)m / tens[frac > 0 ? frac : 0];
+    *out = s[0] == '-' ? -v : v;
+    return true;
 }
 
 float ydoc_float(const ydoc *d, const ynode *n)
 {
     const char *s = ydoc_text(d, n);
     size_t len = n->count;
+    float quick;
+    if (short_decimal(s, len, &quick))
+        return quick;
     if (is_one_of(s, len, nan_forms))
         return NAN;
     if (is_one_of(s, len, inf_forms))

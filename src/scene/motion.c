@@ -13,18 +13,6 @@
 /* Intervals the shutter time is cut into to bound a moving object. */
 #define MOTION_BOUND_STEPS 32
 
-static aabb xform_bounds(const xform *x, aabb b)
-{
-    if (aabb_is_empty(b))
-        return b;
-    aabb r = aabb_empty();
-    for (int i = 0; i < 8; i++) {
-        vec3 c = v3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
-        r = aabb_grow(r, mat4_point(&x->fwd, c));
-    }
-    return r;
-}
-
 xform scene_object_xform_at(const scene *s, const object *o, float t)
 {
     xform x;
@@ -70,7 +58,7 @@ aabb scene_object_bounds(const scene *s, int i)
     aabb b = shape_bounds(&o->shape);
     if (o->moving)
         return moving_bounds(s, o, b);
-    return o->xform >= 0 ? xform_bounds(&s->xforms[o->xform], b) : b;
+    return o->xform >= 0 ? shape_bounds_mapped(&o->shape, &s->xforms[o->xform].fwd) : b;
 }
 
 glint_rc scene_link_motions(scene *s, glint_error *err)
