@@ -29,10 +29,11 @@ CFLAGS   += -O2
 endif
 LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthread
 
-# The command line links SDL2 for its preview window (-p), a core option:
-# only src/app includes it, and the library does not depend on it.
+# The command line opens SDL2 for its preview window (-p) when the window
+# opens (src/app/sdl_load.c), so it is compiled against SDL2's headers but
+# not linked to it: only src/app includes it, and the library does not
+# depend on it.
 SDL_CFLAGS := $(shell pkg-config --cflags sdl2 2>/dev/null)
-SDL_LIBS   := $(or $(shell pkg-config --libs sdl2 2>/dev/null),-lSDL2)
 
 LIB_SRC  := $(shell find src -name '*.c' -not -path 'src/app/*' -not -path 'src/dist/*' \
               -not -path 'src/cli/*' | sort)
@@ -150,7 +151,7 @@ $(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
 $(APP_OBJ): CPPFLAGS += $(SDL_CFLAGS)
 
 $(BUILD)/glint: $(APP_OBJ) $(CLI_OBJ) $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(SDL_LIBS)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -ldl
 
 $(BUILD)/glint-mpi: $(DIST_OBJ) $(CLI_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)

@@ -2,12 +2,13 @@
  * the picture comes from the render thread (preview_render.c). */
 #include "preview.h"
 
-#include <SDL.h>
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "sdl_load.h"
 
 static const char keys_help[] =
     "glint preview keys:\n"
@@ -252,6 +253,8 @@ static void tick(preview *p, window *w)
 /* The window: the image's size, scaled down to fit the screen. */
 static bool window_open(preview *p, window *w)
 {
+    if (!sdl_load(NULL))
+        return false;
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
         return false;
@@ -331,8 +334,9 @@ static int run(preview *p)
 {
     window w = {0};
     if (!window_open(p, &w)) {
+        const char *why = NULL;
         fprintf(stderr, "glint: cannot open a window (%s); rendering to %s instead\n",
-                SDL_GetError(), p->cli->output);
+                sdl_load(&why) ? SDL_GetError() : why, p->cli->output);
         return batch_main(p->cli);
     }
     int before = thread_count();

@@ -1,0 +1,38 @@
+#define GLINT_SDL_LOAD_NO_CALLS
+#include "sdl_load.h"
+
+#include <dlfcn.h>
+#include <pthread.h>
+#include <stddef.h>
+
+/* SDL2's run-time library, as Debian and most systems name it. */
+#define SDL_LIBRARY "libSDL2-2.0.so.0"
+
+sdl_table sdl_fn;
+
+static pthread_once_t once = PTHREAD_ONCE_INIT;
+static const char *failure; /* NULL once everything is found */
+
+static void load(void)
+{
+    void *lib = dlopen(SDL_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        failure = dlerror();
+        return;
+    }
+    /* dlsym's object pointer stored through a void * view of each
+     * function pointer, as POSIX describes for dlsym. */
+#define SDL_LOAD_FIND(name)                                                                    \
+    if (!failure && !(*(void **)&sdl_fn.name = dlsym(lib, #name)))                             \
+        failure = dlerror() ? dlerror() : SDL_LIBRARY " has no " #name;
+    SDL_LOAD_FUNCTIONS(SDL_LOAD_FIND)
+#undef SDL_LOAD_FIND
+}
+
+bool sdl_load(const char **why)
+{
+    pthread_once(&once, load);
+    if (failure && why)
+        *why = failure;
+    return !failure;
+}
