@@ -13,18 +13,26 @@ sdl_table sdl_fn;
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 static const char *failure; /* NULL once everything is found */
 
+/* dlerror's words, or these when it has none. */
+static const char *why_not(const char *fallback)
+{
+    const char *e = dlerror();
+    return e ? e : fallback;
+}
+
 static void load(void)
 {
     void *lib = dlopen(SDL_LIBRARY, RTLD_NOW | RTLD_LOCAL);
     if (!lib) {
-        failure = dlerror();
+        failure = why_not("cannot open " SDL_LIBRARY);
         return;
     }
     /* dlsym's object pointer stored through a void * view of each
-     * function pointer, as POSIX describes for dlsym. */
+     * function pointer, as POSIX describes for dlsym. The library stays
+     * open until the process ends. */
 #define SDL_LOAD_FIND(name)                                                                    \
     if (!failure && !(*(void **)&sdl_fn.name = dlsym(lib, #name)))                             \
-        failure = dlerror() ? dlerror() : SDL_LIBRARY " has no " #name;
+        failure = why_not(SDL_LIBRARY " has no " #name);
     SDL_LOAD_FUNCTIONS(SDL_LOAD_FIND)
 #undef SDL_LOAD_FIND
 }
