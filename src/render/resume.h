@@ -13,7 +13,8 @@
  *   u32 tile count, u32 note length, note bytes
  *   one byte per tile: 1 final, 0 not yet
  *   for each final tile in order, its pixels row by row, 3 f32 each
- *   u64 FNV-1a of every byte before it (a damaged or cut file is refused)
+ *   u64 fingerprint_bytes of every byte before it (a damaged or cut file
+ *       is refused)
  * The file is written atomically (io/file.h): an interruption while it is
  * written leaves the previous one. */
 #ifndef GLINT_RENDER_RESUME_H
@@ -21,7 +22,7 @@
 
 #include "glint.h"
 
-#define RESUME_VERSION 1
+#define RESUME_VERSION 2 /* 1: the fingerprint hashed a byte at a time */
 #define RESUME_MAX_NOTE (1u << 20)
 
 struct glint_scene;
