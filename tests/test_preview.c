@@ -175,6 +175,11 @@ Test(preview, without_a_display_renders_to_the_file)
     cr_assert_eq(glint_run("env -u DISPLAY -u WAYLAND_DISPLAY", "-p -r 32x24 -o nd.png", out,
                            sizeof out), 0, "%s", out);
     cr_expect(strstr(out, "glint: no display for the preview window (DISPLAY and WAYLAND_DISPLAY "
-                          "are unset); rendering to nd.png\n"), "%s", out);
+                          "are unset or empty); rendering to nd.png\n"), "%s", out);
     cr_expect(dir_has("nd.png"));
+    /* An empty DISPLAY names no display either. */
+    cr_assert_eq(glint_run("env -u WAYLAND_DISPLAY DISPLAY=", "-p -r 32x24 -o ne.png", out,
+                           sizeof out), 0, "%s", out);
+    cr_expect(strstr(out, "rendering to ne.png\n"), "%s", out);
+    cr_expect(dir_has("ne.png"));
 }

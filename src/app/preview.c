@@ -360,14 +360,22 @@ static int run(preview *p)
     return 0;
 }
 
+/* Whether the environment variable names something (set and not empty:
+ * an empty DISPLAY reaches no X server either). */
+static bool names_display(const char *var)
+{
+    const char *v = getenv(var);
+    return v && *v;
+}
+
 int preview_main(const struct cli *c)
 {
-    bool display = getenv("DISPLAY") || getenv("WAYLAND_DISPLAY");
+    bool display = names_display("DISPLAY") || names_display("WAYLAND_DISPLAY");
     if (c->preview_bench)
         return preview_bench(c, display);
     if (!display) {
         fprintf(stderr, "glint: no display for the preview window (DISPLAY and WAYLAND_DISPLAY "
-                        "are unset); rendering to %s\n", c->output);
+                        "are unset or empty); rendering to %s\n", c->output);
         return batch_main(c);
     }
     preview p = {.cli = c, .report = getenv("GLINT_TEST_REPORT") != NULL};
