@@ -52,6 +52,7 @@
 #include "core/rng.h"
 #include "load/mesh_import.h"
 #include "scene/scene.h"
+#include "sphere_field.h"
 
 _Static_assert(sizeof(vec3) == 12, "vertex arrays are shared with Embree as FLOAT3");
 
@@ -259,6 +260,18 @@ static RTCDevice embree_device(const char *config, embree_mem *mem)
     return d;
 }
 
+/* Commits g and attaches it to sc, then commits sc: the wall time of
+ * Embree's build. */
+static double embree_commit(RTCScene sc, RTCGeometry g)
+{
+    double t0 = now();
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(sc, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(sc);
+    return now() - t0;
+}
+
 /* A scene of one triangle geometry sharing t's arrays, built with high
  * quality; *build_s is the wall time of committing it. */
 static RTCScene embree_scene(RTCDevice dev, const tris *t, double *build_s)
@@ -271,12 +284,7 @@ static RTCScene embree_scene(RTCDevice dev, const tris *t, double *build_s)
                                sizeof(vec3), (size_t)t->nverts);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, t->tri, 0, 12,
                                (size_t)t->ntris);
-    double t0 = now();
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(sc, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(sc);
-    double dt = now() - t0;
+    double dt = embree_commit(sc, g);
     if (build_s)
         *build_s = dt;
     return sc;
@@ -607,8 +615,7 @@ static double mesh_embree(RTCDevice dev, const void *data)
     return dt;
 }
 
-/* n spheres as spheres.c (row 7) places them: centres uniform in a box,
- * one radius making their volume 3 % of the box's. */
+/* n spheres as row 7 places them (sphere_field.h). */
 typedef struct spheres {
     int n;
     float (*xyzr)[4];
@@ -620,13 +627,12 @@ static spheres spheres_make(int n)
     spheres sp = {n, xmalloc(sizeof *sp.xyzr * (size_t)n), scene_new()};
     if (!sp.s)
         die("out of memory");
-    double box = 40.0 * 30.0 * 50.0;
-    float radius = (float)cbrt(0.03 * box / n / (4.0 / 3.0 * M_PI));
+    float radius = sphere_field_radius(n);
     material m = material_default();
     int mi = scene_add_material(sp.s, &m);
-    rng r = rng_seed(12345, 1);
+    rng r = sphere_field_rng();
     for (int i = 0; i < n; i++) {
-        vec3 c = v3(-20 + 40 * rng_float(&r), -15 + 30 * rng_float(&r), -80 + 50 * rng_float(&r));
+        vec3 c = sphere_field_next(&r);
         shape sh = shape_sphere(c, radius);
         if (scene_add_object(sp.s, &sh, mi, -1) < 0)
             die("out of memory");
@@ -658,12 +664,7 @@ static double spheres_embree(RTCDevice dev, const void *data)
     rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, sp->xyzr, 0,
                                sizeof *sp->xyzr, (size_t)sp->n);
-    double t0 = now();
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(sc, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(sc);
-    double dt = now() - t0;
+    double dt = embree_commit(sc, g);
     rtcReleaseScene(sc);
     return dt;
 }

@@ -10,6 +10,7 @@
 
 #include "core/rng.h"
 #include "scene/scene.h"
+#include "sphere_field.h"
 
 static double now(void)
 {
@@ -32,14 +33,10 @@ static int run(int n, int threads)
     m.specular = 0.5f;
     m.color = v3(0.8f, 0.6f, 0.3f);
     int mi = scene_add_material(s, &m);
-    /* Spheres in [-20,20] x [-15,15] x [-80,-30]; radius so that the
-     * spheres' total volume is 3% of the box's whatever N is. */
-    double box = 40.0 * 30.0 * 50.0;
-    float radius = (float)cbrt(0.03 * box / n / (4.0 / 3.0 * M_PI));
-    rng r = rng_seed(12345, 1);
+    float radius = sphere_field_radius(n);
+    rng r = sphere_field_rng();
     for (int i = 0; i < n; i++) {
-        vec3 c = v3(-20 + 40 * rng_float(&r), -15 + 30 * rng_float(&r), -80 + 50 * rng_float(&r));
-        shape sh = shape_sphere(c, radius);
+        shape sh = shape_sphere(sphere_field_next(&r), radius);
         if (scene_add_object(s, &sh, mi, -1) < 0) {
             scene_free(s);
             return 1;

@@ -206,9 +206,6 @@ int shape_hit_material(const shape *s, const shape_hit *hit);
 /* Per-shape routines, called by the dispatchers above. */
 bool sphere_intersect(const struct sphere *s, const ray *r, shape_hit *hit);
 void sphere_surface(const struct sphere *s, vec3 p, surface *out);
-/* The same without (u, v) (left 0), which cost two inverse trigonometric
- * functions: for surfaces whose material has no texture. */
-void sphere_surface_no_uv(const struct sphere *s, vec3 p, surface *out);
 bool plane_intersect(const struct plane *s, const ray *r, shape_hit *hit);
 void plane_surface(const struct plane *s, vec3 p, surface *out);
 bool quad_intersect(const struct quad *s, const ray *r, shape_hit *hit);

@@ -73,8 +73,9 @@ __attribute__((always_inline)) static inline bool quad_hit(const struct quad *s,
     return true;
 }
 
-/* The surface of a sphere at p without (u, v) (left 0): what
- * sphere_surface_no_uv gives, with the geometric normal set too. Inline,
+/* The surface of a sphere at p without (u, v) (left 0), which cost two
+ * inverse trigonometric functions: for surfaces whose material has no
+ * texture; sphere_surface adds them. The geometric normal is set too. Inline,
  * because the point and the normal travel in registers then: passed to a
  * function and stored, a vec3's parts are written and read back in
  * different widths, and the read waits for the writes to reach memory. */

@@ -7,18 +7,13 @@ bool sphere_intersect(const struct sphere *s, const ray *r, shape_hit *hit)
     return sphere_hit(s, r, hit);
 }
 
-void sphere_surface_no_uv(const struct sphere *s, vec3 p, surface *out)
-{
-    sphere_surface_plain(s, p, out);
-}
-
 /* Longitude/latitude mapping over the whole sphere: u runs once round the
  * y axis with u = 0.5 facing +z and the seam at -z; v = 0 at the south pole,
  * 1 at the north pole. */
 
 void sphere_surface(const struct sphere *s, vec3 p, surface *out)
 {
-    sphere_surface_no_uv(s, p, out);
+    sphere_surface_plain(s, p, out);
     vec3 n = out->n;
     out->u = 0.5f + atan2f(n.x, n.z) * (float)(0.5 / M_PI);
     out->v = 0.5f + asinf(fmaxf(-1.0f, fminf(1.0f, n.y))) * (float)(1.0 / M_PI);
