@@ -6,7 +6,9 @@
  * - glint: the Stanford bunny read with mesh_import, placed once in a scene
  *   (scene_intersect / scene_occluded_opaque, the renderer's own path:
  *   scene BVH, then the mesh's BVH), or with --glint-path mesh, the mesh
- *   alone (mesh_intersect / mesh_occluded).
+ *   alone (mesh_intersect / mesh_occluded). Primary rays go eight
+ *   neighbouring pixels at a time (scene_intersect8 / mesh_intersect8), as
+ *   the renderer's camera rays do; incoherent rays one at a time.
  * - Embree: one RTC_GEOMETRY_TYPE_TRIANGLE geometry sharing copies of
  *   glint's vertex and index arrays (after mesh_init, so the same triangles
  *   in the same order), RTC_BUILD_QUALITY_HIGH, the single-ray API
@@ -296,12 +298,13 @@ typedef struct rayset {
     size_t n;
     vec3 *o, *d;  /* d is unit length */
     float *tmax;  /* far end for occlusion queries (closest hit: no limit) */
+    bool coherent; /* a camera's, in pixel order: glint traces them eight at a time */
 } rayset;
 
 static rayset rayset_new(size_t n)
 {
     return (rayset){n, xmalloc(sizeof(vec3) * n), xmalloc(sizeof(vec3) * n),
-                    xmalloc(sizeof(float) * n)};
+                    xmalloc(sizeof(float) * n), false};
 }
 
 /* A camera on the +z side of the bounds, looking at their centre, 40
@@ -315,6 +318,7 @@ static rayset primary_rays(aabb b, int w, int h)
                   .projection = CAMERA_PERSPECTIVE};
     camera_frame f = camera_frame_make(&cam, w, h);
     rayset rs = rayset_new((size_t)w * (size_t)h);
+    rs.coherent = true;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t i = (size_t)y * (size_t)w + (size_t)x;
@@ -376,11 +380,44 @@ typedef struct job {
     atomic_size_t next;
 } job;
 
+/* Nearest hits of a coherent set, eight neighbouring rays at a time
+ * (scene_intersect8, mesh_intersect8), as the renderer traces camera rays. */
+static void glint_packets(job *j, size_t lo, size_t hi)
+{
+    const rayset *rs = j->rs;
+    const targets *tg = j->tg;
+    for (size_t i = lo; i < hi; i += 8) {
+        ray8 r8;
+        int active = 0;
+        for (int k = 0; k < 8; k++) {
+            size_t at = i + (size_t)k < hi ? i + (size_t)k : i; /* idle lanes repeat ray i */
+            active |= (i + (size_t)k < hi) << k;
+            r8.ox[k] = rs->o[at].x, r8.oy[k] = rs->o[at].y, r8.oz[k] = rs->o[at].z;
+            r8.dx[k] = rs->d[at].x, r8.dy[k] = rs->d[at].y, r8.dz[k] = rs->d[at].z;
+            r8.tmin[k] = 0.0f, r8.tmax[k] = INFINITY, r8.time[k] = 0.0f;
+        }
+        int found;
+        if (tg->mesh_path) {
+            shape_hit h[8];
+            found = mesh_intersect8(tg->gm, &r8, active, h);
+            for (int k = 0; k < 8 && i + (size_t)k < hi; k++)
+                j->t[i + (size_t)k] = found >> k & 1 ? h[k].t : INFINITY;
+        } else {
+            scene_hit h[8];
+            found = scene_intersect8(tg->gs, &r8, active, h);
+            for (int k = 0; k < 8 && i + (size_t)k < hi; k++)
+                j->t[i + (size_t)k] = found >> k & 1 ? h[k].h.t : INFINITY;
+        }
+    }
+}
+
 static void glint_chunk(job *j, size_t lo, size_t hi)
 {
     const rayset *rs = j->rs;
     const targets *tg = j->tg;
-    if (j->q == OCCLUDED) {
+    if (j->q == CLOSEST && rs->coherent) {
+        glint_packets(j, lo, hi);
+    } else if (j->q == OCCLUDED) {
         for (size_t i = lo; i < hi; i++) {
             ray r = ray_make(rs->o[i], rs->d[i], rs->tmax[i]);
             j->hit[i] = tg->mesh_path ? mesh_occluded(tg->gm, &r) : scene_occluded_opaque(tg->gs, &r);
@@ -941,8 +978,11 @@ int main(int argc, char **argv)
      * order) are what Embree gets. */
     tris bunny = tris_copy(m->pos, m->nverts, (const uint32_t(*)[3])m->tri, m->ntris);
     fprintf(stderr, "raybench: %s: %d vertices, %d triangles; glint queries %s\n", o.mesh, m->nverts,
-            m->ntris, o.mesh_path ? "the mesh alone (mesh_intersect, mesh_occluded)"
-                                  : "a scene holding the mesh (scene_intersect, scene_occluded_opaque)");
+            m->ntris,
+            o.mesh_path ? "the mesh alone (mesh_intersect, mesh_occluded; primary rays: "
+                          "mesh_intersect8, eight at a time)"
+                        : "a scene holding the mesh (scene_intersect, scene_occluded_opaque; "
+                          "primary rays: scene_intersect8, eight at a time; Embree: rtcIntersect1)");
 
     embree_mem mem = {0, 0};
     RTCDevice dev = embree_device(NULL, &mem);

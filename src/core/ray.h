@@ -21,6 +21,15 @@ typedef struct ray {
     float time; /* seconds: where moving objects are for this ray (motion blur) */
 } ray;
 
+/* Eight rays traced together (scene_intersect8, mesh_intersect8), one
+ * lane per ray. Every lane holds numbers, those of idle rays included. */
+typedef struct ray8 {
+    float ox[8], oy[8], oz[8];
+    float dx[8], dy[8], dz[8];
+    float tmin[8], tmax[8];
+    float time[8];
+} ray8;
+
 #define RAY_EPS_REL 1e-4f
 
 static inline vec3 ray_at(const ray *r, float t) { return v3_madd(r->o, r->d, t); }

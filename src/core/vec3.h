@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
 
 typedef struct vec3 {
     float x, y, z;
@@ -14,6 +15,22 @@ typedef struct vec3 {
  * under strict IEEE rules); with a NaN argument they return b. */
 static inline float minf(float a, float b) { return a < b ? a : b; }
 static inline float maxf(float a, float b) { return a > b ? a : b; }
+
+/* The float just above x (x itself for +inf and NaN), without a library
+ * call: "t < next_up(x)" is "t <= x". */
+static inline float next_up(float x)
+{
+    if (!(x < INFINITY))
+        return x;
+    if (x == 0.0f)
+        return 0x1p-149f;
+    union {
+        float f;
+        int32_t i;
+    } u = {x};
+    u.i += x > 0.0f ? 1 : -1;
+    return u.f;
+}
 
 static inline vec3 v3(float x, float y, float z) { return (vec3){x, y, z}; }
 static inline vec3 v3s(float s) { return (vec3){s, s, s}; }

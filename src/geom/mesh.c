@@ -168,6 +168,29 @@ bool mesh_intersect(const mesh *m, const ray *r, shape_hit *hit)
     return isa == ACCEL_SCALAR ? mesh_intersect_scalar(m, r, hit) : mesh_intersect_sse(m, r, hit);
 }
 
+int mesh_intersect8(const mesh *m, const ray8 *r, int active, shape_hit *hit)
+{
+    int found = -1;
+#if defined(GLINT_WIDE_KERNELS)
+    if (m->bvh.isa == ACCEL_AVX512)
+        found = mesh_intersect8_avx512(m, r, active, hit);
+    else if (m->bvh.isa == ACCEL_AVX2)
+        found = mesh_intersect8_avx2(m, r, active, hit);
+#endif
+    if (found >= 0)
+        return found;
+    found = 0;
+    for (int k = 0; k < 8; k++) {
+        if (!(active >> k & 1))
+            continue;
+        ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k],
+                   r->tmax[k], 0.0f};
+        if (mesh_intersect(m, &one, &hit[k]))
+            found |= 1 << k;
+    }
+    return found;
+}
+
 bool mesh_occluded(const mesh *m, const ray *r)
 {
     accel_isa isa = m->bvh.isa;

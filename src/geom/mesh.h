@@ -37,6 +37,11 @@ void mesh_free(mesh *m);
 
 bool mesh_intersect(const mesh *m, const ray *r, struct shape_hit *hit);
 bool mesh_occluded(const mesh *m, const ray *r);
+/* The nearest hits of the rays of active (bit k: ray k of r) at once:
+ * returns the rays that hit, with hit[k] for each. Each gets the hit that
+ * mesh_intersect gives it, to the bit; rays that cannot share a walk
+ * (mesh_packet.h) are traced one at a time. */
+int mesh_intersect8(const mesh *m, const ray8 *r, int active, struct shape_hit *hit);
 /* Every triangle crossing after r->tmin, nearest first, entering where
  * the triangle faces the ray (see shape_crossings). */
 int mesh_crossings(const mesh *m, const ray *r, struct crossing *out, int max, bool *more);

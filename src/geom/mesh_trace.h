@@ -15,24 +15,43 @@
 
 typedef struct mesh_leaf_ctx {
     const mesh *m;
-    tri4_ray q;
+    const ray *r;
     shape_hit *hit;
+    int32_t best; /* the triangle of *hit; -1 before the first */
+    bool ready;   /* q is worked out (at the first leaf: rays that reach
+                     none, most primary rays, never need it) */
+    tri4_ray q;
 } mesh_leaf_ctx;
 
-/* A leaf's count triangles fill (count + 3) / 4 blocks from block first. */
+__attribute__((always_inline)) static inline const tri4_ray *mesh_leaf_ray(mesh_leaf_ctx *c)
+{
+    if (!c->ready) {
+        c->q = tri4_ray_make(c->r);
+        c->ready = true;
+    }
+    return &c->q;
+}
+
+/* A leaf's count triangles fill (count + 3) / 4 blocks from block first.
+ * Of two hits at the same distance the lower triangle index is kept,
+ * whichever comes first, so that the hit does not depend on the order of
+ * the walk (mesh_packet.h walks in another). Each block is tested against
+ * the distance reached when it began, made inclusive for such ties. */
 __attribute__((always_inline)) static inline bool mesh_leaf_closest(void *ctx, uint32_t first,
                                                                     uint32_t count, float tmin,
                                                                     float *tmax)
 {
     mesh_leaf_ctx *c = ctx;
     const tri4 *blk = &c->m->blocks[first];
+    const tri4_ray *q = mesh_leaf_ray(c);
     bool found = false;
     for (uint32_t j = 0; j < count; j += 4, blk++) {
         float t[4], b1[4], b2[4];
-        int mask = tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2);
+        int mask = tri4_intersect(q, blk, tmin, next_up(*tmax), t, b1, b2);
         for (int k = 0; mask; k++, mask >>= 1)
-            if ((mask & 1) && t[k] < *tmax) {
+            if ((mask & 1) && (t[k] < *tmax || (t[k] == *tmax && blk->id[k] < c->best))) {
                 *tmax = t[k];
+                c->best = blk->id[k];
                 c->hit->t = t[k];
                 c->hit->part = blk->id[k];
                 c->hit->b1 = b1[k];
@@ -49,9 +68,10 @@ __attribute__((always_inline)) static inline bool mesh_leaf_any(void *ctx, uint3
 {
     mesh_leaf_ctx *c = ctx;
     const tri4 *blk = &c->m->blocks[first];
+    const tri4_ray *q = mesh_leaf_ray(c);
     for (uint32_t j = 0; j < count; j += 4, blk++) {
         float t[4], b1[4], b2[4];
-        if (tri4_intersect(&c->q, blk, tmin, *tmax, t, b1, b2))
+        if (tri4_intersect(q, blk, tmin, *tmax, t, b1, b2))
             return true;
     }
     return false;
@@ -104,14 +124,14 @@ __attribute__((always_inline)) static inline bool mesh_leaf_all(void *ctx, uint3
 #define MESH_KERNELS(isa, width)                                                               \
     bool mesh_intersect_##isa(const mesh *m, const ray *r, shape_hit *hit)                     \
     {                                                                                          \
-        mesh_leaf_ctx c = {m, tri4_ray_make(r), hit};                                          \
+        mesh_leaf_ctx c = {.m = m, .r = r, .hit = hit, .best = -1};                            \
         float tmax = r->tmax;                                                                  \
         return wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, false,                \
                              mesh_leaf_closest, &c);                                           \
     }                                                                                          \
     bool mesh_occluded_##isa(const mesh *m, const ray *r)                                      \
     {                                                                                          \
-        mesh_leaf_ctx c = {m, tri4_ray_make(r), NULL};                                         \
+        mesh_leaf_ctx c = {.m = m, .r = r, .best = -1};                                        \
         float tmax = r->tmax;                                                                  \
         return wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, true, mesh_leaf_any,  \
                              &c);                                                              \
@@ -137,5 +157,7 @@ int mesh_crossings_avx2(const mesh *m, const ray *r, crossing *out, int max, boo
 bool mesh_intersect_avx512(const mesh *m, const ray *r, shape_hit *hit);
 bool mesh_occluded_avx512(const mesh *m, const ray *r);
 int mesh_crossings_avx512(const mesh *m, const ray *r, crossing *out, int max, bool *more);
+int mesh_intersect8_avx2(const mesh *m, const ray8 *r, int active, shape_hit hit[8]);
+int mesh_intersect8_avx512(const mesh *m, const ray8 *r, int active, shape_hit hit[8]);
 
 #endif

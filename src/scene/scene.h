@@ -161,6 +161,11 @@ typedef struct scene_hit {
 
 /* Nearest hit along r within (tmin, tmax); tmax is not changed. */
 bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
+/* The nearest hits of the rays of active (bit k: ray k of r) at once,
+ * each as scene_intersect finds it: returns the rays that hit, with
+ * hit[k] for each. Coherent rays (a camera's through neighbouring pixels)
+ * in a flat scene share the walks of its meshes' hierarchies. */
+int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 

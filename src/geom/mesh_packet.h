@@ -1,0 +1,342 @@
+/* mesh_packet: eight coherent rays against a mesh at once, for the
+ * eight-wide paths (accel/isa.h): each node's children and each leaf's
+ * triangles are fetched once for the eight, and each test runs on all of
+ * them in one AVX register, one lane per ray.
+ *
+ * The rays must agree in the signs of their directions (so that each node
+ * is tested against the same near planes) and in the axes of the
+ * watertight test (kx, ky, kz of tri4.h); mesh_intersect8 traces a
+ * packet that does not one ray at a time. Primary rays of neighbouring pixels almost always do.
+ *
+ * Every ray gets the hit the one-ray kernel gives it, to the bit: the box
+ * and triangle tests are the same operations in the same order, each
+ * block's triangles are tested against the distance reached when the block
+ * began, and of two hits at the same distance the lower triangle index
+ * wins, whatever the order in which they are found (mesh_trace.h applies
+ * the same rule). */
+#ifndef GLINT_GEOM_MESH_PACKET_H
+#define GLINT_GEOM_MESH_PACKET_H
+
+#include <immintrin.h>
+#include <string.h>
+#include "geom/mesh_trace.h"
+
+/* A subtree still to visit, the distances at which the rays in mask enter
+ * it. */
+typedef struct packet_entry {
+    __m256 tn;
+    int32_t child;
+    uint32_t count;
+    uint32_t mask;
+} packet_entry;
+
+/* The packet as the tests want it, one lane per ray. The triangle test's
+ * values are worked out at the first leaf (packet_tri_make). */
+typedef struct packet8 {
+    const ray8 *r;
+    __m256 ox, oy, oz, ix, iy, iz, tmin;
+    int nx, ny, nz;
+    bool tri_ready;
+    __m256 qox, qoy, qoz, sx, sy, sz; /* tri4_ray's per-ray values */
+    int kx, ky, kz;
+} packet8;
+
+/* What the rays have found so far. */
+typedef struct packet_best {
+    __m256 t, b1, b2;
+    __m256i id; /* -1: nothing yet */
+} packet_best;
+
+/* Ray k of the packet. */
+static inline ray packet_ray(const ray8 *r, int k)
+{
+    return (ray){v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k],
+                 r->tmax[k], 0.0f};
+}
+
+/* x's next float up, lane by lane (next_up, vec3.h). */
+static inline __m256 packet_next_up(__m256 x)
+{
+    float v[8];
+    _mm256_storeu_ps(v, x);
+    for (int k = 0; k < 8; k++)
+        v[k] = next_up(v[k]);
+    return _mm256_loadu_ps(v);
+}
+
+static inline float packet_hmin(__m256 v)
+{
+    __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+    m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+    return _mm_cvtss_f32(m);
+}
+
+/* The children of node n the rays of `active` enter; returns how many,
+ * with their entries in out, nearest first (by the first distance at which
+ * any of the rays enters). */
+__attribute__((always_inline)) static inline int packet_node(const bvh8_node *n, const packet8 *p,
+                                                             __m256 tmax, int active,
+                                                             packet_entry out[8])
+{
+    float key[8];
+    int m = 0;
+    const __m256 scale = _mm256_set1_ps(WIDE_FAR_SCALE), inf = _mm256_set1_ps(INFINITY);
+    for (int k = 0; k < 8; k++) {
+        if (n->count[k] == 0 && n->child[k] < 0)
+            break; /* empty lanes come last */
+        __m256 t0x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[0 + p->nx][k]), p->ox), p->ix);
+        __m256 t1x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[1 - p->nx][k]), p->ox), p->ix);
+        __m256 t0y = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[2 + p->ny][k]), p->oy), p->iy);
+        __m256 t1y = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[3 - p->ny][k]), p->oy), p->iy);
+        __m256 t0z = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[4 + p->nz][k]), p->oz), p->iz);
+        __m256 t1z = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[5 - p->nz][k]), p->oz), p->iz);
+        __m256 vn = _mm256_max_ps(_mm256_max_ps(t0x, t0y), _mm256_max_ps(t0z, p->tmin));
+        __m256 vf = _mm256_min_ps(_mm256_min_ps(t1x, t1y), _mm256_min_ps(t1z, inf));
+        vf = _mm256_min_ps(_mm256_mul_ps(vf, scale), tmax);
+        __m256 in = _mm256_cmp_ps(vn, vf, _CMP_LE_OQ);
+        int mask = _mm256_movemask_ps(in) & active;
+        if (!mask)
+            continue;
+        __m256 tn = _mm256_blendv_ps(inf, vn, in);
+        float kk = packet_hmin(tn);
+        int j = m++;
+        for (; j > 0 && key[j - 1] > kk; j--) { /* ties keep child order */
+            key[j] = key[j - 1];
+            out[j] = out[j - 1];
+        }
+        key[j] = kk;
+        out[j] = (packet_entry){tn, n->child[k], n->count[k], (uint32_t)mask};
+    }
+    return m;
+}
+
+/* The rays of `active` against triangle k of block b, tested against lim
+ * (each ray's distance when the block began, made inclusive); returns the
+ * rays hit, with t, b1 and b2 per ray. */
+__attribute__((always_inline)) static inline int packet_tri(const packet8 *p, const tri4 *b, int k,
+                                                            __m256 lim, int active, __m256 *t,
+                                                            __m256 *b1, __m256 *b2)
+{
+    __m256 ex[3], ey[3], ez[3];
+    for (int c = 0; c < 3; c++) {
+        __m256 az = _mm256_sub_ps(_mm256_broadcast_ss(&b->p[c][p->kz][k]), p->qoz);
+        ex[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_broadcast_ss(&b->p[c][p->kx][k]), p->qox),
+                              _mm256_mul_ps(p->sx, az));
+        ey[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_broadcast_ss(&b->p[c][p->ky][k]), p->qoy),
+                              _mm256_mul_ps(p->sy, az));
+        ez[c] = _mm256_mul_ps(p->sz, az);
+    }
+    __m256 u = _mm256_sub_ps(_mm256_mul_ps(ex[2], ey[1]), _mm256_mul_ps(ey[2], ex[1]));
+    __m256 v = _mm256_sub_ps(_mm256_mul_ps(ex[0], ey[2]), _mm256_mul_ps(ey[0], ex[2]));
+    __m256 w = _mm256_sub_ps(_mm256_mul_ps(ex[1], ey[0]), _mm256_mul_ps(ey[1], ex[0]));
+    const __m256 zero = _mm256_setzero_ps();
+    int on_edge = _mm256_movemask_ps(_mm256_or_ps(
+                      _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
+                      _mm256_cmp_ps(w, zero, _CMP_EQ_OQ))) &
+                  active;
+    __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
+                              _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
+    __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
+                              _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
+    __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+    __m256 ok = _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_cmp_ps(det, zero, _CMP_NEQ_UQ));
+    int mask = _mm256_movemask_ps(ok) & active & ~on_edge;
+    if (mask) {
+        __m256 tt = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, ez[0]), _mm256_mul_ps(v, ez[1])),
+                                  _mm256_mul_ps(w, ez[2]));
+        __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+        tt = _mm256_mul_ps(tt, inv);
+        ok = _mm256_and_ps(_mm256_cmp_ps(tt, p->tmin, _CMP_GT_OQ), _mm256_cmp_ps(tt, lim, _CMP_LT_OQ));
+        mask &= _mm256_movemask_ps(ok);
+        *t = tt;
+        *b1 = _mm256_mul_ps(v, inv);
+        *b2 = _mm256_mul_ps(w, inv);
+    }
+    if (on_edge) { /* rare: those rays one at a time, in double precision */
+        float tv[8], b1v[8], b2v[8], lv[8], tmin[8];
+        _mm256_storeu_ps(tv, *t);
+        _mm256_storeu_ps(b1v, *b1);
+        _mm256_storeu_ps(b2v, *b2);
+        _mm256_storeu_ps(lv, lim);
+        _mm256_storeu_ps(tmin, p->tmin);
+        for (int r = 0; r < 8; r++) {
+            if (!(on_edge >> r & 1))
+                continue;
+            ray one = packet_ray(p->r, r);
+            tri4_ray q = tri4_ray_make(&one);
+            tri_ray tr = tri4_scalar_ray(&q);
+            if (tri_intersect(&tr, tri4_corner(b, 0, k), tri4_corner(b, 1, k), tri4_corner(b, 2, k),
+                              tmin[r], lv[r], &tv[r], &b1v[r], &b2v[r]))
+                mask |= 1 << r;
+        }
+        *t = _mm256_loadu_ps(tv);
+        *b1 = _mm256_loadu_ps(b1v);
+        *b2 = _mm256_loadu_ps(b2v);
+    }
+    return mask;
+}
+
+/* The hits of mask kept where they are nearer than the best so far, or
+ * as near with a lower triangle index. */
+__attribute__((always_inline)) static inline void packet_keep(packet_best *best, int mask, __m256 t,
+                                                              __m256 b1, __m256 b2, int32_t id)
+{
+    __m256i idv = _mm256_set1_epi32(id);
+    __m256 nearer = _mm256_cmp_ps(t, best->t, _CMP_LT_OQ);
+    __m256 tie = _mm256_and_ps(_mm256_cmp_ps(t, best->t, _CMP_EQ_OQ),
+                               _mm256_castsi256_ps(_mm256_cmpgt_epi32(best->id, idv)));
+    int keep = _mm256_movemask_ps(_mm256_or_ps(nearer, tie)) & mask;
+    if (!keep)
+        return;
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256 sel = _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(keep), bit), bit));
+    best->t = _mm256_blendv_ps(best->t, t, sel);
+    best->b1 = _mm256_blendv_ps(best->b1, b1, sel);
+    best->b2 = _mm256_blendv_ps(best->b2, b2, sel);
+    best->id = _mm256_castps_si256(
+        _mm256_blendv_ps(_mm256_castsi256_ps(best->id), _mm256_castsi256_ps(idv), sel));
+}
+
+/* A leaf's triangles against the rays of active. */
+__attribute__((always_inline)) static inline void packet_leaf(const mesh *m, const packet8 *p,
+                                                              uint32_t first, uint32_t count,
+                                                              int active, packet_best *best)
+{
+    const tri4 *blk = &m->blocks[first];
+    for (uint32_t j = 0; j < count; j += 4, blk++) {
+        __m256 lim = packet_next_up(best->t);
+        for (int k = 0; k < 4 && blk->id[k] >= 0; k++) {
+            __m256 t = _mm256_setzero_ps(), b1 = t, b2 = t;
+            int mask = packet_tri(p, blk, k, lim, active, &t, &b1, &b2);
+            if (mask)
+                packet_keep(best, mask, t, b1, b2, blk->id[k]);
+        }
+    }
+}
+
+/* Whether the lanes of active agree in c: all set or all clear. */
+static inline bool packet_same(__m256 c, int active, bool *set)
+{
+    int m = _mm256_movemask_ps(c) & active;
+    *set = m != 0;
+    return m == 0 || m == active;
+}
+
+/* The rays' values for the box tests, as wide_ray_make works them out;
+ * false when the rays of active differ in the signs of their directions. */
+static inline bool packet_make(packet8 *p, const ray8 *r, int active)
+{
+    p->r = r;
+    p->tri_ready = false;
+    const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+    p->ox = _mm256_loadu_ps(r->ox), p->oy = _mm256_loadu_ps(r->oy), p->oz = _mm256_loadu_ps(r->oz);
+    p->ix = _mm256_div_ps(one, _mm256_loadu_ps(r->dx));
+    p->iy = _mm256_div_ps(one, _mm256_loadu_ps(r->dy));
+    p->iz = _mm256_div_ps(one, _mm256_loadu_ps(r->dz));
+    p->tmin = _mm256_loadu_ps(r->tmin);
+    bool nx, ny, nz;
+    bool same = packet_same(_mm256_cmp_ps(p->ix, zero, _CMP_LT_OQ), active, &nx) &
+                packet_same(_mm256_cmp_ps(p->iy, zero, _CMP_LT_OQ), active, &ny) &
+                packet_same(_mm256_cmp_ps(p->iz, zero, _CMP_LT_OQ), active, &nz);
+    p->nx = nx, p->ny = ny, p->nz = nz;
+    return same;
+}
+
+/* The same for the triangle tests, as tri4_ray_make works them out, at
+ * the first leaf; false when the rays differ in their axes. */
+static inline bool packet_tri_make(packet8 *p, int active)
+{
+    const ray8 *r = p->r;
+    ray first = packet_ray(r, __builtin_ctz((unsigned)active));
+    tri4_ray q = tri4_ray_make(&first);
+    p->kx = q.kx, p->ky = q.ky, p->kz = q.kz;
+    const __m256 sign = _mm256_set1_ps(-0.0f);
+    __m256 d[3] = {_mm256_loadu_ps(r->dx), _mm256_loadu_ps(r->dy), _mm256_loadu_ps(r->dz)};
+    __m256 o[3] = {p->ox, p->oy, p->oz};
+    __m256 ad[3];
+    for (int a = 0; a < 3; a++)
+        ad[a] = _mm256_andnot_ps(sign, d[a]);
+    /* tri4_ray_make's choice of kz, lane by lane */
+    __m256 x_over_y = _mm256_cmp_ps(ad[0], ad[1], _CMP_GT_OQ);
+    __m256 is_x = _mm256_and_ps(x_over_y, _mm256_cmp_ps(ad[0], ad[2], _CMP_GT_OQ));
+    __m256 is_y = _mm256_andnot_ps(x_over_y, _mm256_cmp_ps(ad[1], ad[2], _CMP_GT_OQ));
+    __m256 is_kz = q.kz == 0 ? is_x : q.kz == 1 ? is_y : _mm256_or_ps(is_x, is_y);
+    bool all, neg;
+    if (!packet_same(is_kz, active, &all) || all != (q.kz != 2))
+        return false;
+    if (!packet_same(_mm256_cmp_ps(d[q.kz], _mm256_setzero_ps(), _CMP_LT_OQ), active, &neg))
+        return false;
+    p->sx = _mm256_div_ps(d[q.kx], d[q.kz]);
+    p->sy = _mm256_div_ps(d[q.ky], d[q.kz]);
+    p->sz = _mm256_div_ps(_mm256_set1_ps(1.0f), d[q.kz]);
+    p->qox = o[q.kx], p->qoy = o[q.ky], p->qoz = o[q.kz];
+    p->tri_ready = true;
+    return true;
+}
+
+/* The packet's nearest hits: returns the rays that hit, with hit[k] for
+ * each of them; -1 when the rays are not coherent (packet_make). */
+__attribute__((always_inline)) static inline int packet_closest(const mesh *m, const ray8 *r,
+                                                                int active, shape_hit hit[8])
+{
+    const bvhw *b = &m->bvh;
+    if (b->nnodes == 0 || !active)
+        return 0;
+    packet8 p;
+    if (!packet_make(&p, r, active))
+        return -1;
+    packet_best best = {_mm256_loadu_ps(r->tmax), _mm256_setzero_ps(), _mm256_setzero_ps(),
+                        _mm256_set1_epi32(-1)};
+    packet_entry stack[WIDE_STACK(8)];
+    int sp = 0;
+    packet_entry cur = {_mm256_setzero_ps(), 0, 0, (uint32_t)active};
+    for (;;) {
+        if (cur.child >= 0) {
+            packet_entry kids[8];
+            int nk = packet_node(&b->n8[cur.child], &p, best.t, (int)cur.mask, kids);
+            if (nk > 0) {
+                for (int i = nk - 1; i > 0; i--)
+                    stack[sp++] = kids[i];
+                cur = kids[0];
+                continue;
+            }
+        } else {
+            if (!p.tri_ready && !packet_tri_make(&p, active))
+                return -1;
+            packet_leaf(m, &p, (uint32_t)(-1 - cur.child), cur.count, (int)cur.mask, &best);
+        }
+        for (;;) { /* the next entry some ray still enters before its nearest hit */
+            if (sp == 0)
+                goto done;
+            cur = stack[--sp];
+            cur.mask &= (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(cur.tn, best.t, _CMP_LE_OQ));
+            if (cur.mask)
+                break;
+        }
+    }
+done:;
+    float t[8], b1[8], b2[8];
+    int32_t id[8];
+    _mm256_storeu_ps(t, best.t);
+    _mm256_storeu_ps(b1, best.b1);
+    _mm256_storeu_ps(b2, best.b2);
+    _mm256_storeu_si256((__m256i *)id, best.id);
+    int found = 0;
+    for (int k = 0; k < 8; k++)
+        if ((active >> k & 1) && id[k] >= 0) {
+            hit[k] = (shape_hit){.t = t[k], .part = id[k], .b1 = b1[k], .b2 = b2[k]};
+            found |= 1 << k;
+        }
+    return found;
+}
+
+/* Defines mesh_intersect8_<isa>. */
+#define MESH_PACKET_KERNELS(isa)                                                               \
+    int mesh_intersect8_##isa(const mesh *m, const ray8 *r, int active, shape_hit hit[8])      \
+    {                                                                                          \
+        return packet_closest(m, r, active, hit);                                              \
+    }
+
+#endif

@@ -1,0 +1,267 @@
+/* Eight rays at once (mesh_intersect8, scene_intersect8) against one at a
+ * time (mesh_intersect, scene_intersect): the same hits to the bit, on
+ * every SIMD path this CPU has, for coherent packets (which the eight-wide
+ * paths walk together), incoherent ones (which go one ray at a time),
+ * partly idle ones, and rays along the edges and through the corners of a
+ * grid of triangles, where several triangles are hit at the same
+ * distance. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "accel/isa.h"
+#include "core/rng.h"
+#include "geom/mesh.h"
+#include "geom/mesh_trace.h"
+#include "geom/shape.h"
+#include "scene/scene.h"
+
+static float uniform(rng *g, float lo, float hi) { return lo + (hi - lo) * rng_float(g); }
+
+static mesh *mesh_take(vec3 *pos, int nverts, uint32_t (*tri)[3], int ntris)
+{
+    mesh *m = calloc(1, sizeof *m);
+    cr_assert_not_null(m);
+    m->pos = pos;
+    m->nverts = nverts;
+    m->tri = tri;
+    m->ntris = ntris;
+    glint_error err = {0};
+    cr_assert_eq(mesh_init(m, "packet", NULL, &err), GLINT_OK, "%s", err.msg);
+    return m;
+}
+
+static void mesh_drop(mesh *m)
+{
+    mesh_free(m);
+    free(m);
+}
+
+/* n x n unit squares in the plane z = 0, each split into two triangles. */
+static mesh *grid_mesh(int n)
+{
+    int nv = (n + 1) * (n + 1);
+    vec3 *pos = malloc(sizeof *pos * (size_t)nv);
+    uint32_t(*tri)[3] = malloc(sizeof *tri * (size_t)(2 * n * n));
+    cr_assert(pos && tri);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            pos[j * (n + 1) + i] = v3((float)i, (float)j, 0.0f);
+    int t = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            uint32_t a = (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
+            tri[t][0] = a, tri[t][1] = b, tri[t][2] = d, t++;
+            tri[t][0] = a, tri[t][1] = d, tri[t][2] = c, t++;
+        }
+    return mesh_take(pos, nv, tri, t);
+}
+
+/* n random triangles of size about 3 in a cube of side 20. */
+static mesh *soup_mesh(int n, uint64_t seed)
+{
+    rng g = rng_seed(seed, 1);
+    vec3 *pos = malloc(sizeof *pos * (size_t)(3 * n));
+    uint32_t(*tri)[3] = malloc(sizeof *tri * (size_t)n);
+    cr_assert(pos && tri);
+    for (int i = 0; i < n; i++) {
+        vec3 c = v3(uniform(&g, -10, 10), uniform(&g, -10, 10), uniform(&g, -10, 10));
+        for (int k = 0; k < 3; k++) {
+            pos[3 * i + k] = v3_add(c, v3(uniform(&g, -1.5f, 1.5f), uniform(&g, -1.5f, 1.5f),
+                                          uniform(&g, -1.5f, 1.5f)));
+            tri[i][k] = (uint32_t)(3 * i + k);
+        }
+    }
+    return mesh_take(pos, 3 * n, tri, n);
+}
+
+static void put(ray8 *p, int k, vec3 o, vec3 d, float tmin, float tmax)
+{
+    p->ox[k] = o.x, p->oy[k] = o.y, p->oz[k] = o.z;
+    p->dx[k] = d.x, p->dy[k] = d.y, p->dz[k] = d.z;
+    p->tmin[k] = tmin, p->tmax[k] = tmax, p->time[k] = 0.0f;
+}
+
+static ray get(const ray8 *p, int k)
+{
+    return (ray){v3(p->ox[k], p->oy[k], p->oz[k]), v3(p->dx[k], p->dy[k], p->dz[k]), p->tmin[k],
+                 p->tmax[k], p->time[k]};
+}
+
+/* Packet i of a few kinds: a pinhole camera's rays through eight pixels
+ * in a row, sometimes with a far limit; rays straight down onto the grid
+ * through its corners and along its edges; random rays. */
+static ray8 packet_of(rng *g, int i, vec3 eye)
+{
+    ray8 p;
+    int kind = i % 4;
+    float y = uniform(g, -0.5f, 0.5f), x0 = uniform(g, -0.5f, 0.4f);
+    float tmax = i % 3 == 0 ? uniform(g, 5.0f, 40.0f) : INFINITY;
+    for (int k = 0; k < 8; k++) {
+        vec3 o = eye, d;
+        if (kind == 0 || kind == 1) {
+            d = v3(x0 + 0.0125f * (float)k, y, -1.0f);
+        } else if (kind == 2) { /* the half-unit lattice: corners, edges, centres */
+            o = v3(0.5f * (float)(i % 31) + 0.5f * (float)(k % 2), 0.5f * (float)((i / 31) % 31),
+                   10.0f);
+            d = v3(0.0f, 0.0f, -1.0f);
+        } else {
+            o = v3(uniform(g, -15, 15), uniform(g, -15, 15), uniform(g, -15, 15));
+            d = v3(uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1));
+        }
+        put(&p, k, o, d, i % 5 == 0 ? 0.5f : 0.0f, tmax);
+    }
+    return p;
+}
+
+static void expect_same_hit(const shape_hit *a, const shape_hit *b, int i, int k)
+{
+    cr_assert(a->t == b->t && a->part == b->part && a->b1 == b->b1 && a->b2 == b->b2,
+              "packet %d ray %d: t %.9g tri %d (%.9g %.9g) against one ray's %.9g tri %d "
+              "(%.9g %.9g)",
+              i, k, a->t, a->part, a->b1, a->b2, b->t, b->part, b->b1, b->b2);
+}
+
+/* mesh_intersect8 against mesh_intersect for every ray of n packets; returns
+ * how many of the packets the eight-wide kernel took whole. */
+static int check_mesh(const mesh *m, vec3 eye, int n, uint64_t seed)
+{
+    rng g = rng_seed(seed, 3);
+    int whole = 0;
+    for (int i = 0; i < n; i++) {
+        ray8 p = packet_of(&g, i, eye);
+        int active = i % 7 == 0 ? 0x5b : 0xff;
+        shape_hit h8[8], h1;
+        int found = mesh_intersect8(m, &p, active, h8);
+#if defined(GLINT_WIDE_KERNELS)
+        shape_hit spare[8];
+        if (m->bvh.isa == ACCEL_AVX512)
+            whole += mesh_intersect8_avx512(m, &p, active, spare) >= 0;
+        if (m->bvh.isa == ACCEL_AVX2)
+            whole += mesh_intersect8_avx2(m, &p, active, spare) >= 0;
+#endif
+        for (int k = 0; k < 8; k++) {
+            ray r = get(&p, k);
+            bool hit = (active >> k & 1) && mesh_intersect(m, &r, &h1);
+            cr_assert_eq(found >> k & 1, hit, "packet %d ray %d: hit %d against %d", i, k,
+                         found >> k & 1, hit);
+            if (hit)
+                expect_same_hit(&h8[k], &h1, i, k);
+        }
+    }
+    return whole;
+}
+
+Test(packet, mesh_hits_match_one_ray_at_a_time_on_every_path)
+{
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        mesh *grid = grid_mesh(16), *soup = soup_mesh(3000, 11);
+        int whole = check_mesh(grid, v3(8.0f, 8.0f, 10.0f), 4000, 5) +
+                    check_mesh(soup, v3(0.3f, -0.2f, 25.0f), 4000, 6);
+        if (path >= ACCEL_AVX2) /* the camera and lattice packets, at least */
+            cr_assert_gt(whole, 3500, "%s: only %d packets walked together",
+                         accel_isa_name((accel_isa)path), whole);
+        mesh_drop(grid);
+        mesh_drop(soup);
+    }
+    accel_isa_force(ACCEL_AUTO);
+}
+
+/* Two triangles in the same place: the lower index wins, walked one ray
+ * at a time or eight together, whichever the walk meets first. */
+Test(packet, equal_distances_go_to_the_lower_triangle)
+{
+    enum { COPIES = 40 };
+    vec3 *pos = malloc(sizeof *pos * 3 * COPIES);
+    uint32_t(*tri)[3] = malloc(sizeof *tri * COPIES);
+    cr_assert(pos && tri);
+    for (int i = 0; i < COPIES; i++) { /* twenty places, each twice */
+        vec3 c = v3((float)(i % 20) * 3.0f, 0.0f, 0.0f);
+        pos[3 * i] = v3_add(c, v3(-1, -1, 0));
+        pos[3 * i + 1] = v3_add(c, v3(1, -1, 0));
+        pos[3 * i + 2] = v3_add(c, v3(0, 1, 0));
+        for (int k = 0; k < 3; k++)
+            tri[i][k] = (uint32_t)(3 * i + k);
+    }
+    mesh *m = mesh_take(pos, 3 * COPIES, tri, COPIES);
+    for (int place = 0; place < 20; place++) {
+        int lower = -1; /* of the two triangles now at this place */
+        for (int t = 0; t < m->ntris && lower < 0; t++)
+            if ((int)(m->tri[t][0] / 3) % 20 == place)
+                lower = t;
+        ray8 p;
+        for (int k = 0; k < 8; k++)
+            put(&p, k, v3((float)place * 3.0f + 0.01f * (float)k, 0.0f, 5.0f), v3(0, 0, -1), 0.0f,
+                INFINITY);
+        shape_hit h8[8], h1;
+        cr_assert_eq(mesh_intersect8(m, &p, 0xff, h8), 0xff);
+        for (int k = 0; k < 8; k++) {
+            ray r = get(&p, k);
+            cr_assert(mesh_intersect(m, &r, &h1));
+            cr_assert_eq(h1.part, lower, "place %d: triangle %d, not %d", place, h1.part, lower);
+            expect_same_hit(&h8[k], &h1, place, k);
+        }
+    }
+    mesh_drop(m);
+}
+
+/* A flat scene of a turned mesh, a sphere and a ground plane, and a
+ * deeper one of many meshes and spheres. */
+static scene *packet_scene(int copies)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    int mat = scene_add_material(s, &mt);
+    shape ground = shape_plane(v3(0, -12, 0), v3(0, 1, 0));
+    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    for (int c = 0; c < copies; c++) {
+        mesh *m = soup_mesh(500, 20u + (uint64_t)c);
+        cr_assert_geq(scene_add_mesh(s, m), 0);
+        xform r = xform_rotate(v3(1.0f, 2.0f, 0.5f), 25.0f + 10.0f * (float)c);
+        xform t = xform_translate(v3(30.0f * (float)c, 0.0f, 0.0f));
+        xform rt = xform_then(&r, &t);
+        shape sh = shape_mesh(m);
+        cr_assert_geq(scene_add_object(s, &sh, mat, scene_add_xform(s, &rt)), 0);
+        shape ball = shape_sphere(v3(30.0f * (float)c + 3.0f, 2.0f, 4.0f), 3.0f);
+        cr_assert_geq(scene_add_object(s, &ball, mat, -1), 0);
+    }
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
+{
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        for (int copies = 1; copies <= 12; copies += 11) {
+            scene *s = packet_scene(copies);
+            cr_assert_eq(s->flat, copies == 1);
+            rng g = rng_seed(9, 4);
+            for (int i = 0; i < 3000; i++) {
+                ray8 p = packet_of(&g, i, v3(0.3f, -0.2f, 25.0f));
+                int active = i % 7 == 0 ? 0xe6 : 0xff;
+                scene_hit h8[8], h1;
+                int found = scene_intersect8(s, &p, active, h8);
+                for (int k = 0; k < 8; k++) {
+                    ray r = get(&p, k);
+                    bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
+                    cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
+                    if (!hit)
+                        continue;
+                    cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+                    if (s->objects[h1.object].shape.kind == SHAPE_MESH)
+                        expect_same_hit(&h8[k].h, &h1.h, i, k);
+                    else /* other shapes leave b1, b2 unset */
+                        cr_assert(h8[k].h.t == h1.h.t && h8[k].h.part == h1.h.part);
+                }
+            }
+            scene_free(s);
+        }
+    }
+    accel_isa_force(ACCEL_AUTO);
+}
