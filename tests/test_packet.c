@@ -265,3 +265,46 @@ Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
     }
     accel_isa_force(ACCEL_AUTO);
 }
+
+/* The renderer traces a flat mesh scene's camera rays eight at a time on
+ * the eight-wide paths (scene_packets_pay) and one at a time on the
+ * others: the films are the same bytes, alpha included. */
+Test(packet, renders_are_byte_identical_with_and_without_packets)
+{
+    enum { W = 61, H = 37 }; /* rows that do not fill the last packet */
+    glint_film first = {0};
+    int packed = 0;
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = packet_scene(1);
+        light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
+        cr_assert_geq(scene_add_light(s, &l), 0);
+        camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
+                    .hfov = 60.0f, .projection = CAMERA_PERSPECTIVE};
+        scene_set_camera(s, &c);
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        packed += scene_packets_pay(s);
+        glint_settings st;
+        glint_scene_settings(s, &st, NULL);
+        st.width = W, st.height = H, st.samples = 4, st.threads = 2, st.alpha = true;
+        glint_film film = {0};
+        cr_assert_eq(glint_render(s, &st, NULL, &film, NULL, &err), GLINT_OK, "%s", err.msg);
+        cr_assert_not_null(film.alpha);
+        if (!first.rgb) {
+            first = film;
+        } else {
+            cr_expect_eq(memcmp(first.rgb, film.rgb, sizeof(float) * W * H * 3), 0, "%s",
+                         accel_isa_name((accel_isa)path));
+            cr_expect_eq(memcmp(first.alpha, film.alpha, sizeof(float) * W * H), 0, "%s",
+                         accel_isa_name((accel_isa)path));
+            glint_film_free(&film);
+        }
+        scene_free(s);
+    }
+    glint_film_free(&first);
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert_gt(packed, 0);
+}

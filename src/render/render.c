@@ -27,6 +27,7 @@ typedef struct job {
     sampler smp;
     float decode[256];
     int lattice; /* adaptive: finest lattice points per pixel side, 2^(depth + 1) */
+    bool packets; /* grid and jitter: camera rays eight at a time (scene_packets_pay) */
     int tx0, ty0, tiles_x; /* a region's first tile and its width in tiles */
     int items;             /* tiles to render */
     atomic_int next_item;
@@ -173,17 +174,68 @@ static void sample_range(const job *j, worker_state *w, int x, int y, int k0, in
     }
 }
 
+/* sample_range for the n <= 8 pixels (x0 + i, y) at once: sample k of
+ * each is a camera ray of one packet (scene_intersect8), then shaded on
+ * its own. Each ray gets the hit scene_intersect would give it, so every
+ * sum is the float sample_range builds. The camera does not move (a
+ * moving one has a frame per sample). */
+static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, int k0, int k1,
+                          vec3 sum[8], float cover[8])
+{
+    const scene *sc = j->scene;
+    bool alpha = j->film->alpha || (j->work->accum && j->settings->alpha);
+    for (int k = k0; k < k1; k++) {
+        ray8 p;
+        ray rs[8];
+        int active = 0;
+        for (int i = 0; i < n; i++) {
+            pixel_sample s = sampler_get(&j->smp, x0 + i, y, k);
+            if (camera_ray(&j->frame, (float)(x0 + i) + s.fx, (float)y + s.fy, s.lu, s.lv, &rs[i]))
+                active |= 1 << i;
+            rs[i].time = sc->time + s.time * sc->shutter_seconds;
+        }
+        if (!active)
+            continue;
+        for (int i = 0; i < 8; i++) { /* idle lanes repeat an active ray */
+            const ray *r = &rs[active >> i & 1 ? i : __builtin_ctz((unsigned)active)];
+            p.ox[i] = r->o.x, p.oy[i] = r->o.y, p.oz[i] = r->o.z;
+            p.dx[i] = r->d.x, p.dy[i] = r->d.y, p.dz[i] = r->d.z;
+            p.tmin[i] = r->tmin, p.tmax[i] = r->tmax, p.time[i] = r->time;
+        }
+        scene_hit h[8];
+        int found = scene_intersect8(sc, &p, active, h);
+        for (int i = 0; i < n; i++) {
+            if (!(active >> i & 1))
+                continue; /* outside a fisheye's circle: black, uncovered */
+            float c = 0.0f;
+            trace_begin_sample(&w->ctx, (uint32_t)(x0 + i), (uint32_t)y, (uint32_t)k);
+            w->ctx.time = rs[i].time;
+            w->primary_rays++;
+            vec3 v = whitted_camera_hit(&w->ctx, &rs[i], found >> i & 1 ? &h[i] : NULL, &c);
+            sum[i] = v3_add(sum[i], v);
+            cover[i] += alpha ? c : 0.0f;
+        }
+    }
+}
+
 /* grid and jitter: every sample of each pixel, averaged. */
 static void render_tile_fixed(job *j, worker_state *w, glint_rect r)
 {
     int count = sampler_count(&j->smp);
     float inv_count = 1.0f / (float)count;
     for (int y = r.y0; y < r.y1; y++)
-        for (int x = r.x0; x < r.x1; x++) {
-            vec3 sum = v3s(0.0f);
-            float cover = 0.0f;
-            sample_range(j, w, x, y, 0, count, &sum, &cover);
-            put_pixel(j, x, y, v3_scale(sum, inv_count), cover * inv_count);
+        for (int x = r.x0; x < r.x1; x += j->packets ? 8 : 1) {
+            int n = j->packets ? (r.x1 - x < 8 ? r.x1 - x : 8) : 1;
+            vec3 sum[8];
+            float cover[8];
+            for (int i = 0; i < n; i++)
+                sum[i] = v3s(0.0f), cover[i] = 0.0f;
+            if (j->packets)
+                sample_packet(j, w, x, y, n, 0, count, sum, cover);
+            else
+                sample_range(j, w, x, y, 0, count, &sum[0], &cover[0]);
+            for (int i = 0; i < n; i++)
+                put_pixel(j, x + i, y, v3_scale(sum[i], inv_count), cover[i] * inv_count);
         }
 }
 
@@ -465,6 +517,7 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     j->smp = sampler_make(settings, sc->camera.aperture > 0.0f || sc->camera_moves,
                           sc->shutter_seconds > 0.0f);
     j->lattice = 2 << settings->adaptive_depth;
+    j->packets = !sc->camera_moves && scene_packets_pay(sc);
     job_plan(j);
     atomic_init(&j->next_item, 0);
     atomic_init(&j->cancelled, 0);

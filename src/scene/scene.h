@@ -166,6 +166,10 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
  * hit[k] for each. Coherent rays (a camera's through neighbouring pixels)
  * in a flat scene share the walks of its meshes' hierarchies. */
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit);
+/* Whether scene_intersect8 walks the scene's rays together (a flat scene
+ * holding a mesh that does not move, on an eight-wide path); otherwise it
+ * only takes them one at a time. */
+bool scene_packets_pay(const scene *s);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 

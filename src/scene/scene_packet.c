@@ -5,6 +5,7 @@
  * its own; in a deeper scene each ray goes through scene_intersect. Either
  * way every ray gets the hit scene_intersect gives it, to the bit. */
 #include <string.h>
+#include "geom/mesh.h"
 #include "scene_trace.h"
 
 /* Object i against the rays of active, each searched up to best[k]. */
@@ -42,6 +43,20 @@ static int packet_object(const scene *s, int i, const ray8 *r, int active, float
             found |= 1 << k;
     }
     return found;
+}
+
+bool scene_packets_pay(const scene *s)
+{
+    if (!s->flat)
+        return false;
+    uint32_t first, n = scene_flat_leaf(s, &first);
+    for (uint32_t i = 0; i < n; i++) {
+        const object *o = &s->objects[s->bvh.prims[first + i]];
+        if (o->shape.kind == SHAPE_MESH && !o->moving &&
+            (o->shape.mesh->bvh.isa == ACCEL_AVX2 || o->shape.mesh->bvh.isa == ACCEL_AVX512))
+            return true;
+    }
+    return false;
 }
 
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)

@@ -87,7 +87,13 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
 vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage)
 {
     scene_hit hit;
-    bool found = scene_intersect(ctx->scene, r, &hit);
-    *coverage = found ? 1.0f : 0.0f;
-    return trace_hit(ctx, r, 0, found ? &hit : NULL);
+    return whitted_camera_hit(ctx, r, scene_intersect(ctx->scene, r, &hit) ? &hit : NULL,
+                              coverage);
+}
+
+vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hit,
+                        float *coverage)
+{
+    *coverage = hit ? 1.0f : 0.0f;
+    return trace_hit(ctx, r, 0, hit);
 }

@@ -61,4 +61,10 @@ vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth);
  * *coverage 1 when it did, 0 when it saw the background. */
 vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage);
 
+/* whitted_camera for a camera ray whose nearest hit is already known
+ * (hit; NULL: none), as scene_intersect8 finds it for eight at once. */
+struct scene_hit;
+vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hit,
+                        float *coverage);
+
 #endif
