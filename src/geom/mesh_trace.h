@@ -45,19 +45,30 @@ __attribute__((always_inline)) static inline bool mesh_leaf_closest(void *ctx, u
     const tri4 *blk = &c->m->blocks[first];
     const tri4_ray *q = mesh_leaf_ray(c);
     bool found = false;
-    for (uint32_t j = 0; j < count; j += 4, blk++) {
-        float t[4], b1[4], b2[4];
-        int mask = tri4_intersect(q, blk, tmin, next_up(*tmax), t, b1, b2);
-        for (int k = 0; mask; k++, mask >>= 1)
-            if ((mask & 1) && (t[k] < *tmax || (t[k] == *tmax && blk->id[k] < c->best))) {
+    for (uint32_t j = 0; j < count;) {
+        float t[8], b1[8], b2[8];
+        int mask, lanes = 4;
+#if defined(GLINT_TRI8)
+        if (count - j > 4) { /* two blocks at once */
+            mask = tri8_intersect(q, blk, tmin, next_up(*tmax), t, b1, b2);
+            lanes = 8;
+        } else
+#endif
+            mask = tri4_intersect(q, blk, tmin, next_up(*tmax), t, b1, b2);
+        for (int k = 0; mask; k++, mask >>= 1) {
+            int32_t id = blk[k >> 2].id[k & 3];
+            if ((mask & 1) && (t[k] < *tmax || (t[k] == *tmax && id < c->best))) {
                 *tmax = t[k];
-                c->best = blk->id[k];
+                c->best = id;
                 c->hit->t = t[k];
-                c->hit->part = blk->id[k];
+                c->hit->part = id;
                 c->hit->b1 = b1[k];
                 c->hit->b2 = b2[k];
                 found = true;
             }
+        }
+        j += (uint32_t)lanes;
+        blk += lanes / 4;
     }
     return found;
 }
@@ -69,7 +80,15 @@ __attribute__((always_inline)) static inline bool mesh_leaf_any(void *ctx, uint3
     mesh_leaf_ctx *c = ctx;
     const tri4 *blk = &c->m->blocks[first];
     const tri4_ray *q = mesh_leaf_ray(c);
-    for (uint32_t j = 0; j < count; j += 4, blk++) {
+    uint32_t j = 0;
+#if defined(GLINT_TRI8)
+    for (; j + 4 < count; j += 8, blk += 2) { /* two blocks at once */
+        float t[8], b1[8], b2[8];
+        if (tri8_intersect(q, blk, tmin, *tmax, t, b1, b2))
+            return true;
+    }
+#endif
+    for (; j < count; j += 4, blk++) {
         float t[4], b1[4], b2[4];
         if (tri4_intersect(q, blk, tmin, *tmax, t, b1, b2))
             return true;
