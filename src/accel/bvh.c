@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/array.h"
 #include "core/error.h"
 
 #if defined(__SSE2__)
@@ -415,7 +416,7 @@ static int build_children(build *b, int lo, int mid, int hi, int depth, const bo
         t.given = *ub;
     t.b.nnodes = 0;
     t.b.cap = node_room(b, hi - mid);
-    t.b.nodes = malloc(sizeof *t.b.nodes * (size_t)t.b.cap);
+    t.b.nodes = array_alloc_big(sizeof *t.b.nodes * (size_t)t.b.cap);
     if (!t.b.nodes)
         return -1;
     pthread_t th;
@@ -544,10 +545,10 @@ static glint_rc build_tree(bvh *out, const aabb *boxes, int n, int block, int ma
     if (n <= 0)
         return GLINT_OK;
     build b = {block, max_leaf, NULL, NULL, 0, 0, spawn_depth(cpus)};
-    b.refs = malloc(sizeof *b.refs * (size_t)n);
+    b.refs = array_alloc_big(sizeof *b.refs * (size_t)n);
     out->prims = malloc(sizeof *out->prims * (size_t)n);
     b.cap = node_room(&b, n);
-    b.nodes = malloc(sizeof *b.nodes * (size_t)b.cap);
+    b.nodes = array_alloc_big(sizeof *b.nodes * (size_t)b.cap);
     if (!b.refs || !out->prims || !b.nodes)
         goto nomem;
     for (int i = 0; i < n; i++) {

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/array.h"
 #include "core/error.h"
 
 /* A node's children before they are stored in one layout or the other. */
@@ -147,7 +148,7 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
      * pages never written cost nothing, and a larger tree grows it. */
     collapse c = {b, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node),
                   NULL, 0, b->nnodes / (out->width == 8 ? 5 : 2) + 2};
-    c.nodes = aligned_alloc(64, c.node_size * (size_t)c.cap);
+    c.nodes = array_alloc_big(c.node_size * (size_t)c.cap);
     if (!c.nodes) {
         bvh_free(b);
         return err_nomem(err);

@@ -1,8 +1,12 @@
 #include "array.h"
 
 #include <limits.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 int array_push(void **items, int *n, int *cap, size_t elem)
 {
@@ -18,4 +22,19 @@ int array_push(void **items, int *n, int *cap, size_t elem)
     }
     memset((char *)*items + (size_t)*n * elem, 0, elem);
     return (*n)++;
+}
+
+#define HUGE_PAGE ((size_t)2 << 20)
+
+void *array_alloc_big(size_t n)
+{
+    if (n < HUGE_PAGE || n > SIZE_MAX - HUGE_PAGE)
+        return aligned_alloc(64, (n + 63) / 64 * 64);
+    size_t whole = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
+    void *p = aligned_alloc(HUGE_PAGE, whole);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (p)
+        madvise(p, whole, MADV_HUGEPAGE); /* advice only: failure changes nothing */
+#endif
+    return p;
 }

@@ -10,4 +10,11 @@
  * unchanged). The new element is zeroed. */
 int array_push(void **items, int *n, int *cap, size_t elem);
 
+/* n bytes for a large array written once in full (a BVH build's working
+ * arrays), aligned to 64: from 2 MiB up in transparent huge pages where
+ * the kernel offers them (madvise), so that touching it takes one page
+ * fault per 2 MiB rather than per 4 KiB. NULL when memory runs out; free
+ * with free(). */
+void *array_alloc_big(size_t n);
+
 #endif
