@@ -605,7 +605,10 @@ static bool agreement(const targets *tg, const rayset *rs, query q, int threads,
     return pct >= AGREE_TARGET;
 }
 
-static bool trace_rows(const opts *o, const targets *tg, aabb bounds)
+/* Row 2 for one mesh; prefix names its incoherent rows ("" for the
+ * bunny's). */
+static bool trace_rows(const opts *o, const targets *tg, aabb bounds, const char *name,
+                       const char *prefix)
 {
     bool ok = true;
     rayset prim = primary_rays(bounds, o->width, o->height);
@@ -618,14 +621,16 @@ static bool trace_rows(const opts *o, const targets *tg, aabb bounds)
     memset(gh, 0, nmax);
     memset(eh, 0, nmax);
 
-    char what[96];
+    char what[3][128];
     struct {
         const rayset *rs;
         query q;
         const char *name;
-    } sets[3] = {{&prim, CLOSEST, what}, {&inco, CLOSEST, "incoherent closest hit"},
-                 {&inco, OCCLUDED, "incoherent occlusion"}};
-    snprintf(what, sizeof what, "bunny primary %dx%d", o->width, o->height);
+    } sets[3] = {{&prim, CLOSEST, what[0]}, {&inco, CLOSEST, what[1]},
+                 {&inco, OCCLUDED, what[2]}};
+    snprintf(what[0], sizeof what[0], "%s primary %dx%d", name, o->width, o->height);
+    snprintf(what[1], sizeof what[1], "%sincoherent closest hit", prefix);
+    snprintf(what[2], sizeof what[2], "%sincoherent occlusion", prefix);
     for (int s = 0; s < 3; s++) {
         ok &= agreement(tg, sets[s].rs, sets[s].q, o->threads, sets[s].name, gt, et, gh, eh);
         time_queries(o, tg, sets[s].rs, sets[s].q, 1, sets[s].name, gt, et, gh, eh);
@@ -638,6 +643,35 @@ static bool trace_rows(const opts *o, const targets *tg, aabb bounds)
     free(eh);
     rayset_free(&prim);
     rayset_free(&inco);
+    return ok;
+}
+
+/* Row 2 on triangles t (the bunny subdivided), in a scene of their own. */
+static bool big_trace_rows(const opts *o, const tris *t, const char *name, RTCDevice dev)
+{
+    mesh *m = xmalloc(sizeof *m);
+    memset(m, 0, sizeof *m);
+    m->pos = xmalloc(sizeof(vec3) * (size_t)t->nverts);
+    memcpy(m->pos, t->pos, sizeof(vec3) * (size_t)t->nverts);
+    m->tri = xmalloc(12 * (size_t)t->ntris);
+    memcpy(m->tri, t->tri, 12 * (size_t)t->ntris);
+    m->nverts = t->nverts;
+    m->ntris = t->ntris;
+    glint_error err = {0};
+    scene *s = scene_new();
+    material mat = material_default();
+    shape sh = shape_mesh(m);
+    if (mesh_init(m, name, NULL, &err) != GLINT_OK || !s || scene_add_mesh(s, m) < 0 ||
+        scene_add_object(s, &sh, scene_add_material(s, &mat), -1) < 0 ||
+        scene_build(s, &err) != GLINT_OK)
+        die(err.msg[0] ? err.msg : "out of memory");
+    double dt;
+    targets tg = {s, m, o->mesh_path, embree_scene(dev, t, &dt)};
+    char prefix[96];
+    snprintf(prefix, sizeof prefix, "%s: ", name);
+    bool ok = trace_rows(o, &tg, m->bounds, name, prefix);
+    rtcReleaseScene(tg.es);
+    scene_free(s);
     return ok;
 }
 
@@ -990,7 +1024,7 @@ int main(int argc, char **argv)
     if (o.trace) {
         double dt;
         targets tg = {s, m, o.mesh_path, embree_scene(dev, &bunny, &dt)};
-        ok = trace_rows(&o, &tg, m->bounds);
+        ok = trace_rows(&o, &tg, m->bounds, "bunny", "");
         rtcReleaseScene(tg.es);
     }
     tris big = bunny;
@@ -1003,6 +1037,8 @@ int main(int argc, char **argv)
     }
     if (o.subdiv > 0)
         snprintf(bigname, sizeof bigname, "bunny, each triangle in %d", 1 << (2 * o.subdiv));
+    if (o.trace && o.subdiv > 0) /* the second, larger mesh */
+        ok &= big_trace_rows(&o, &big, bigname, dev);
     if (o.build) {
         RTCDevice one = embree_device("threads=1", NULL);
         char label[200];
