@@ -207,8 +207,9 @@ Test(packet, equal_distances_go_to_the_lower_triangle)
     mesh_drop(m);
 }
 
-/* A flat scene of a turned mesh, a sphere and a ground plane, and a
- * deeper one of many meshes and spheres. */
+/* A ground plane and copies of a turned mesh with a sphere beside each:
+ * one copy makes a flat scene, three a tree of one node, twelve a deeper
+ * tree. */
 static scene *packet_scene(int copies)
 {
     scene *s = scene_new();
@@ -238,9 +239,13 @@ Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        for (int copies = 1; copies <= 12; copies += 11) {
+        static const int sizes[] = {1, 3, 12};
+        for (int z = 0; z < 3; z++) {
+            int copies = sizes[z];
             scene *s = packet_scene(copies);
             cr_assert_eq(s->flat, copies == 1);
+            cr_assert_eq(!s->flat && s->bvh.nnodes == 1, copies == 3);
+            cr_assert_eq(scene_packets_pay(s), copies < 12 && path >= ACCEL_AVX2);
             rng g = rng_seed(9, 4);
             for (int i = 0; i < 3000; i++) {
                 ray8 p = packet_of(&g, i, v3(0.3f, -0.2f, 25.0f));
@@ -266,10 +271,11 @@ Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
     accel_isa_force(ACCEL_AUTO);
 }
 
-/* The renderer traces a flat mesh scene's camera rays eight at a time on
- * the eight-wide paths (scene_packets_pay) and one at a time on the
- * others: the films are the same bytes, alpha included. */
-Test(packet, renders_are_byte_identical_with_and_without_packets)
+/* The renderer traces camera rays eight at a time where scene_packets_pay
+ * says so (a flat scene or a tree of one node holding a mesh, on the
+ * eight-wide paths) and one at a time elsewhere: the films are the same
+ * bytes on every path, alpha included. */
+static void same_film_on_every_path(int copies)
 {
     enum { W = 61, H = 37 }; /* rows that do not fill the last packet */
     glint_film first = {0};
@@ -277,7 +283,7 @@ Test(packet, renders_are_byte_identical_with_and_without_packets)
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = packet_scene(1);
+        scene *s = packet_scene(copies);
         light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
         cr_assert_geq(scene_add_light(s, &l), 0);
         camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
@@ -295,10 +301,10 @@ Test(packet, renders_are_byte_identical_with_and_without_packets)
         if (!first.rgb) {
             first = film;
         } else {
-            cr_expect_eq(memcmp(first.rgb, film.rgb, sizeof(float) * W * H * 3), 0, "%s",
-                         accel_isa_name((accel_isa)path));
-            cr_expect_eq(memcmp(first.alpha, film.alpha, sizeof(float) * W * H), 0, "%s",
-                         accel_isa_name((accel_isa)path));
+            cr_expect_eq(memcmp(first.rgb, film.rgb, sizeof(float) * W * H * 3), 0,
+                         "%d copies: %s", copies, accel_isa_name((accel_isa)path));
+            cr_expect_eq(memcmp(first.alpha, film.alpha, sizeof(float) * W * H), 0,
+                         "%d copies: %s", copies, accel_isa_name((accel_isa)path));
             glint_film_free(&film);
         }
         scene_free(s);
@@ -307,4 +313,66 @@ Test(packet, renders_are_byte_identical_with_and_without_packets)
     accel_isa_force(ACCEL_AUTO);
     if (accel_isa_best() >= ACCEL_AVX2)
         cr_assert_gt(packed, 0);
+}
+
+Test(packet, renders_are_byte_identical_with_and_without_packets)
+{
+    same_film_on_every_path(1); /* flat */
+    same_film_on_every_path(3); /* a tree of one node */
+}
+
+/* A quad, and a mesh with a triangle in the quad's plane (and one above
+ * it, so that rays from above enter the mesh's box first): rays straight
+ * down hit both at the same distance. The lower object index wins, in a
+ * one-ray walk that meets the mesh first and in a packet alike. */
+Test(packet, equal_distances_go_to_the_lower_object)
+{
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = scene_new();
+        material mt = material_default();
+        int mat = scene_add_material(s, &mt);
+        xform id = xform_translate(v3s(0.0f)); /* transformed objects get leaves of their own */
+        int x = scene_add_xform(s, &id);
+        shape quad = shape_quad(v3(-2, -2, 0), v3(4, 0, 0), v3(0, 4, 0));
+        cr_assert_eq(scene_add_object(s, &quad, mat, x), 0);
+        vec3 *pos = malloc(sizeof *pos * 6);
+        uint32_t(*tri)[3] = malloc(sizeof *tri * 2);
+        cr_assert(pos && tri);
+        pos[0] = v3(-4, -4, 0), pos[1] = v3(4, -4, 0), pos[2] = v3(0, 4, 0);
+        pos[3] = v3(-4, -4, 5), pos[4] = v3(4, -4, 5), pos[5] = v3(0, 4, 5);
+        for (int k = 0; k < 3; k++)
+            tri[0][k] = (uint32_t)k, tri[1][k] = (uint32_t)(3 + k);
+        pos[3].x = 20.0f, pos[4].x = 28.0f, pos[5].x = 24.0f; /* the upper one off to the side */
+        mesh *m = mesh_take(pos, 6, tri, 2);
+        cr_assert_geq(scene_add_mesh(s, m), 0);
+        shape sh = shape_mesh(m);
+        cr_assert_eq(scene_add_object(s, &sh, mat, x), 1);
+        for (int k = 0; k < 3; k++) {
+            shape ball = shape_sphere(v3(-30.0f - 5.0f * (float)k, 0, 0), 1.0f);
+            cr_assert_geq(scene_add_object(s, &ball, mat, x), 0);
+        }
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        if (s->bvh.width == 8) /* four-wide paths take two nodes for five leaves */
+            cr_assert(!s->flat && s->bvh.nnodes == 1);
+        ray8 p;
+        for (int k = 0; k < 8; k++)
+            put(&p, k, v3(-1.5f + 0.375f * (float)k, 0.25f * (float)(k % 3), 10.0f), v3(0, 0, -1),
+                0.0f, INFINITY);
+        scene_hit h8[8], h1;
+        cr_assert_eq(scene_intersect8(s, &p, 0xff, h8), 0xff);
+        for (int k = 0; k < 8; k++) {
+            ray r = get(&p, k);
+            cr_assert(scene_intersect(s, &r, &h1));
+            cr_assert_eq(h1.h.t, 10.0f);
+            cr_assert_eq(h1.object, 0, "%s, ray %d: object %d", accel_isa_name((accel_isa)path),
+                         k, h1.object);
+            cr_assert_eq(h8[k].object, 0);
+            cr_assert_eq(h8[k].h.t, 10.0f);
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
 }

@@ -2,36 +2,49 @@
  * leaf of objects, plus the unbounded ones) each object is tested in the
  * order scene_intersect tests it, a mesh against all eight rays in one
  * walk of its BVH (mesh_intersect8), any other object against each ray on
- * its own; in a deeper scene each ray goes through scene_intersect. Either
+ * its own; a tree of one node likewise, leaf by leaf for the rays that
+ * enter each; in a deeper scene each ray goes through scene_intersect. Either
  * way every ray gets the hit scene_intersect gives it, to the bit. */
 #include <string.h>
 #include "geom/mesh.h"
 #include "scene_trace.h"
 
-/* Object i against the rays of active, each searched up to best[k]. */
+/* Object i against the rays of active, each searched up to best[k]: a
+ * mesh against three or more of them in one walk, anything else ray by
+ * ray. */
 static int packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                          scene_hit hit[8])
 {
     const object *o = &s->objects[i];
     int found = 0;
-    if (o->shape.kind == SHAPE_MESH && !o->moving) {
+    if (o->shape.kind == SHAPE_MESH && !o->moving && __builtin_popcount((unsigned)active) > 2) {
         ray8 lr;
         int first = __builtin_ctz((unsigned)active);
-        for (int k = 0; k < 8; k++) {
-            int q = active >> k & 1 ? k : first; /* idle lanes repeat an active ray */
-            ray one = {v3(r->ox[q], r->oy[q], r->oz[q]), v3(r->dx[q], r->dy[q], r->dz[q]),
-                       r->tmin[q], best[q], 0.0f};
+        for (int k = first; k < 8; k++) {
+            if (!(active >> k & 1))
+                continue;
+            ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
+                       r->tmin[k], next_up(best[k]), 0.0f}; /* as scene_hit_object */
             ray l = scene_object_ray(s, o, &one);
             lr.ox[k] = l.o.x, lr.oy[k] = l.o.y, lr.oz[k] = l.o.z;
             lr.dx[k] = l.d.x, lr.dy[k] = l.d.y, lr.dz[k] = l.d.z;
             lr.tmin[k] = l.tmin, lr.tmax[k] = l.tmax;
         }
+        for (int k = 0; k < 8; k++) /* idle lanes repeat an active ray */
+            if (!(active >> k & 1)) {
+                lr.ox[k] = lr.ox[first], lr.oy[k] = lr.oy[first], lr.oz[k] = lr.oz[first];
+                lr.dx[k] = lr.dx[first], lr.dy[k] = lr.dy[first], lr.dz[k] = lr.dz[first];
+                lr.tmin[k] = lr.tmin[first], lr.tmax[k] = lr.tmax[first];
+            }
         shape_hit h[8];
-        found = mesh_intersect8(o->shape.mesh, &lr, active, h);
-        for (int m = found; m; m &= m - 1) {
+        int any = mesh_intersect8(o->shape.mesh, &lr, active, h);
+        for (int m = any; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
-            best[k] = h[k].t;
-            hit[k] = (scene_hit){h[k], i};
+            if (h[k].t < best[k] || (h[k].t == best[k] && i < hit[k].object)) {
+                best[k] = h[k].t;
+                hit[k] = (scene_hit){h[k], i};
+                found |= 1 << k;
+            }
         }
         return found;
     }
@@ -45,16 +58,52 @@ static int packet_object(const scene *s, int i, const ray8 *r, int active, float
     return found;
 }
 
+/* The objects of leaf lane l of node 0 (none for an empty lane). */
+static uint32_t node_leaf(const scene *s, int l, uint32_t *first)
+{
+    const bvhw *b = &s->bvh;
+    int32_t c = b->width == 8 ? b->n8[0].child[l] : b->n4[0].child[l];
+    uint32_t n = b->width == 8 ? b->n8[0].count[l] : b->n4[0].count[l];
+    *first = c < 0 ? (uint32_t)(-1 - c) : 0;
+    return c < 0 ? n : 0;
+}
+
+/* Whether the scene's tree is a single node, whose lanes are all leaves
+ * (or the whole tree one leaf: flat). */
+static bool one_node(const scene *s) { return !s->flat && s->bvh.nnodes == 1; }
+
+static void node_entries(const scene *s, const ray8 *r, int active, int entered[8])
+{
+    accel_isa isa = s->bvh.isa;
+#if defined(GLINT_WIDE_KERNELS)
+    if (isa == ACCEL_AVX512) {
+        scene_node_entries_avx512(s, r, active, entered);
+        return;
+    }
+    if (isa == ACCEL_AVX2) {
+        scene_node_entries_avx2(s, r, active, entered);
+        return;
+    }
+#endif
+    if (isa == ACCEL_SCALAR)
+        scene_node_entries_scalar(s, r, active, entered);
+    else
+        scene_node_entries_sse(s, r, active, entered);
+}
+
 bool scene_packets_pay(const scene *s)
 {
-    if (!s->flat)
+    if (!s->flat && !one_node(s))
         return false;
-    uint32_t first, n = scene_flat_leaf(s, &first);
-    for (uint32_t i = 0; i < n; i++) {
-        const object *o = &s->objects[s->bvh.prims[first + i]];
-        if (o->shape.kind == SHAPE_MESH && !o->moving &&
-            (o->shape.mesh->bvh.isa == ACCEL_AVX2 || o->shape.mesh->bvh.isa == ACCEL_AVX512))
-            return true;
+    for (int l = 0; l < s->bvh.width; l++) {
+        uint32_t first, n = s->flat ? (l == 0 ? scene_flat_leaf(s, &first) : 0)
+                                    : node_leaf(s, l, &first);
+        for (uint32_t i = 0; i < n; i++) {
+            const object *o = &s->objects[s->bvh.prims[first + i]];
+            if (o->shape.kind == SHAPE_MESH && !o->moving &&
+                (o->shape.mesh->bvh.isa == ACCEL_AVX2 || o->shape.mesh->bvh.isa == ACCEL_AVX512))
+                return true;
+        }
     }
     return false;
 }
@@ -64,7 +113,7 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
     int found = 0;
     if (!active)
         return 0;
-    if (!s->flat) {
+    if (!s->flat && !one_node(s)) {
         for (int m = active; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
@@ -76,10 +125,28 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
     }
     float best[8];
     memcpy(best, r->tmax, sizeof best);
+    for (int k = 0; k < 8; k++)
+        hit[k].object = -1;
     for (int i = 0; i < s->nunbounded; i++)
         found |= packet_object(s, s->unbounded[i], r, active, best, hit);
-    uint32_t first, n = scene_flat_leaf(s, &first);
-    for (uint32_t i = 0; i < n; i++)
-        found |= packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
+    uint32_t first, n;
+    if (s->flat) {
+        n = scene_flat_leaf(s, &first);
+        for (uint32_t i = 0; i < n; i++)
+            found |= packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
+        return found;
+    }
+    /* Every leaf a ray enters, in lane order: the order does not change
+     * the hits (scene_hit_object). */
+    int entered[8] = {0};
+    node_entries(s, r, active, entered);
+    for (int l = 0; l < s->bvh.width; l++) {
+        int rays = 0;
+        for (int k = 0; k < 8; k++)
+            rays |= (entered[k] >> l & 1) << k;
+        n = rays ? node_leaf(s, l, &first) : 0;
+        for (uint32_t i = 0; i < n; i++)
+            found |= packet_object(s, s->bvh.prims[first + i], r, rays, best, hit);
+    }
     return found;
 }

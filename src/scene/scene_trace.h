@@ -33,6 +33,10 @@ typedef struct scene_leaf_ctx {
     scene_hit *hit;
 } scene_leaf_ctx;
 
+/* Object i's hit, kept when it is nearer than *tmax, or as near and i is
+ * lower than hit->object (-1 before the first hit): of two objects hit at
+ * the same distance the lower index wins, whatever order the walk visits
+ * them in (scene_intersect8 visits them in another). */
 __attribute__((always_inline)) static inline bool scene_hit_object(const scene *s, int i,
                                                                    const ray *r, float tmin,
                                                                    float *tmax, scene_hit *hit)
@@ -40,10 +44,13 @@ __attribute__((always_inline)) static inline bool scene_hit_object(const scene *
     const object *o = &s->objects[i];
     ray lr = scene_object_ray(s, o, r);
     lr.tmin = tmin;
-    lr.tmax = *tmax;
-    if (!shape_intersect_inline(&o->shape, &lr, &hit->h))
+    lr.tmax = next_up(*tmax);
+    shape_hit h;
+    if (!shape_intersect_inline(&o->shape, &lr, &h) ||
+        !(h.t < *tmax || (h.t == *tmax && i < hit->object)))
         return false;
-    *tmax = hit->h.t;
+    *tmax = h.t;
+    hit->h = h;
     hit->object = i;
     return true;
 }
@@ -201,6 +208,24 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
     return false;
 }
 
+/* For a tree of one node: the leaves (lanes of node 0) each ray of the
+ * packet r enters, entered[k] for ray k of active, as the one-ray walk's
+ * node test finds them (scene_intersect8). */
+__attribute__((always_inline)) static inline void scene_node_entries(const scene *s, int width,
+                                                                     const ray8 *r, int active,
+                                                                     int entered[8])
+{
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        wide_ray wr = wide_ray_make(v3(r->ox[k], r->oy[k], r->oz[k]),
+                                    v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k]);
+        float tn[8];
+        const int32_t *child;
+        const uint32_t *count;
+        entered[k] = scene_node_test(s, width, &wr, r->tmax[k], tn, &child, &count);
+    }
+}
+
 /* The three queries: unbounded objects first, then the BVH of the given
  * width, or for a flat scene its one leaf without a traversal (and so
  * without the traversal's stack frame). */
@@ -209,6 +234,7 @@ scene_closest_walk(const scene *s, const ray *r, scene_hit *hit, int width, bool
 {
     float tmax = r->tmax;
     bool found = false;
+    hit->object = -1;
     for (int i = 0; i < s->nunbounded; i++)
         found |= scene_hit_object(s, s->unbounded[i], r, r->tmin, &tmax, hit);
     scene_leaf_ctx c = {s, r, hit};
@@ -259,8 +285,9 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
            scene_leaf_shadow(&c, first, n, r->tmin, &tmax);
 }
 
-/* Defines scene_intersect_<isa>, scene_occluded_<isa> and
- * scene_shadow_walk_<isa> for nodes of the given width. */
+/* Defines scene_intersect_<isa>, scene_occluded_<isa>,
+ * scene_shadow_walk_<isa> and scene_node_entries_<isa> for nodes of the
+ * given width. */
 #define SCENE_KERNELS(isa, width)                                                              \
     bool scene_intersect_##isa(const scene *s, const ray *r, scene_hit *hit)                   \
     {                                                                                          \
@@ -273,19 +300,27 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
     bool scene_shadow_walk_##isa(const scene *s, const ray *r, scene_crossings *out)           \
     {                                                                                          \
         return scene_shadow_walk(s, r, out, width, false);                                     \
+    }                                                                                          \
+    void scene_node_entries_##isa(const scene *s, const ray8 *r, int active, int entered[8])   \
+    {                                                                                          \
+        scene_node_entries(s, width, r, active, entered);                                      \
     }
 
 bool scene_intersect_scalar(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_scalar(const scene *s, const ray *r);
 bool scene_shadow_walk_scalar(const scene *s, const ray *r, scene_crossings *out);
+void scene_node_entries_scalar(const scene *s, const ray8 *r, int active, int entered[8]);
 bool scene_intersect_sse(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_sse(const scene *s, const ray *r);
 bool scene_shadow_walk_sse(const scene *s, const ray *r, scene_crossings *out);
+void scene_node_entries_sse(const scene *s, const ray8 *r, int active, int entered[8]);
 bool scene_intersect_avx2(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx2(const scene *s, const ray *r);
 bool scene_shadow_walk_avx2(const scene *s, const ray *r, scene_crossings *out);
+void scene_node_entries_avx2(const scene *s, const ray8 *r, int active, int entered[8]);
 bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx512(const scene *s, const ray *r);
 bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out);
+void scene_node_entries_avx512(const scene *s, const ray8 *r, int active, int entered[8]);
 
 #endif
