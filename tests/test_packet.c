@@ -376,3 +376,39 @@ Test(packet, equal_distances_go_to_the_lower_object)
     }
     accel_isa_force(ACCEL_AUTO);
 }
+
+/* Progressive passes (the preview's way) trace camera rays in packets
+ * too: passes of 1, then 4 samples resolve to the batch film, bit for bit. */
+Test(packet, progressive_passes_end_at_the_batch_film)
+{
+    accel_isa_force(ACCEL_AUTO);
+    scene *s = packet_scene(3);
+    light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
+    cr_assert_geq(scene_add_light(s, &l), 0);
+    camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
+                .hfov = 60.0f, .projection = CAMERA_PERSPECTIVE};
+    scene_set_camera(s, &c);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    glint_settings st;
+    glint_scene_settings(s, &st, NULL);
+    st.width = 45, st.height = 30, st.samples = 4, st.threads = 2;
+    glint_film batch = {0}, film = {0};
+    cr_assert_eq(glint_render(s, &st, NULL, &batch, NULL, &err), GLINT_OK, "%s", err.msg);
+    glint_accum a;
+    cr_assert_eq(glint_accum_alloc(&a, st.width, st.height, &err), GLINT_OK);
+    cr_assert_eq(glint_film_alloc(&film, st.width, st.height, &err), GLINT_OK);
+    static const int passes[] = {1, 4};
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(glint_render_pass(s, &st, passes[i], NULL, &a, NULL, &err), GLINT_OK, "%s",
+                     err.msg);
+        int least;
+        cr_assert_eq(glint_accum_resolve(&a, NULL, &film, &least, &err), GLINT_OK);
+        cr_assert_eq(least, passes[i]);
+    }
+    cr_expect_eq(memcmp(film.rgb, batch.rgb, sizeof(float) * 3 * 45 * 30), 0);
+    glint_film_free(&film);
+    glint_film_free(&batch);
+    glint_accum_free(&a);
+    scene_free(s);
+}
