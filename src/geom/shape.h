@@ -180,6 +180,14 @@ triangle_fit triangle_check(vec3 p0, vec3 p1, vec3 p2);
 
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);
+/* A sphere's or a quad's test against the rays of active (bit k: ray k of
+ * r), each up to tmax[k], as shape_intersect finds them: returns the rays
+ * hit, with hit[k] for each; -1 for other shapes. On the eight-wide paths
+ * (geom/shape8.h), where the CPU has them. */
+int shape8_hit_avx2(const shape *sh, const ray8 *r, const float tmax[8], int active,
+                    shape_hit *hit);
+int shape8_hit_avx512(const shape *sh, const ray8 *r, const float tmax[8], int active,
+                      shape_hit *hit);
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out);
 aabb shape_bounds(const shape *s);
 /* The box of the shape carried by the affine map m (object to world):

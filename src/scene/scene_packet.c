@@ -9,9 +9,39 @@
 #include "geom/mesh.h"
 #include "scene_trace.h"
 
+/* Object i's hits h[k] for the rays of `any`, kept by scene_hit_object's
+ * rule; returns the rays whose hit it is now. */
+static int packet_keep(int i, int any, const shape_hit h[8], float best[8], scene_hit hit[8])
+{
+    int found = 0;
+    for (int m = any; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        if (h[k].t < best[k] || (h[k].t == best[k] && i < hit[k].object)) {
+            best[k] = h[k].t;
+            hit[k] = (scene_hit){h[k], i};
+            found |= 1 << k;
+        }
+    }
+    return found;
+}
+
+/* shape8_hit on the scene's path; -1 where it has none. */
+static int shape8_hit(const scene *s, const shape *sh, const ray8 *r, const float lim[8],
+                      int active, shape_hit h[8])
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return shape8_hit_avx512(sh, r, lim, active, h);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return shape8_hit_avx2(sh, r, lim, active, h);
+#endif
+    (void)s, (void)sh, (void)r, (void)lim, (void)active, (void)h;
+    return -1;
+}
+
 /* Object i against the rays of active, each searched up to best[k]: a
- * mesh against three or more of them in one walk, anything else ray by
- * ray. */
+ * mesh against three or more of them in one walk, a sphere or a quad in
+ * one test, anything else ray by ray. */
 static int packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                          scene_hit hit[8])
 {
@@ -37,16 +67,16 @@ static int packet_object(const scene *s, int i, const ray8 *r, int active, float
                 lr.tmin[k] = lr.tmin[first], lr.tmax[k] = lr.tmax[first];
             }
         shape_hit h[8];
-        int any = mesh_intersect8(o->shape.mesh, &lr, active, h);
-        for (int m = any; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            if (h[k].t < best[k] || (h[k].t == best[k] && i < hit[k].object)) {
-                best[k] = h[k].t;
-                hit[k] = (scene_hit){h[k], i};
-                found |= 1 << k;
-            }
-        }
-        return found;
+        return packet_keep(i, mesh_intersect8(o->shape.mesh, &lr, active, h), h, best, hit);
+    }
+    if (o->xform < 0 && __builtin_popcount((unsigned)active) > 2) {
+        float lim[8];
+        for (int k = 0; k < 8; k++)
+            lim[k] = next_up(best[k]); /* as scene_hit_object */
+        shape_hit h[8];
+        int any = shape8_hit(s, &o->shape, r, lim, active, h);
+        if (any >= 0)
+            return packet_keep(i, any, h, best, hit);
     }
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -100,8 +130,12 @@ bool scene_packets_pay(const scene *s)
                                     : node_leaf(s, l, &first);
         for (uint32_t i = 0; i < n; i++) {
             const object *o = &s->objects[s->bvh.prims[first + i]];
-            if (o->shape.kind == SHAPE_MESH && !o->moving &&
+            shape_kind k = o->shape.kind;
+            if (k == SHAPE_MESH && !o->moving &&
                 (o->shape.mesh->bvh.isa == ACCEL_AVX2 || o->shape.mesh->bvh.isa == ACCEL_AVX512))
+                return true;
+            if ((k == SHAPE_SPHERE || k == SHAPE_QUAD) && o->xform < 0 &&
+                (s->bvh.isa == ACCEL_AVX2 || s->bvh.isa == ACCEL_AVX512))
                 return true;
         }
     }

@@ -1,0 +1,155 @@
+/* shape8: the sphere and quad tests of shape_inline.h against eight rays
+ * at once, one ray per AVX lane, for packets of camera rays
+ * (scene_intersect8). Each lane does the one-ray test's operations in the
+ * same order, so it finds the same hit to the bit; branches become masks.
+ * For translation units compiled with AVX2. */
+#ifndef GLINT_GEOM_SHAPE8_H
+#define GLINT_GEOM_SHAPE8_H
+
+#include <immintrin.h>
+#include "core/ray.h"
+#include "geom/shape.h"
+
+/* The rays of a packet, one register per coordinate. */
+typedef struct rays8 {
+    __m256 ox, oy, oz, dx, dy, dz, tmin;
+} rays8;
+
+static inline rays8 rays8_load(const ray8 *r)
+{
+    return (rays8){_mm256_loadu_ps(r->ox), _mm256_loadu_ps(r->oy), _mm256_loadu_ps(r->oz),
+                   _mm256_loadu_ps(r->dx), _mm256_loadu_ps(r->dy), _mm256_loadu_ps(r->dz),
+                   _mm256_loadu_ps(r->tmin)};
+}
+
+/* v3_dot's (a.x * b.x + a.y * b.y) + a.z * b.z, lane by lane. */
+static inline __m256 dot8(__m256 ax, __m256 ay, __m256 az, __m256 bx, __m256 by, __m256 bz)
+{
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ax, bx), _mm256_mul_ps(ay, by)),
+                         _mm256_mul_ps(az, bz));
+}
+
+/* ray_in_range: tmin < t < tmax. */
+static inline __m256 in_range8(__m256 t, __m256 tmin, __m256 tmax)
+{
+    return _mm256_and_ps(_mm256_cmp_ps(t, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t, tmax, _CMP_LT_OQ));
+}
+
+/* sphere_hit for the rays of active with (tmin, tmax[k]): returns the
+ * rays hit, with t per ray. */
+static inline int sphere8_hit(const struct sphere *s, const rays8 *r, __m256 tmax, int active,
+                              __m256 *t)
+{
+    const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
+    __m256 fx = _mm256_sub_ps(r->ox, _mm256_set1_ps(s->center.x));
+    __m256 fy = _mm256_sub_ps(r->oy, _mm256_set1_ps(s->center.y));
+    __m256 fz = _mm256_sub_ps(r->oz, _mm256_set1_ps(s->center.z));
+    __m256 b = _mm256_xor_ps(dot8(fx, fy, fz, r->dx, r->dy, r->dz), sign);
+    float rr1 = s->radius * s->radius;
+    __m256 rr = _mm256_set1_ps(rr1);
+    __m256 c = _mm256_sub_ps(dot8(fx, fy, fz, fx, fy, fz), rr);
+    __m256 away = _mm256_and_ps(
+        _mm256_and_ps(_mm256_cmp_ps(c, zero, _CMP_GT_OQ), _mm256_cmp_ps(b, zero, _CMP_LT_OQ)),
+        _mm256_cmp_ps(r->tmin, zero, _CMP_GE_OQ));
+    active &= ~_mm256_movemask_ps(away);
+    if (!active)
+        return 0;
+    __m256 a = dot8(r->dx, r->dy, r->dz, r->dx, r->dy, r->dz);
+    __m256 ba = _mm256_div_ps(b, a);
+    __m256 lx = _mm256_add_ps(fx, _mm256_mul_ps(r->dx, ba));
+    __m256 ly = _mm256_add_ps(fy, _mm256_mul_ps(r->dy, ba));
+    __m256 lz = _mm256_add_ps(fz, _mm256_mul_ps(r->dz, ba));
+    __m256 disc = _mm256_mul_ps(a, _mm256_sub_ps(rr, dot8(lx, ly, lz, lx, ly, lz)));
+    active &= ~_mm256_movemask_ps(_mm256_cmp_ps(disc, zero, _CMP_LT_OQ));
+    if (!active)
+        return 0;
+    __m256 root = _mm256_sqrt_ps(disc); /* copysignf(root, b): */
+    __m256 q = _mm256_add_ps(b, _mm256_or_ps(_mm256_andnot_ps(sign, root), _mm256_and_ps(sign, b)));
+    __m256 q0 = _mm256_cmp_ps(q, zero, _CMP_EQ_OQ);
+    __m256 t0 = _mm256_andnot_ps(q0, _mm256_div_ps(c, q));
+    __m256 t1 = _mm256_andnot_ps(q0, _mm256_div_ps(q, a));
+    __m256 swap = _mm256_cmp_ps(t0, t1, _CMP_GT_OQ);
+    __m256 near = _mm256_blendv_ps(t0, t1, swap), far = _mm256_blendv_ps(t1, t0, swap);
+    __m256 first = in_range8(near, r->tmin, tmax);
+    *t = _mm256_blendv_ps(far, near, first);
+    return active & _mm256_movemask_ps(_mm256_or_ps(first, in_range8(far, r->tmin, tmax)));
+}
+
+/* quad_hit likewise, with (u, v) in b1, b2. */
+static inline int quad8_hit(const struct quad *s, const rays8 *r, __m256 tmax, int active,
+                            __m256 *t, __m256 *b1, __m256 *b2)
+{
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    __m256 nx = _mm256_set1_ps(s->normal.x), ny = _mm256_set1_ps(s->normal.y);
+    __m256 nz = _mm256_set1_ps(s->normal.z);
+    __m256 dn = dot8(r->dx, r->dy, r->dz, nx, ny, nz);
+    active &= ~_mm256_movemask_ps(_mm256_cmp_ps(dn, zero, _CMP_EQ_OQ));
+    if (!active)
+        return 0;
+    __m256 px = _mm256_sub_ps(_mm256_set1_ps(s->origin.x), r->ox);
+    __m256 py = _mm256_sub_ps(_mm256_set1_ps(s->origin.y), r->oy);
+    __m256 pz = _mm256_sub_ps(_mm256_set1_ps(s->origin.z), r->oz);
+    __m256 tt = _mm256_div_ps(dot8(px, py, pz, nx, ny, nz), dn);
+    active &= _mm256_movemask_ps(in_range8(tt, r->tmin, tmax));
+    if (!active)
+        return 0;
+    /* q = ray_at(t) - origin */
+    __m256 qx = _mm256_sub_ps(_mm256_add_ps(r->ox, _mm256_mul_ps(r->dx, tt)), _mm256_set1_ps(s->origin.x));
+    __m256 qy = _mm256_sub_ps(_mm256_add_ps(r->oy, _mm256_mul_ps(r->dy, tt)), _mm256_set1_ps(s->origin.y));
+    __m256 qz = _mm256_sub_ps(_mm256_add_ps(r->oz, _mm256_mul_ps(r->dz, tt)), _mm256_set1_ps(s->origin.z));
+    __m256 ux = _mm256_set1_ps(s->edge_u.x), uy = _mm256_set1_ps(s->edge_u.y);
+    __m256 uz = _mm256_set1_ps(s->edge_u.z), vx = _mm256_set1_ps(s->edge_v.x);
+    __m256 vy = _mm256_set1_ps(s->edge_v.y), vz = _mm256_set1_ps(s->edge_v.z);
+    __m256 wx = _mm256_set1_ps(s->w.x), wy = _mm256_set1_ps(s->w.y), wz = _mm256_set1_ps(s->w.z);
+    /* v3_cross(q, edge_v) and v3_cross(edge_u, q) */
+    __m256 cx = _mm256_sub_ps(_mm256_mul_ps(qy, vz), _mm256_mul_ps(qz, vy));
+    __m256 cy = _mm256_sub_ps(_mm256_mul_ps(qz, vx), _mm256_mul_ps(qx, vz));
+    __m256 cz = _mm256_sub_ps(_mm256_mul_ps(qx, vy), _mm256_mul_ps(qy, vx));
+    __m256 ex = _mm256_sub_ps(_mm256_mul_ps(uy, qz), _mm256_mul_ps(uz, qy));
+    __m256 ey = _mm256_sub_ps(_mm256_mul_ps(uz, qx), _mm256_mul_ps(ux, qz));
+    __m256 ez = _mm256_sub_ps(_mm256_mul_ps(ux, qy), _mm256_mul_ps(uy, qx));
+    __m256 u = dot8(wx, wy, wz, cx, cy, cz), v = dot8(wx, wy, wz, ex, ey, ez);
+    __m256 in = _mm256_and_ps(
+        _mm256_and_ps(_mm256_cmp_ps(u, zero, _CMP_GE_OQ), _mm256_cmp_ps(u, one, _CMP_LE_OQ)),
+        _mm256_and_ps(_mm256_cmp_ps(v, zero, _CMP_GE_OQ), _mm256_cmp_ps(v, one, _CMP_LE_OQ)));
+    *t = tt;
+    *b1 = u;
+    *b2 = v;
+    return active & _mm256_movemask_ps(in);
+}
+
+/* A sphere or quad against the rays of active, each up to tmax[k]: returns
+ * the rays hit, with hit[k] as sphere_hit and quad_hit set it; -1 for any
+ * other shape. */
+static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8], int active,
+                             shape_hit *hit)
+{
+    if (sh->kind != SHAPE_SPHERE && sh->kind != SHAPE_QUAD)
+        return -1;
+    rays8 rs = rays8_load(r);
+    __m256 lim = _mm256_loadu_ps(tmax), t = _mm256_setzero_ps(), b1 = t, b2 = t;
+    int m = sh->kind == SHAPE_SPHERE ? sphere8_hit(&sh->sphere, &rs, lim, active, &t)
+                                     : quad8_hit(&sh->quad, &rs, lim, active, &t, &b1, &b2);
+    float tv[8], b1v[8], b2v[8];
+    _mm256_storeu_ps(tv, t);
+    _mm256_storeu_ps(b1v, b1);
+    _mm256_storeu_ps(b2v, b2);
+    for (int k = 0; k < 8; k++)
+        if (m >> k & 1) {
+            hit[k].t = tv[k];
+            hit[k].part = 0;
+            if (sh->kind == SHAPE_QUAD)
+                hit[k].b1 = b1v[k], hit[k].b2 = b2v[k];
+        }
+    return m;
+}
+
+/* Defines shape8_hit_<isa>. */
+#define SHAPE8_KERNELS(isa)                                                                    \
+    int shape8_hit_##isa(const shape *sh, const ray8 *r, const float tmax[8], int active,      \
+                         shape_hit *hit)                                                       \
+    {                                                                                          \
+        return shape8_hit(sh, r, tmax, active, hit);                                           \
+    }
+
+#endif
