@@ -102,23 +102,18 @@ static uint32_t node_leaf(const scene *s, int l, uint32_t *first)
  * (or the whole tree one leaf: flat). */
 static bool one_node(const scene *s) { return !s->flat && s->bvh.nnodes == 1; }
 
-static void node_entries(const scene *s, const ray8 *r, int active, int entered[8])
+static int node_leaves(const scene *s, const ray8 *r, int active, uint32_t first[8],
+                       uint32_t count[8], int rays[8])
 {
     accel_isa isa = s->bvh.isa;
 #if defined(GLINT_WIDE_KERNELS)
-    if (isa == ACCEL_AVX512) {
-        scene_node_entries_avx512(s, r, active, entered);
-        return;
-    }
-    if (isa == ACCEL_AVX2) {
-        scene_node_entries_avx2(s, r, active, entered);
-        return;
-    }
+    if (isa == ACCEL_AVX512)
+        return scene_node_leaves_avx512(s, r, active, first, count, rays);
+    if (isa == ACCEL_AVX2)
+        return scene_node_leaves_avx2(s, r, active, first, count, rays);
 #endif
-    if (isa == ACCEL_SCALAR)
-        scene_node_entries_scalar(s, r, active, entered);
-    else
-        scene_node_entries_sse(s, r, active, entered);
+    return isa == ACCEL_SCALAR ? scene_node_leaves_scalar(s, r, active, first, count, rays)
+                               : scene_node_leaves_sse(s, r, active, first, count, rays);
 }
 
 bool scene_packets_pay(const scene *s)
@@ -170,17 +165,13 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
             found |= packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
         return found;
     }
-    /* Every leaf a ray enters, in lane order: the order does not change
-     * the hits (scene_hit_object). */
-    int entered[8] = {0};
-    node_entries(s, r, active, entered);
-    for (int l = 0; l < s->bvh.width; l++) {
-        int rays = 0;
-        for (int k = 0; k < 8; k++)
-            rays |= (entered[k] >> l & 1) << k;
-        n = rays ? node_leaf(s, l, &first) : 0;
-        for (uint32_t i = 0; i < n; i++)
-            found |= packet_object(s, s->bvh.prims[first + i], r, rays, best, hit);
-    }
+    /* Every leaf a ray enters, in whatever order: the order does not
+     * change the hits (scene_hit_object). */
+    uint32_t lfirst[8], lcount[8];
+    int rays[8];
+    int nl = node_leaves(s, r, active, lfirst, lcount, rays);
+    for (int l = 0; l < nl; l++)
+        for (uint32_t i = 0; i < lcount[l]; i++)
+            found |= packet_object(s, s->bvh.prims[lfirst[l] + i], r, rays[l], best, hit);
     return found;
 }

@@ -8,6 +8,9 @@
 #define GLINT_SCENE_SCENE_TRACE_H
 
 #include "accel/traverse.h"
+#if defined(GLINT_TRAVERSE_AVX2)
+#include "geom/mesh_packet.h"
+#endif
 #include "geom/shape_inline.h"
 #include "scene/scene.h"
 
@@ -208,23 +211,65 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
     return false;
 }
 
-/* For a tree of one node: the leaves (lanes of node 0) each ray of the
- * packet r enters, entered[k] for ray k of active, as the one-ray walk's
- * node test finds them (scene_intersect8). */
-__attribute__((always_inline)) static inline void scene_node_entries(const scene *s, int width,
-                                                                     const ray8 *r, int active,
-                                                                     int entered[8])
+/* For a tree of one node: the leaves (lanes of node 0) the rays of the
+ * packet r enter, as the one-ray walk's node test finds them: returns how
+ * many, leaf i holding count[i] objects from bvh.prims[first[i]] and
+ * entered by the rays in rays[i] (scene_intersect8). Ray by ray; on the
+ * eight-wide paths a packet whose rays agree in their directions' signs
+ * is tested at once (scene_node_leaves_packet). */
+__attribute__((always_inline)) static inline int scene_node_leaves_each(const scene *s, int width,
+                                                                       const ray8 *r, int active,
+                                                                       uint32_t first[8],
+                                                                       uint32_t count[8],
+                                                                       int rays[8])
 {
+    int lane_rays[8] = {0};
+    const int32_t *child = NULL;
+    const uint32_t *cnt = NULL;
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         wide_ray wr = wide_ray_make(v3(r->ox[k], r->oy[k], r->oz[k]),
                                     v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k]);
         float tn[8];
-        const int32_t *child;
-        const uint32_t *count;
-        entered[k] = scene_node_test(s, width, &wr, r->tmax[k], tn, &child, &count);
+        for (int e = scene_node_test(s, width, &wr, r->tmax[k], tn, &child, &cnt); e; e &= e - 1)
+            lane_rays[__builtin_ctz((unsigned)e)] |= 1 << k;
     }
+    int n = 0;
+    for (int l = 0; l < width; l++)
+        if (lane_rays[l]) {
+            first[n] = (uint32_t)(-1 - child[l]);
+            count[n] = cnt[l];
+            rays[n++] = lane_rays[l];
+        }
+    return n;
 }
+
+#if defined(GLINT_TRAVERSE_AVX2)
+__attribute__((always_inline)) static inline int scene_node_leaves_packet(const scene *s,
+                                                                         const ray8 *r,
+                                                                         int active,
+                                                                         uint32_t first[8],
+                                                                         uint32_t count[8],
+                                                                         int rays[8])
+{
+    packet8 p;
+    if (s->bvh.width != 8 || !packet_make(&p, r, active))
+        return scene_node_leaves_each(s, s->bvh.width, r, active, first, count, rays);
+    packet_entry e[8];
+    int n = packet_node(&s->bvh.n8[0], &p, _mm256_loadu_ps(r->tmax), active, e);
+    for (int i = 0; i < n; i++) { /* a tree of one node: every child is a leaf */
+        first[i] = (uint32_t)(-1 - e[i].child);
+        count[i] = e[i].count;
+        rays[i] = (int)e[i].mask;
+    }
+    return n;
+}
+#define SCENE_NODE_LEAVES(s, width, r, active, first, count, rays)                              \
+    scene_node_leaves_packet(s, r, active, first, count, rays)
+#else
+#define SCENE_NODE_LEAVES(s, width, r, active, first, count, rays)                              \
+    scene_node_leaves_each(s, width, r, active, first, count, rays)
+#endif
 
 /* The three queries: unbounded objects first, then the BVH of the given
  * width, or for a flat scene its one leaf without a traversal (and so
@@ -286,7 +331,7 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
 }
 
 /* Defines scene_intersect_<isa>, scene_occluded_<isa>,
- * scene_shadow_walk_<isa> and scene_node_entries_<isa> for nodes of the
+ * scene_shadow_walk_<isa> and scene_node_leaves_<isa> for nodes of the
  * given width. */
 #define SCENE_KERNELS(isa, width)                                                              \
     bool scene_intersect_##isa(const scene *s, const ray *r, scene_hit *hit)                   \
@@ -301,26 +346,31 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
     {                                                                                          \
         return scene_shadow_walk(s, r, out, width, false);                                     \
     }                                                                                          \
-    void scene_node_entries_##isa(const scene *s, const ray8 *r, int active, int entered[8])   \
+    int scene_node_leaves_##isa(const scene *s, const ray8 *r, int active, uint32_t first[8],  \
+                                uint32_t count[8], int rays[8])                                \
     {                                                                                          \
-        scene_node_entries(s, width, r, active, entered);                                      \
+        return SCENE_NODE_LEAVES(s, width, r, active, first, count, rays);                     \
     }
 
 bool scene_intersect_scalar(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_scalar(const scene *s, const ray *r);
 bool scene_shadow_walk_scalar(const scene *s, const ray *r, scene_crossings *out);
-void scene_node_entries_scalar(const scene *s, const ray8 *r, int active, int entered[8]);
+int scene_node_leaves_scalar(const scene *s, const ray8 *r, int active, uint32_t first[8],
+                         uint32_t count[8], int rays[8]);
 bool scene_intersect_sse(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_sse(const scene *s, const ray *r);
 bool scene_shadow_walk_sse(const scene *s, const ray *r, scene_crossings *out);
-void scene_node_entries_sse(const scene *s, const ray8 *r, int active, int entered[8]);
+int scene_node_leaves_sse(const scene *s, const ray8 *r, int active, uint32_t first[8],
+                         uint32_t count[8], int rays[8]);
 bool scene_intersect_avx2(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx2(const scene *s, const ray *r);
 bool scene_shadow_walk_avx2(const scene *s, const ray *r, scene_crossings *out);
-void scene_node_entries_avx2(const scene *s, const ray8 *r, int active, int entered[8]);
+int scene_node_leaves_avx2(const scene *s, const ray8 *r, int active, uint32_t first[8],
+                         uint32_t count[8], int rays[8]);
 bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx512(const scene *s, const ray *r);
 bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out);
-void scene_node_entries_avx512(const scene *s, const ray8 *r, int active, int entered[8]);
+int scene_node_leaves_avx512(const scene *s, const ray8 *r, int active, uint32_t first[8],
+                         uint32_t count[8], int rays[8]);
 
 #endif
