@@ -276,6 +276,66 @@ static inline bool packet_tri_make(packet8 *p, int active)
     return true;
 }
 
+/* A leaf of the tree packet_walk walks: the rays of `rays` against the
+ * leaf's count primitives from first, lowering their lanes of *tmax to the
+ * hits found. False abandons the walk (the rays then go one at a time). */
+typedef bool (*packet_leaf_fn)(void *ctx, uint32_t first, uint32_t count, int rays,
+                               __m256 *tmax);
+
+/* The rays of active through an eight-wide tree, each child entered by
+ * any of them visited with those that enter it, nearest first (by the
+ * nearest of them); an entry is dropped for the rays whose nearest hit so
+ * far (*tmax) lies before it. Returns false when a leaf abandons it. */
+__attribute__((always_inline)) static inline bool packet_walk(const bvhw *b, const packet8 *p,
+                                                              int active, __m256 *tmax,
+                                                              packet_leaf_fn leaf, void *ctx)
+{
+    packet_entry stack[WIDE_STACK(8)];
+    int sp = 0;
+    packet_entry cur = {_mm256_setzero_ps(), 0, 0, (uint32_t)active};
+    for (;;) {
+        if (cur.child >= 0) {
+            packet_entry kids[8];
+            int nk = packet_node(&b->n8[cur.child], p, *tmax, (int)cur.mask, kids);
+            if (nk > 0) {
+                for (int i = nk - 1; i > 0; i--)
+                    stack[sp++] = kids[i];
+                cur = kids[0];
+                continue;
+            }
+        } else if (!leaf(ctx, (uint32_t)(-1 - cur.child), cur.count, (int)cur.mask, tmax)) {
+            return false;
+        }
+        for (;;) { /* the next entry some ray still enters before its nearest hit */
+            if (sp == 0)
+                return true;
+            cur = stack[--sp];
+            cur.mask &= (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(cur.tn, *tmax, _CMP_LE_OQ));
+            if (cur.mask)
+                break;
+        }
+    }
+}
+
+typedef struct packet_mesh_ctx {
+    const mesh *m;
+    packet8 *p;
+    int active;
+    packet_best best;
+} packet_mesh_ctx;
+
+__attribute__((always_inline)) static inline bool packet_mesh_leaf(void *ctx, uint32_t first,
+                                                                   uint32_t count, int rays,
+                                                                   __m256 *tmax)
+{
+    packet_mesh_ctx *c = ctx;
+    if (!c->p->tri_ready && !packet_tri_make(c->p, c->active))
+        return false;
+    packet_leaf(c->m, c->p, first, count, rays, &c->best);
+    *tmax = c->best.t;
+    return true;
+}
+
 /* The packet's nearest hits: returns the rays that hit, with hit[k] for
  * each of them; -1 when the rays are not coherent (packet_make). */
 __attribute__((always_inline)) static inline int packet_closest(const mesh *m, const ray8 *r,
@@ -287,42 +347,18 @@ __attribute__((always_inline)) static inline int packet_closest(const mesh *m, c
     packet8 p;
     if (!packet_make(&p, r, active))
         return -1;
-    packet_best best = {_mm256_loadu_ps(r->tmax), _mm256_setzero_ps(), _mm256_setzero_ps(),
-                        _mm256_set1_epi32(-1)};
-    packet_entry stack[WIDE_STACK(8)];
-    int sp = 0;
-    packet_entry cur = {_mm256_setzero_ps(), 0, 0, (uint32_t)active};
-    for (;;) {
-        if (cur.child >= 0) {
-            packet_entry kids[8];
-            int nk = packet_node(&b->n8[cur.child], &p, best.t, (int)cur.mask, kids);
-            if (nk > 0) {
-                for (int i = nk - 1; i > 0; i--)
-                    stack[sp++] = kids[i];
-                cur = kids[0];
-                continue;
-            }
-        } else {
-            if (!p.tri_ready && !packet_tri_make(&p, active))
-                return -1;
-            packet_leaf(m, &p, (uint32_t)(-1 - cur.child), cur.count, (int)cur.mask, &best);
-        }
-        for (;;) { /* the next entry some ray still enters before its nearest hit */
-            if (sp == 0)
-                goto done;
-            cur = stack[--sp];
-            cur.mask &= (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(cur.tn, best.t, _CMP_LE_OQ));
-            if (cur.mask)
-                break;
-        }
-    }
-done:;
+    packet_mesh_ctx c = {m, &p, active,
+                         {_mm256_loadu_ps(r->tmax), _mm256_setzero_ps(), _mm256_setzero_ps(),
+                          _mm256_set1_epi32(-1)}};
+    __m256 tmax = c.best.t;
+    if (!packet_walk(b, &p, active, &tmax, packet_mesh_leaf, &c))
+        return -1;
     float t[8], b1[8], b2[8];
     int32_t id[8];
-    _mm256_storeu_ps(t, best.t);
-    _mm256_storeu_ps(b1, best.b1);
-    _mm256_storeu_ps(b2, best.b2);
-    _mm256_storeu_si256((__m256i *)id, best.id);
+    _mm256_storeu_ps(t, c.best.t);
+    _mm256_storeu_ps(b1, c.best.b1);
+    _mm256_storeu_ps(b2, c.best.b2);
+    _mm256_storeu_si256((__m256i *)id, c.best.id);
     int found = 0;
     for (int k = 0; k < 8; k++)
         if ((active >> k & 1) && id[k] >= 0) {

@@ -7,6 +7,7 @@
 #error "compile with the avx2 flags (Makefile: KERNEL_FLAGS_avx2)"
 #endif
 SCENE_KERNELS(avx2, 8)
+SCENE_PACKET_KERNELS(avx2)
 #else
 typedef int scene_avx2_unused; /* not x86-64: no kernels here */
 #endif

@@ -7,6 +7,7 @@
 #error "compile with the avx512 flags (Makefile: KERNEL_FLAGS_avx512)"
 #endif
 SCENE_KERNELS(avx512, 8)
+SCENE_PACKET_KERNELS(avx512)
 #else
 typedef int scene_avx512_unused; /* not x86-64: no kernels here */
 #endif

@@ -1,10 +1,12 @@
-/* scene_intersect8: eight rays' nearest hits at once. In a flat scene (one
- * leaf of objects, plus the unbounded ones) each object is tested in the
- * order scene_intersect tests it, a mesh against all eight rays in one
- * walk of its BVH (mesh_intersect8), any other object against each ray on
- * its own; a tree of one node likewise, leaf by leaf for the rays that
- * enter each; in a deeper scene each ray goes through scene_intersect. Either
- * way every ray gets the hit scene_intersect gives it, to the bit. */
+/* scene_intersect8: eight rays' nearest hits at once. The unbounded
+ * objects and a flat scene's one leaf are tested object by object; on the
+ * eight-wide paths a deeper tree is walked by the eight rays together
+ * (scene_walk8, when their directions' signs agree), each leaf's objects
+ * tested against the rays that enter it. An object is tested against the
+ * rays at once where it can be: a mesh in one walk of its tree
+ * (mesh_intersect8), a sphere or quad in one test (shape8_hit); any other
+ * ray by ray. Otherwise each ray goes through scene_intersect. Either way
+ * every ray gets the hit scene_intersect gives it, to the bit. */
 #include <string.h>
 #include "geom/mesh.h"
 #include "scene_trace.h"
@@ -42,8 +44,8 @@ static int shape8_hit(const scene *s, const shape *sh, const ray8 *r, const floa
 /* Object i against the rays of active, each searched up to best[k]: a
  * mesh against three or more of them in one walk, a sphere or a quad in
  * one test, anything else ray by ray. */
-static int packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
-                         scene_hit hit[8])
+int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
+                        scene_hit hit[8])
 {
     const object *o = &s->objects[i];
     int found = 0;
@@ -88,90 +90,74 @@ static int packet_object(const scene *s, int i, const ray8 *r, int active, float
     return found;
 }
 
-/* The objects of leaf lane l of node 0 (none for an empty lane). */
-static uint32_t node_leaf(const scene *s, int l, uint32_t *first)
+/* scene_walk8 on the scene's path; -1 where it has none. */
+static int walk8(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8])
 {
-    const bvhw *b = &s->bvh;
-    int32_t c = b->width == 8 ? b->n8[0].child[l] : b->n4[0].child[l];
-    uint32_t n = b->width == 8 ? b->n8[0].count[l] : b->n4[0].count[l];
-    *first = c < 0 ? (uint32_t)(-1 - c) : 0;
-    return c < 0 ? n : 0;
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return scene_walk8_avx512(s, r, active, best, hit);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return scene_walk8_avx2(s, r, active, best, hit);
+#endif
+    (void)s, (void)r, (void)active, (void)best, (void)hit;
+    return -1;
 }
 
-/* Whether the scene's tree is a single node, whose lanes are all leaves
- * (or the whole tree one leaf: flat). */
-static bool one_node(const scene *s) { return !s->flat && s->bvh.nnodes == 1; }
+static bool eight_wide(accel_isa isa) { return isa == ACCEL_AVX2 || isa == ACCEL_AVX512; }
 
-static int node_leaves(const scene *s, const ray8 *r, int active, uint32_t first[8],
-                       uint32_t count[8], int rays[8])
+/* Whether object o can be tested against a packet's rays at once. */
+static bool packs(const scene *s, const object *o)
 {
-    accel_isa isa = s->bvh.isa;
-#if defined(GLINT_WIDE_KERNELS)
-    if (isa == ACCEL_AVX512)
-        return scene_node_leaves_avx512(s, r, active, first, count, rays);
-    if (isa == ACCEL_AVX2)
-        return scene_node_leaves_avx2(s, r, active, first, count, rays);
-#endif
-    return isa == ACCEL_SCALAR ? scene_node_leaves_scalar(s, r, active, first, count, rays)
-                               : scene_node_leaves_sse(s, r, active, first, count, rays);
+    shape_kind k = o->shape.kind;
+    if (k == SHAPE_MESH)
+        return !o->moving && eight_wide(o->shape.mesh->bvh.isa);
+    return (k == SHAPE_SPHERE || k == SHAPE_QUAD) && o->xform < 0 && eight_wide(s->bvh.isa);
 }
 
 bool scene_packets_pay(const scene *s)
 {
-    if (!s->flat && !one_node(s))
-        return false;
-    for (int l = 0; l < s->bvh.width; l++) {
-        uint32_t first, n = s->flat ? (l == 0 ? scene_flat_leaf(s, &first) : 0)
-                                    : node_leaf(s, l, &first);
-        for (uint32_t i = 0; i < n; i++) {
-            const object *o = &s->objects[s->bvh.prims[first + i]];
-            shape_kind k = o->shape.kind;
-            if (k == SHAPE_MESH && !o->moving &&
-                (o->shape.mesh->bvh.isa == ACCEL_AVX2 || o->shape.mesh->bvh.isa == ACCEL_AVX512))
-                return true;
-            if ((k == SHAPE_SPHERE || k == SHAPE_QUAD) && o->xform < 0 &&
-                (s->bvh.isa == ACCEL_AVX2 || s->bvh.isa == ACCEL_AVX512))
-                return true;
-        }
-    }
+    if (!s->flat)
+        return eight_wide(s->bvh.isa) && s->bvh.width == 8;
+    uint32_t first, n = scene_flat_leaf(s, &first);
+    for (uint32_t i = 0; i < n; i++)
+        if (packs(s, &s->objects[s->bvh.prims[first + i]]))
+            return true;
     return false;
+}
+
+/* Each ray of active on its own. */
+static int one_by_one(const scene *s, const ray8 *r, int active, scene_hit *hit)
+{
+    int found = 0;
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
+                   r->tmin[k], r->tmax[k], r->time[k]};
+        if (scene_intersect(s, &one, &hit[k]))
+            found |= 1 << k;
+    }
+    return found;
 }
 
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
 {
-    int found = 0;
     if (!active)
         return 0;
-    if (!s->flat && !one_node(s)) {
-        for (int m = active; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
-                       r->tmin[k], r->tmax[k], r->time[k]};
-            if (scene_intersect(s, &one, &hit[k]))
-                found |= 1 << k;
-        }
-        return found;
-    }
+    if (!s->flat && !eight_wide(s->bvh.isa))
+        return one_by_one(s, r, active, hit);
     float best[8];
     memcpy(best, r->tmax, sizeof best);
     for (int k = 0; k < 8; k++)
         hit[k].object = -1;
+    int found = 0;
     for (int i = 0; i < s->nunbounded; i++)
-        found |= packet_object(s, s->unbounded[i], r, active, best, hit);
-    uint32_t first, n;
+        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit);
     if (s->flat) {
-        n = scene_flat_leaf(s, &first);
+        uint32_t first, n = scene_flat_leaf(s, &first);
         for (uint32_t i = 0; i < n; i++)
-            found |= packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
+            found |= scene_packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
         return found;
     }
-    /* Every leaf a ray enters, in whatever order: the order does not
-     * change the hits (scene_hit_object). */
-    uint32_t lfirst[8], lcount[8];
-    int rays[8];
-    int nl = node_leaves(s, r, active, lfirst, lcount, rays);
-    for (int l = 0; l < nl; l++)
-        for (uint32_t i = 0; i < lcount[l]; i++)
-            found |= packet_object(s, s->bvh.prims[lfirst[l] + i], r, rays[l], best, hit);
-    return found;
+    int walked = walk8(s, r, active, best, hit);
+    return walked < 0 ? one_by_one(s, r, active, hit) : found | walked;
 }

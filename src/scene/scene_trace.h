@@ -211,64 +211,57 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
     return false;
 }
 
-/* For a tree of one node: the leaves (lanes of node 0) the rays of the
- * packet r enter, as the one-ray walk's node test finds them: returns how
- * many, leaf i holding count[i] objects from bvh.prims[first[i]] and
- * entered by the rays in rays[i] (scene_intersect8). Ray by ray; on the
- * eight-wide paths a packet whose rays agree in their directions' signs
- * is tested at once (scene_node_leaves_packet). */
-__attribute__((always_inline)) static inline int scene_node_leaves_each(const scene *s, int width,
-                                                                       const ray8 *r, int active,
-                                                                       uint32_t first[8],
-                                                                       uint32_t count[8],
-                                                                       int rays[8])
-{
-    int lane_rays[8] = {0};
-    const int32_t *child = NULL;
-    const uint32_t *cnt = NULL;
-    for (int m = active; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        wide_ray wr = wide_ray_make(v3(r->ox[k], r->oy[k], r->oz[k]),
-                                    v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k]);
-        float tn[8];
-        for (int e = scene_node_test(s, width, &wr, r->tmax[k], tn, &child, &cnt); e; e &= e - 1)
-            lane_rays[__builtin_ctz((unsigned)e)] |= 1 << k;
-    }
-    int n = 0;
-    for (int l = 0; l < width; l++)
-        if (lane_rays[l]) {
-            first[n] = (uint32_t)(-1 - child[l]);
-            count[n] = cnt[l];
-            rays[n++] = lane_rays[l];
-        }
-    return n;
-}
+/* Object i against the rays of active of packet r, each searched up to
+ * best[k] (scene_packet.c); returns the rays whose nearest hit it now is. */
+int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
+                        scene_hit hit[8]);
 
 #if defined(GLINT_TRAVERSE_AVX2)
-__attribute__((always_inline)) static inline int scene_node_leaves_packet(const scene *s,
-                                                                         const ray8 *r,
-                                                                         int active,
-                                                                         uint32_t first[8],
-                                                                         uint32_t count[8],
-                                                                         int rays[8])
+typedef struct scene_packet_ctx {
+    const scene *s;
+    const ray8 *r;
+    float *best;
+    scene_hit *hit;
+    int found;
+} scene_packet_ctx;
+
+__attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, uint32_t first,
+                                                                    uint32_t count, int rays,
+                                                                    __m256 *tmax)
+{
+    scene_packet_ctx *c = ctx;
+    for (uint32_t i = 0; i < count; i++)
+        c->found |= scene_packet_object(c->s, c->s->bvh.prims[first + i], c->r, rays, c->best,
+                                        c->hit);
+    *tmax = _mm256_loadu_ps(c->best);
+    return true;
+}
+
+/* The rays of active through the scene's eight-wide tree together
+ * (packet_walk), each leaf's objects tested against the rays that enter
+ * it; the order of the leaves does not change the hits (scene_hit_object).
+ * Returns the rays whose nearest hit was found here, or -1 when the rays
+ * differ in their directions' signs. */
+__attribute__((always_inline)) static inline int scene_walk8(const scene *s, const ray8 *r,
+                                                             int active, float best[8],
+                                                             scene_hit hit[8])
 {
     packet8 p;
-    if (s->bvh.width != 8 || !packet_make(&p, r, active))
-        return scene_node_leaves_each(s, s->bvh.width, r, active, first, count, rays);
-    packet_entry e[8];
-    int n = packet_node(&s->bvh.n8[0], &p, _mm256_loadu_ps(r->tmax), active, e);
-    for (int i = 0; i < n; i++) { /* a tree of one node: every child is a leaf */
-        first[i] = (uint32_t)(-1 - e[i].child);
-        count[i] = e[i].count;
-        rays[i] = (int)e[i].mask;
-    }
-    return n;
+    if (s->bvh.width != 8 || s->bvh.nnodes == 0 || !packet_make(&p, r, active))
+        return -1;
+    scene_packet_ctx c = {s, r, best, hit, 0};
+    __m256 tmax = _mm256_loadu_ps(best);
+    packet_walk(&s->bvh, &p, active, &tmax, scene_packet_leaf, &c);
+    return c.found;
 }
-#define SCENE_NODE_LEAVES(s, width, r, active, first, count, rays)                              \
-    scene_node_leaves_packet(s, r, active, first, count, rays)
-#else
-#define SCENE_NODE_LEAVES(s, width, r, active, first, count, rays)                              \
-    scene_node_leaves_each(s, width, r, active, first, count, rays)
+
+/* Defines scene_walk8_<isa>. */
+#define SCENE_PACKET_KERNELS(isa)                                                              \
+    int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
+                          scene_hit hit[8])                                                    \
+    {                                                                                          \
+        return scene_walk8(s, r, active, best, hit);                                           \
+    }
 #endif
 
 /* The three queries: unbounded objects first, then the BVH of the given
@@ -330,9 +323,8 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
            scene_leaf_shadow(&c, first, n, r->tmin, &tmax);
 }
 
-/* Defines scene_intersect_<isa>, scene_occluded_<isa>,
- * scene_shadow_walk_<isa> and scene_node_leaves_<isa> for nodes of the
- * given width. */
+/* Defines scene_intersect_<isa>, scene_occluded_<isa> and
+ * scene_shadow_walk_<isa> for nodes of the given width. */
 #define SCENE_KERNELS(isa, width)                                                              \
     bool scene_intersect_##isa(const scene *s, const ray *r, scene_hit *hit)                   \
     {                                                                                          \
@@ -345,32 +337,22 @@ scene_shadow_walk(const scene *s, const ray *r, scene_crossings *out, int width,
     bool scene_shadow_walk_##isa(const scene *s, const ray *r, scene_crossings *out)           \
     {                                                                                          \
         return scene_shadow_walk(s, r, out, width, false);                                     \
-    }                                                                                          \
-    int scene_node_leaves_##isa(const scene *s, const ray8 *r, int active, uint32_t first[8],  \
-                                uint32_t count[8], int rays[8])                                \
-    {                                                                                          \
-        return SCENE_NODE_LEAVES(s, width, r, active, first, count, rays);                     \
     }
 
 bool scene_intersect_scalar(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_scalar(const scene *s, const ray *r);
 bool scene_shadow_walk_scalar(const scene *s, const ray *r, scene_crossings *out);
-int scene_node_leaves_scalar(const scene *s, const ray8 *r, int active, uint32_t first[8],
-                         uint32_t count[8], int rays[8]);
 bool scene_intersect_sse(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_sse(const scene *s, const ray *r);
 bool scene_shadow_walk_sse(const scene *s, const ray *r, scene_crossings *out);
-int scene_node_leaves_sse(const scene *s, const ray8 *r, int active, uint32_t first[8],
-                         uint32_t count[8], int rays[8]);
 bool scene_intersect_avx2(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx2(const scene *s, const ray *r);
 bool scene_shadow_walk_avx2(const scene *s, const ray *r, scene_crossings *out);
-int scene_node_leaves_avx2(const scene *s, const ray8 *r, int active, uint32_t first[8],
-                         uint32_t count[8], int rays[8]);
 bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx512(const scene *s, const ray *r);
 bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out);
-int scene_node_leaves_avx512(const scene *s, const ray8 *r, int active, uint32_t first[8],
-                         uint32_t count[8], int rays[8]);
+int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8]);
+int scene_walk8_avx512(const scene *s, const ray8 *r, int active, float best[8],
+                       scene_hit hit[8]);
 
 #endif
