@@ -30,6 +30,17 @@
  * test conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013). */
 #define WIDE_FAR_SCALE (1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f))
 
+/* A box's entry distance (lo - o) * (1 / d) can come out a few units in
+ * the last place beyond a hit inside it. Closest-hit walks therefore visit
+ * every child entered up to wide_reach(t) of the nearest hit t so far, not
+ * only up to t: a hit at exactly t in another child is then always met,
+ * and of two hits at the same distance the lower index wins (mesh_trace.h,
+ * scene_trace.h) whatever order the walk visits them in, one ray at a
+ * time or eight together (mesh_packet.h). */
+#define WIDE_TIE_SCALE (1.0f + 0x1p-18f)
+
+static inline float wide_reach(float tmax) { return tmax * WIDE_TIE_SCALE; }
+
 /* A path from the root is at most BVH_MAX_DEPTH long (collapsing never
  * deepens a tree), and a node pushes at most width - 1 entries besides the
  * one it descends to. */
@@ -219,8 +230,8 @@ wide_visit(const bvhw *b, int width, int32_t i, const wide_ray *r, float tmax, b
 /* The ray o + t d against the hierarchy for t in (tmin, *tmax), on a BVH
  * of the given width (a constant, so that each copy holds one layout).
  * With any set, stops at the first leaf that reports a hit. Closest-hit
- * queries visit children near to far and skip entries beyond the nearest
- * hit when they come off the stack. */
+ * queries visit children near to far and skip entries beyond the reach of
+ * the nearest hit (wide_reach) when they come off the stack. */
 __attribute__((always_inline)) static inline bool
 wide_traverse(const bvhw *b, int width, vec3 o, vec3 d, float tmin, float *tmax, bool any,
               wide_leaf_fn leaf, void *ctx)
@@ -235,7 +246,8 @@ wide_traverse(const bvhw *b, int width, vec3 o, vec3 d, float tmin, float *tmax,
     uint32_t cur_count = 0;
     for (;;) {
         if (cur >= 0) {
-            if (wide_visit(b, width, cur, &r, *tmax, any, stack, &sp, &cur, &cur_count))
+            if (wide_visit(b, width, cur, &r, wide_reach(*tmax), any, stack, &sp, &cur,
+                           &cur_count))
                 continue;
         } else if (leaf(ctx, (uint32_t)(-1 - cur), cur_count, tmin, tmax)) {
             found = true;
@@ -246,7 +258,7 @@ wide_traverse(const bvhw *b, int width, vec3 o, vec3 d, float tmin, float *tmax,
             if (sp == 0)
                 return found;
             sp--;
-        } while (stack[sp].dist > *tmax);
+        } while (stack[sp].dist > wide_reach(*tmax));
         cur = stack[sp].child;
         cur_count = stack[sp].count;
     }

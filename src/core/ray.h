@@ -30,6 +30,20 @@ typedef struct ray8 {
     float time[8];
 } ray8;
 
+/* Ray k of a packet, and a ray put into lane k. */
+static inline ray ray8_get(const ray8 *p, int k)
+{
+    return (ray){{p->ox[k], p->oy[k], p->oz[k]}, {p->dx[k], p->dy[k], p->dz[k]}, p->tmin[k],
+                 p->tmax[k], p->time[k]};
+}
+
+static inline void ray8_put(ray8 *p, int k, const ray *r)
+{
+    p->ox[k] = r->o.x, p->oy[k] = r->o.y, p->oz[k] = r->o.z;
+    p->dx[k] = r->d.x, p->dy[k] = r->d.y, p->dz[k] = r->d.z;
+    p->tmin[k] = r->tmin, p->tmax[k] = r->tmax, p->time[k] = r->time;
+}
+
 #define RAY_EPS_REL 1e-4f
 
 static inline vec3 ray_at(const ray *r, float t) { return v3_madd(r->o, r->d, t); }

@@ -183,8 +183,7 @@ int mesh_intersect8(const mesh *m, const ray8 *r, int active, shape_hit *hit)
     for (int k = 0; k < 8; k++) {
         if (!(active >> k & 1))
             continue;
-        ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k],
-                   r->tmax[k], 0.0f};
+        ray one = ray8_get(r, k);
         if (mesh_intersect(m, &one, &hit[k]))
             found |= 1 << k;
     }

@@ -47,13 +47,6 @@ typedef struct packet_best {
     __m256i id; /* -1: nothing yet */
 } packet_best;
 
-/* Ray k of the packet. */
-static inline ray packet_ray(const ray8 *r, int k)
-{
-    return (ray){v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]), r->tmin[k],
-                 r->tmax[k], 0.0f};
-}
-
 /* x's next float up, lane by lane (next_up, vec3.h). */
 static inline __m256 packet_next_up(__m256 x)
 {
@@ -82,6 +75,9 @@ __attribute__((always_inline)) static inline int packet_node(const bvh8_node *n,
     float key[8];
     int m = 0;
     const __m256 scale = _mm256_set1_ps(WIDE_FAR_SCALE), inf = _mm256_set1_ps(INFINITY);
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256 act = _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(active), bit), bit));
     for (int k = 0; k < 8; k++) {
         if (n->count[k] == 0 && n->child[k] < 0)
             break; /* empty lanes come last */
@@ -94,8 +90,8 @@ __attribute__((always_inline)) static inline int packet_node(const bvh8_node *n,
         __m256 vn = _mm256_max_ps(_mm256_max_ps(t0x, t0y), _mm256_max_ps(t0z, p->tmin));
         __m256 vf = _mm256_min_ps(_mm256_min_ps(t1x, t1y), _mm256_min_ps(t1z, inf));
         vf = _mm256_min_ps(_mm256_mul_ps(vf, scale), tmax);
-        __m256 in = _mm256_cmp_ps(vn, vf, _CMP_LE_OQ);
-        int mask = _mm256_movemask_ps(in) & active;
+        __m256 in = _mm256_and_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ), act); /* idle rays: out */
+        int mask = _mm256_movemask_ps(in);
         if (!mask)
             continue;
         __m256 tn = _mm256_blendv_ps(inf, vn, in);
@@ -163,7 +159,7 @@ __attribute__((always_inline)) static inline int packet_tri(const packet8 *p, co
         for (int r = 0; r < 8; r++) {
             if (!(on_edge >> r & 1))
                 continue;
-            ray one = packet_ray(p->r, r);
+            ray one = ray8_get(p->r, r);
             tri4_ray q = tri4_ray_make(&one);
             tri_ray tr = tri4_scalar_ray(&q);
             if (tri_intersect(&tr, tri4_corner(b, 0, k), tri4_corner(b, 1, k), tri4_corner(b, 2, k),
@@ -249,7 +245,7 @@ static inline bool packet_make(packet8 *p, const ray8 *r, int active)
 static inline bool packet_tri_make(packet8 *p, int active)
 {
     const ray8 *r = p->r;
-    ray first = packet_ray(r, __builtin_ctz((unsigned)active));
+    ray first = ray8_get(r, __builtin_ctz((unsigned)active));
     tri4_ray q = tri4_ray_make(&first);
     p->kx = q.kx, p->ky = q.ky, p->kz = q.kz;
     const __m256 sign = _mm256_set1_ps(-0.0f);
@@ -285,7 +281,8 @@ typedef bool (*packet_leaf_fn)(void *ctx, uint32_t first, uint32_t count, int ra
 /* The rays of active through an eight-wide tree, each child entered by
  * any of them visited with those that enter it, nearest first (by the
  * nearest of them); an entry is dropped for the rays whose nearest hit so
- * far (*tmax) lies before it. Returns false when a leaf abandons it. */
+ * far (*tmax) lies before it by more than wide_reach allows, as in
+ * wide_traverse. Returns false when a leaf abandons it. */
 __attribute__((always_inline)) static inline bool packet_walk(const bvhw *b, const packet8 *p,
                                                               int active, __m256 *tmax,
                                                               packet_leaf_fn leaf, void *ctx)
@@ -296,7 +293,8 @@ __attribute__((always_inline)) static inline bool packet_walk(const bvhw *b, con
     for (;;) {
         if (cur.child >= 0) {
             packet_entry kids[8];
-            int nk = packet_node(&b->n8[cur.child], p, *tmax, (int)cur.mask, kids);
+            __m256 reach = _mm256_mul_ps(*tmax, _mm256_set1_ps(WIDE_TIE_SCALE)); /* wide_reach */
+            int nk = packet_node(&b->n8[cur.child], p, reach, (int)cur.mask, kids);
             if (nk > 0) {
                 for (int i = nk - 1; i > 0; i--)
                     stack[sp++] = kids[i];
@@ -310,7 +308,8 @@ __attribute__((always_inline)) static inline bool packet_walk(const bvhw *b, con
             if (sp == 0)
                 return true;
             cur = stack[--sp];
-            cur.mask &= (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(cur.tn, *tmax, _CMP_LE_OQ));
+            __m256 reach = _mm256_mul_ps(*tmax, _mm256_set1_ps(WIDE_TIE_SCALE));
+            cur.mask &= (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(cur.tn, reach, _CMP_LE_OQ));
             if (cur.mask)
                 break;
         }

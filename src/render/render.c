@@ -196,17 +196,15 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         }
         if (!active)
             continue;
-        for (int i = 0; i < 8; i++) { /* idle lanes repeat an active ray */
-            const ray *r = &rs[active >> i & 1 ? i : __builtin_ctz((unsigned)active)];
-            p.ox[i] = r->o.x, p.oy[i] = r->o.y, p.oz[i] = r->o.z;
-            p.dx[i] = r->d.x, p.dy[i] = r->d.y, p.dz[i] = r->d.z;
-            p.tmin[i] = r->tmin, p.tmax[i] = r->tmax, p.time[i] = r->time;
-        }
+        for (int i = 0; i < 8; i++) /* idle lanes repeat an active ray */
+            ray8_put(&p, i, &rs[active >> i & 1 ? i : __builtin_ctz((unsigned)active)]);
         scene_hit h[8];
         int found = scene_intersect8(sc, &p, active, h);
         for (int i = 0; i < n; i++) {
-            if (!(active >> i & 1))
-                continue; /* outside a fisheye's circle: black, uncovered */
+            if (!(active >> i & 1)) { /* outside a fisheye's circle: black, uncovered */
+                sum[i] = v3_add(sum[i], v3s(0.0f)); /* as sample_range adds it (-0 + 0) */
+                continue;
+            }
             float c = 0.0f;
             trace_begin_sample(&w->ctx, (uint32_t)(x0 + i), (uint32_t)y, (uint32_t)k);
             w->ctx.time = rs[i].time;

@@ -13,7 +13,7 @@
 
 /* Object i's hits h[k] for the rays of `any`, kept by scene_hit_object's
  * rule; returns the rays whose hit it is now. */
-static int packet_keep(int i, int any, const shape_hit h[8], float best[8], scene_hit hit[8])
+static int keep8(int i, int any, const shape_hit h[8], float best[8], scene_hit hit[8])
 {
     int found = 0;
     for (int m = any; m; m &= m - 1) {
@@ -28,7 +28,7 @@ static int packet_keep(int i, int any, const shape_hit h[8], float best[8], scen
 }
 
 /* shape8_hit on the scene's path; -1 where it has none. */
-static int shape8_hit(const scene *s, const shape *sh, const ray8 *r, const float lim[8],
+static int shape8_on_path(const scene *s, const shape *sh, const ray8 *r, const float lim[8],
                       int active, shape_hit h[8])
 {
 #if defined(GLINT_WIDE_KERNELS)
@@ -55,35 +55,30 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
         for (int k = first; k < 8; k++) {
             if (!(active >> k & 1))
                 continue;
-            ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
-                       r->tmin[k], next_up(best[k]), 0.0f}; /* as scene_hit_object */
+            ray one = ray8_get(r, k);
+            one.tmax = next_up(best[k]); /* as scene_hit_object */
             ray l = scene_object_ray(s, o, &one);
-            lr.ox[k] = l.o.x, lr.oy[k] = l.o.y, lr.oz[k] = l.o.z;
-            lr.dx[k] = l.d.x, lr.dy[k] = l.d.y, lr.dz[k] = l.d.z;
-            lr.tmin[k] = l.tmin, lr.tmax[k] = l.tmax;
+            ray8_put(&lr, k, &l);
         }
+        ray idle = ray8_get(&lr, first);
         for (int k = 0; k < 8; k++) /* idle lanes repeat an active ray */
-            if (!(active >> k & 1)) {
-                lr.ox[k] = lr.ox[first], lr.oy[k] = lr.oy[first], lr.oz[k] = lr.oz[first];
-                lr.dx[k] = lr.dx[first], lr.dy[k] = lr.dy[first], lr.dz[k] = lr.dz[first];
-                lr.tmin[k] = lr.tmin[first], lr.tmax[k] = lr.tmax[first];
-            }
+            if (!(active >> k & 1))
+                ray8_put(&lr, k, &idle);
         shape_hit h[8];
-        return packet_keep(i, mesh_intersect8(o->shape.mesh, &lr, active, h), h, best, hit);
+        return keep8(i, mesh_intersect8(o->shape.mesh, &lr, active, h), h, best, hit);
     }
     if (o->xform < 0 && __builtin_popcount((unsigned)active) > 2) {
         float lim[8];
         for (int k = 0; k < 8; k++)
             lim[k] = next_up(best[k]); /* as scene_hit_object */
         shape_hit h[8];
-        int any = shape8_hit(s, &o->shape, r, lim, active, h);
+        int any = shape8_on_path(s, &o->shape, r, lim, active, h);
         if (any >= 0)
-            return packet_keep(i, any, h, best, hit);
+            return keep8(i, any, h, best, hit);
     }
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
-                   r->tmin[k], best[k], r->time[k]};
+        ray one = ray8_get(r, k);
         if (scene_hit_object(s, i, &one, one.tmin, &best[k], &hit[k]))
             found |= 1 << k;
     }
@@ -131,8 +126,7 @@ static int one_by_one(const scene *s, const ray8 *r, int active, scene_hit *hit)
     int found = 0;
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        ray one = {v3(r->ox[k], r->oy[k], r->oz[k]), v3(r->dx[k], r->dy[k], r->dz[k]),
-                   r->tmin[k], r->tmax[k], r->time[k]};
+        ray one = ray8_get(r, k);
         if (scene_intersect(s, &one, &hit[k]))
             found |= 1 << k;
     }

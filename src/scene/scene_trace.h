@@ -48,7 +48,7 @@ __attribute__((always_inline)) static inline bool scene_hit_object(const scene *
     ray lr = scene_object_ray(s, o, r);
     lr.tmin = tmin;
     lr.tmax = next_up(*tmax);
-    shape_hit h;
+    shape_hit h = {0};
     if (!shape_intersect_inline(&o->shape, &lr, &h) ||
         !(h.t < *tmax || (h.t == *tmax && i < hit->object)))
         return false;
@@ -176,7 +176,7 @@ __attribute__((always_inline)) static inline bool scene_closest_node(scene_leaf_
     float tn[8];
     const int32_t *child;
     const uint32_t *count;
-    int mask = scene_node_test(c->s, width, &wr, *tmax, tn, &child, &count);
+    int mask = scene_node_test(c->s, width, &wr, wide_reach(*tmax), tn, &child, &count);
     bool found = false;
     while (mask) {
         int k = __builtin_ctz((unsigned)mask);
@@ -184,7 +184,7 @@ __attribute__((always_inline)) static inline bool scene_closest_node(scene_leaf_
             int j = __builtin_ctz((unsigned)m);
             k = tn[j] < tn[k] ? j : k;
         }
-        if (tn[k] > *tmax)
+        if (tn[k] > wide_reach(*tmax))
             break;
         mask &= ~(1 << k);
         found |= scene_leaf_closest(c, (uint32_t)(-1 - child[k]), count[k], r->tmin, tmax);
