@@ -1,19 +1,23 @@
-/* mesh_packet: eight coherent rays against a mesh at once, for the
- * eight-wide paths (accel/isa.h): each node's children and each leaf's
+/* mesh_packet: eight coherent rays through an eight-wide tree at once
+ * (packet_walk, which the scene's walk of its own tree shares:
+ * scene_trace.h), and against a mesh's triangles (mesh_intersect8), for
+ * the eight-wide paths (accel/isa.h): each node's children and each leaf's
  * triangles are fetched once for the eight, and each test runs on all of
  * them in one AVX register, one lane per ray.
  *
  * The rays must agree in the signs of their directions (so that each node
- * is tested against the same near planes) and in the axes of the
- * watertight test (kx, ky, kz of tri4.h); mesh_intersect8 traces a
- * packet that does not one ray at a time. Primary rays of neighbouring pixels almost always do.
+ * is tested against the same near planes) and, for triangles, in the axes
+ * of the watertight test (kx, ky, kz of tri4.h); a packet that does not is
+ * traced one ray at a time. Primary rays of neighbouring pixels almost
+ * always do.
  *
  * Every ray gets the hit the one-ray kernel gives it, to the bit: the box
  * and triangle tests are the same operations in the same order, each
  * block's triangles are tested against the distance reached when the block
- * began, and of two hits at the same distance the lower triangle index
- * wins, whatever the order in which they are found (mesh_trace.h applies
- * the same rule). */
+ * began, a child is visited up to wide_reach of the nearest hit as in
+ * wide_traverse, and of two hits at the same distance the lower triangle
+ * index wins, whatever the order in which they are found (mesh_trace.h
+ * applies the same rule). */
 #ifndef GLINT_GEOM_MESH_PACKET_H
 #define GLINT_GEOM_MESH_PACKET_H
 
