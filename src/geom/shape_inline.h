@@ -7,6 +7,7 @@
 #define GLINT_GEOM_SHAPE_INLINE_H
 
 #include <math.h>
+#include "geom/mesh.h"
 #include "geom/shape.h"
 
 /* Sphere: |p - c| = r. The quadratic is solved in the form of Haines et al.,
@@ -98,6 +99,8 @@ __attribute__((always_inline)) static inline bool shape_intersect_inline(const s
         return sphere_hit(&s->sphere, r, hit);
     if (s->kind == SHAPE_QUAD)
         return quad_hit(&s->quad, r, hit);
+    if (s->kind == SHAPE_MESH)
+        return mesh_intersect(s->mesh, r, hit);
     return shape_intersect(s, r, hit);
 }
 
@@ -111,6 +114,8 @@ __attribute__((always_inline)) static inline bool shape_occluded_inline(const sh
         return sphere_hit(&s->sphere, r, &h);
     if (s->kind == SHAPE_QUAD)
         return quad_hit(&s->quad, r, &h);
+    if (s->kind == SHAPE_MESH)
+        return mesh_occluded(s->mesh, r);
     return shape_occluded(s, r);
 }
 
