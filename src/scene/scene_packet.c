@@ -41,6 +41,15 @@ static int shape8_on_path(const scene *s, const shape *sh, const ray8 *r, const 
     return -1;
 }
 
+/* Whether mask has three bits or more (without a popcount instruction,
+ * which this file is not compiled for). */
+static inline bool three_or_more(int mask)
+{
+    mask &= mask - 1;
+    mask &= mask - 1;
+    return mask != 0;
+}
+
 /* Object i against the rays of active, each searched up to best[k]: a
  * mesh against three or more of them in one walk, a sphere or a quad in
  * one test, anything else ray by ray. */
@@ -49,7 +58,8 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
 {
     const object *o = &s->objects[i];
     int found = 0;
-    if (o->shape.kind == SHAPE_MESH && !o->moving && __builtin_popcount((unsigned)active) > 2) {
+    bool many = three_or_more(active);
+    if (o->shape.kind == SHAPE_MESH && !o->moving && many) {
         ray8 lr;
         int first = __builtin_ctz((unsigned)active);
         for (int k = first; k < 8; k++) {
@@ -67,7 +77,7 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
         shape_hit h[8];
         return keep8(i, mesh_intersect8(o->shape.mesh, &lr, active, h), h, best, hit);
     }
-    if (o->xform < 0 && __builtin_popcount((unsigned)active) > 2) {
+    if (o->xform < 0 && many) {
         float lim[8];
         for (int k = 0; k < 8; k++)
             lim[k] = next_up(best[k]); /* as scene_hit_object */
