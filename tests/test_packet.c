@@ -263,6 +263,20 @@ Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
     accel_isa_force(ACCEL_AUTO);
 }
 
+/* packet_scene with a light and a camera looking at it, to render. */
+static scene *lit_packet_scene(int copies)
+{
+    scene *s = packet_scene(copies);
+    light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
+    cr_assert_geq(scene_add_light(s, &l), 0);
+    camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
+                .hfov = 60.0f, .projection = CAMERA_PERSPECTIVE};
+    scene_set_camera(s, &c);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
 /* The renderer traces camera rays eight at a time where scene_packets_pay
  * says so (a flat scene or a tree of one node holding a mesh, on the
  * eight-wide paths) and one at a time elsewhere: the films are the same
@@ -275,14 +289,8 @@ static void same_film_on_every_path(int copies)
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = packet_scene(copies);
-        light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
-        cr_assert_geq(scene_add_light(s, &l), 0);
-        camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
-                    .hfov = 60.0f, .projection = CAMERA_PERSPECTIVE};
-        scene_set_camera(s, &c);
+        scene *s = lit_packet_scene(copies);
         glint_error err = {0};
-        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
         packed += scene_packets_pay(s);
         glint_settings st;
         glint_scene_settings(s, &st, NULL);
@@ -374,14 +382,8 @@ Test(packet, equal_distances_go_to_the_lower_object)
 Test(packet, progressive_passes_end_at_the_batch_film)
 {
     accel_isa_force(ACCEL_AUTO);
-    scene *s = packet_scene(3);
-    light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
-    cr_assert_geq(scene_add_light(s, &l), 0);
-    camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
-                .hfov = 60.0f, .projection = CAMERA_PERSPECTIVE};
-    scene_set_camera(s, &c);
+    scene *s = lit_packet_scene(3);
     glint_error err = {0};
-    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
     glint_settings st;
     glint_scene_settings(s, &st, NULL);
     st.width = 45, st.height = 30, st.samples = 4, st.threads = 2;

@@ -51,14 +51,19 @@ typedef struct packet_best {
     __m256i id; /* -1: nothing yet */
 } packet_best;
 
-/* x's next float up, lane by lane (next_up, vec3.h). */
+/* next_up (vec3.h) lane by lane: positive finite lanes step up a unit,
+ * negative ones (-inf too) a unit towards zero, zeros become the least
+ * denormal, +inf and NaN stay. */
 static inline __m256 packet_next_up(__m256 x)
 {
-    float v[8];
-    _mm256_storeu_ps(v, x);
-    for (int k = 0; k < 8; k++)
-        v[k] = next_up(v[k]);
-    return _mm256_loadu_ps(v);
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_castsi256_ps(_mm256_set1_epi32(1));
+    __m256 up = _mm256_and_ps(_mm256_cmp_ps(x, zero, _CMP_GT_OQ),
+                              _mm256_cmp_ps(x, _mm256_set1_ps(INFINITY), _CMP_LT_OQ));
+    __m256 down = _mm256_cmp_ps(x, zero, _CMP_LT_OQ);
+    __m256i step = _mm256_sub_epi32(_mm256_castps_si256(_mm256_and_ps(up, one)),
+                                    _mm256_castps_si256(_mm256_and_ps(down, one)));
+    __m256 y = _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(x), step));
+    return _mm256_blendv_ps(y, _mm256_set1_ps(0x1p-149f), _mm256_cmp_ps(x, zero, _CMP_EQ_OQ));
 }
 
 static inline float packet_hmin(__m256 v)
@@ -127,32 +132,8 @@ __attribute__((always_inline)) static inline int packet_tri(const packet8 *p, co
                               _mm256_mul_ps(p->sy, az));
         ez[c] = _mm256_mul_ps(p->sz, az);
     }
-    __m256 u = _mm256_sub_ps(_mm256_mul_ps(ex[2], ey[1]), _mm256_mul_ps(ey[2], ex[1]));
-    __m256 v = _mm256_sub_ps(_mm256_mul_ps(ex[0], ey[2]), _mm256_mul_ps(ey[0], ex[2]));
-    __m256 w = _mm256_sub_ps(_mm256_mul_ps(ex[1], ey[0]), _mm256_mul_ps(ey[1], ex[0]));
-    const __m256 zero = _mm256_setzero_ps();
-    int on_edge = _mm256_movemask_ps(_mm256_or_ps(
-                      _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
-                      _mm256_cmp_ps(w, zero, _CMP_EQ_OQ))) &
-                  active;
-    __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
-                              _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
-    __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
-                              _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
-    __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-    __m256 ok = _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_cmp_ps(det, zero, _CMP_NEQ_UQ));
-    int mask = _mm256_movemask_ps(ok) & active & ~on_edge;
-    if (mask) {
-        __m256 tt = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, ez[0]), _mm256_mul_ps(v, ez[1])),
-                                  _mm256_mul_ps(w, ez[2]));
-        __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
-        tt = _mm256_mul_ps(tt, inv);
-        ok = _mm256_and_ps(_mm256_cmp_ps(tt, p->tmin, _CMP_GT_OQ), _mm256_cmp_ps(tt, lim, _CMP_LT_OQ));
-        mask &= _mm256_movemask_ps(ok);
-        *t = tt;
-        *b1 = _mm256_mul_ps(v, inv);
-        *b2 = _mm256_mul_ps(w, inv);
-    }
+    int on_edge;
+    int mask = tri8_solve(ex, ey, ez, active, p->tmin, lim, &on_edge, t, b1, b2);
     if (on_edge) { /* rare: those rays one at a time, in double precision */
         float tv[8], b1v[8], b2v[8], lv[8], tmin[8];
         _mm256_storeu_ps(tv, *t);

@@ -161,6 +161,51 @@ static inline __m256 tri8_load(const tri4 *b, int corner, int axis)
                                 _mm_load_ps(b[1].p[corner][axis]), 1);
 }
 
+/* The watertight test's second half on eight lanes, tri4_intersect's
+ * operations in its order, from the corners in the sheared space (ex, ey,
+ * ez): returns the lanes of `used` hit with t in (tmin, tmax), with t, b1
+ * and b2, which are set on every lane when any lane passes the edge test;
+ * *on_edge gets the lanes of `used` where an edge function is exactly
+ * zero, which the caller settles one at a time in double precision. Shared
+ * by tri8_intersect (eight triangles, one ray) and mesh_packet.h (one
+ * triangle, eight rays). */
+__attribute__((always_inline)) static inline int tri8_solve(const __m256 ex[3], const __m256 ey[3],
+                                                            const __m256 ez[3], int used,
+                                                            __m256 tmin, __m256 tmax,
+                                                            int *on_edge, __m256 *t, __m256 *b1,
+                                                            __m256 *b2)
+{
+    __m256 u = _mm256_sub_ps(_mm256_mul_ps(ex[2], ey[1]), _mm256_mul_ps(ey[2], ex[1]));
+    __m256 v = _mm256_sub_ps(_mm256_mul_ps(ex[0], ey[2]), _mm256_mul_ps(ey[0], ex[2]));
+    __m256 w = _mm256_sub_ps(_mm256_mul_ps(ex[1], ey[0]), _mm256_mul_ps(ey[1], ex[0]));
+    const __m256 zero = _mm256_setzero_ps();
+    int edge = _mm256_movemask_ps(_mm256_or_ps(
+        _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
+        _mm256_cmp_ps(w, zero, _CMP_EQ_OQ)));
+    __m256 neg = _mm256_or_ps(
+        _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
+        _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
+    __m256 pos = _mm256_or_ps(
+        _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
+        _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
+    __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+    __m256 ok = _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_cmp_ps(det, zero, _CMP_NEQ_UQ));
+    *on_edge = edge & used;
+    int mask = _mm256_movemask_ps(ok) & used & ~edge;
+    if (mask) {
+        __m256 tt = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, ez[0]), _mm256_mul_ps(v, ez[1])),
+                                  _mm256_mul_ps(w, ez[2]));
+        __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+        tt = _mm256_mul_ps(tt, inv);
+        ok = _mm256_and_ps(_mm256_cmp_ps(tt, tmin, _CMP_GT_OQ), _mm256_cmp_ps(tt, tmax, _CMP_LT_OQ));
+        mask &= _mm256_movemask_ps(ok);
+        *t = tt;
+        *b1 = _mm256_mul_ps(v, inv);
+        *b2 = _mm256_mul_ps(w, inv);
+    }
+    return mask;
+}
+
 __attribute__((always_inline)) static inline int tri8_intersect(const tri4_ray *q, const tri4 *b,
                                                                 float tmin, float tmax,
                                                                 float t[8], float b1[8],
@@ -175,41 +220,19 @@ __attribute__((always_inline)) static inline int tri8_intersect(const tri4_ray *
         ey[c] = _mm256_sub_ps(_mm256_sub_ps(tri8_load(b, c, q->ky), oy), _mm256_mul_ps(sy, az));
         ez[c] = _mm256_mul_ps(sz, az);
     }
-    __m256 u = _mm256_sub_ps(_mm256_mul_ps(ex[2], ey[1]), _mm256_mul_ps(ey[2], ex[1]));
-    __m256 v = _mm256_sub_ps(_mm256_mul_ps(ex[0], ey[2]), _mm256_mul_ps(ey[0], ex[2]));
-    __m256 w = _mm256_sub_ps(_mm256_mul_ps(ex[1], ey[0]), _mm256_mul_ps(ey[1], ex[0]));
-    const __m256 zero = _mm256_setzero_ps();
-    int on_edge = _mm256_movemask_ps(_mm256_or_ps(
-        _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
-        _mm256_cmp_ps(w, zero, _CMP_EQ_OQ)));
-    __m256 neg = _mm256_or_ps(
-        _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
-        _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
-    __m256 pos = _mm256_or_ps(
-        _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
-        _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
-    __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-    __m256 ok = _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_cmp_ps(det, zero, _CMP_NEQ_UQ));
     __m256i ids = _mm256_insertf128_si256(
         _mm256_castsi128_si256(_mm_load_si128((const __m128i *)b[0].id)),
         _mm_load_si128((const __m128i *)b[1].id), 1);
     int used = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(ids, _mm256_set1_epi32(-1))));
-    int mask = _mm256_movemask_ps(ok) & used & ~on_edge;
+    int on_edge;
+    __m256 tt, u1, u2;
+    int mask = tri8_solve(ex, ey, ez, used, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), &on_edge,
+                          &tt, &u1, &u2);
     if (mask) {
-        __m256 tt = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, ez[0]), _mm256_mul_ps(v, ez[1])),
-                                  _mm256_mul_ps(w, ez[2]));
-        __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
-        tt = _mm256_mul_ps(tt, inv);
-        ok = _mm256_and_ps(_mm256_cmp_ps(tt, _mm256_set1_ps(tmin), _CMP_GT_OQ),
-                           _mm256_cmp_ps(tt, _mm256_set1_ps(tmax), _CMP_LT_OQ));
-        mask &= _mm256_movemask_ps(ok);
-        if (mask) {
-            _mm256_storeu_ps(t, tt);
-            _mm256_storeu_ps(b1, _mm256_mul_ps(v, inv));
-            _mm256_storeu_ps(b2, _mm256_mul_ps(w, inv));
-        }
+        _mm256_storeu_ps(t, tt);
+        _mm256_storeu_ps(b1, u1);
+        _mm256_storeu_ps(b2, u2);
     }
-    on_edge &= used;
     if (on_edge) { /* rare: those lanes one at a time, in double precision */
         tri_ray tr = tri4_scalar_ray(q);
         for (int k = 0; k < 8; k++)
