@@ -263,12 +263,108 @@ Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
     accel_isa_force(ACCEL_AUTO);
 }
 
-/* packet_scene with a light and a camera looking at it, to render. */
+/* packet_scene with shadow casters that let light through, and boxes and
+ * a cylinder that do not, each copy's: a glass ball that absorbs and
+ * bends, a tinted pane, a box straight and one turned. */
+static void add_casters(scene *s, int copies)
+{
+    material glass = material_default(), pane = material_default(), solid = material_default();
+    glass.transmit = 0.8f, glass.ior = 1.5f, glass.absorption = v3(0.05f, 0.1f, 0.2f);
+    pane.transmit = 0.6f, pane.tint = v3(1.0f, 0.6f, 0.3f);
+    int mg = scene_add_material(s, &glass), mp = scene_add_material(s, &pane);
+    int ms = scene_add_material(s, &solid);
+    xform turn = xform_rotate(v3(0, 1, 0), 30.0f);
+    int xt = scene_add_xform(s, &turn);
+    for (int c = 0; c < copies; c++) {
+        float x = 30.0f * (float)c;
+        shape ball = shape_sphere(v3(x - 4.0f, 4.0f, 2.0f), 2.5f);
+        shape quad = shape_quad(v3(x - 6.0f, -3.0f, 6.0f), v3(7, 0, 0), v3(0, 6, 1));
+        shape box = shape_box(v3(x + 5.0f, -9.0f, -2.0f), v3(x + 8.0f, -5.0f, 1.0f));
+        shape turned = shape_box(v3(x - 2.0f, -11.0f, 5.0f), v3(x, -8.0f, 7.0f));
+        shape can = shape_cylinder(v3(x + 9.0f, -12.0f, 6.0f), 1.5f, 5.0f, true);
+        cr_assert_geq(scene_add_object(s, &ball, mg, -1), 0);
+        cr_assert_geq(scene_add_object(s, &quad, mp, -1), 0);
+        cr_assert_geq(scene_add_object(s, &box, ms, -1), 0);
+        cr_assert_geq(scene_add_object(s, &turned, ms, xt), 0);
+        cr_assert_geq(scene_add_object(s, &can, ms, -1), 0);
+    }
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+}
+
+/* Eight shadow rays from points scattered round the copies' objects
+ * (neighbours, for most packets) towards a light at l. */
+static ray8 shadow_packet(rng *g, int i, int copies, vec3 l)
+{
+    ray8 p;
+    float spread = i % 3 == 0 ? 12.0f : 0.6f;
+    vec3 c = v3(uniform(g, -12.0f, 30.0f * (float)(copies - 1) + 12.0f), uniform(g, -12, 8),
+                uniform(g, -8, 10));
+    for (int k = 0; k < 8; k++) {
+        vec3 o = v3_add(c, v3(uniform(g, -spread, spread), uniform(g, -spread, spread),
+                              uniform(g, -spread, spread)));
+        put(&p, k, o, v3_sub(l, o), 1e-3f, 1.0f);
+    }
+    return p;
+}
+
+/* scene_shadow8 tells each ray what scene_shadow tells it alone: blocked,
+ * or not and crossing a transmitting object, or clear; in a flat scene, a
+ * tree of one node and a deeper tree, on every path that walks packets. */
+Test(packet, shadow_rays_match_one_ray_at_a_time)
+{
+    int walked = 0, counts[3] = {0, 0, 0};
+    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        static const int sizes[] = {1, 3, 12};
+        for (int z = 0; z < 3; z++) {
+            scene *s = packet_scene(sizes[z]);
+            add_casters(s, sizes[z]);
+            rng g = rng_seed(31, 2);
+            for (int i = 0; i < 4000; i++) {
+                ray8 p = shadow_packet(&g, i, sizes[z], v3(10, 30, 40));
+                int active = i % 5 == 0 ? 0x7b : 0xff, blocked, crosses;
+                if (!scene_shadow8(s, &p, active, &blocked, &crosses))
+                    continue;
+                walked++;
+                cr_assert_eq((blocked | crosses) & ~active, 0);
+                for (int m = active; m; m &= m - 1) {
+                    int k = __builtin_ctz((unsigned)m);
+                    ray r = ray8_get(&p, k);
+                    scene_crossings cross;
+                    bool b = scene_shadow(s, &r, &cross);
+                    int kind = b ? 0 : cross.n > 0 ? 1 : 2;
+                    int got = blocked >> k & 1 ? 0 : crosses >> k & 1 ? 1 : 2;
+                    cr_assert_eq(got, kind, "%d copies, packet %d ray %d", sizes[z], i, k);
+                    counts[kind]++;
+                }
+            }
+            scene_free(s);
+        }
+    }
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() < ACCEL_AVX2)
+        return;
+    cr_assert_gt(walked, 1000);
+    for (int kind = 0; kind < 3; kind++) /* blocked, crossing and clear rays all met */
+        cr_assert_gt(counts[kind], 500, "kind %d: %d rays", kind, counts[kind]);
+}
+
+/* packet_scene with its casters, lights of every kind and a camera
+ * looking at it, to render. */
 static scene *lit_packet_scene(int copies)
 {
     scene *s = packet_scene(copies);
+    add_casters(s, copies);
     light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
+    light spot = light_spot(v3(-10, 25, 30), v3s(0.0f), 10.0f, 25.0f, v3s(0.6f), v3(1, 0, 0));
+    light sun = light_directional(v3(0.3f, -1.0f, -0.4f), v3s(0.3f));
+    light area = light_area(v3(5, 20, 20), v3(4, 0, 0), v3(0, 0, 4), 2, v3s(0.4f), v3(1, 0, 0));
     cr_assert_geq(scene_add_light(s, &l), 0);
+    cr_assert_geq(scene_add_light(s, &spot), 0);
+    cr_assert_geq(scene_add_light(s, &sun), 0);
+    cr_assert_geq(scene_add_light(s, &area), 0);
     camera c = {.eye = v3(0.3f, -0.2f, 25.0f), .target = v3s(0.0f), .up = v3(0, 1, 0),
                 .hfov = 60.0f, .projection = CAMERA_PERSPECTIVE};
     scene_set_camera(s, &c);
@@ -279,8 +375,10 @@ static scene *lit_packet_scene(int copies)
 
 /* The renderer traces camera rays eight at a time where scene_packets_pay
  * says so (a flat scene or a tree of one node holding a mesh, on the
- * eight-wide paths) and one at a time elsewhere: the films are the same
- * bytes on every path, alpha included. */
+ * eight-wide paths), and their first hits' shadow rays likewise, and one
+ * at a time elsewhere: the films are the same bytes on every path, alpha
+ * included, with lights of every kind and objects that let light
+ * through. */
 static void same_film_on_every_path(int copies)
 {
     enum { W = 61, H = 37 }; /* rows that do not fill the last packet */

@@ -200,18 +200,20 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
             ray8_put(&p, i, &rs[active >> i & 1 ? i : __builtin_ctz((unsigned)active)]);
         scene_hit h[8];
         int found = scene_intersect8(sc, &p, active, h);
+        trace_lanes tl = {(uint32_t)x0, (uint32_t)y, (uint32_t)k, {0}};
+        for (int i = 0; i < n; i++)
+            tl.time[i] = rs[i].time;
+        vec3 v[8];
+        float c[8];
+        whitted_camera8(&w->ctx, &tl, rs, active, found, h, v, c);
         for (int i = 0; i < n; i++) {
             if (!(active >> i & 1)) { /* outside a fisheye's circle: black, uncovered */
                 sum[i] = v3_add(sum[i], v3s(0.0f)); /* as sample_range adds it (-0 + 0) */
                 continue;
             }
-            float c = 0.0f;
-            trace_begin_sample(&w->ctx, (uint32_t)(x0 + i), (uint32_t)y, (uint32_t)k);
-            w->ctx.time = rs[i].time;
             w->primary_rays++;
-            vec3 v = whitted_camera_hit(&w->ctx, &rs[i], found >> i & 1 ? &h[i] : NULL, &c);
-            sum[i] = v3_add(sum[i], v);
-            cover[i] += alpha ? c : 0.0f;
+            sum[i] = v3_add(sum[i], v[i]);
+            cover[i] += alpha ? c[i] : 0.0f;
         }
     }
 }

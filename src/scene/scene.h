@@ -170,6 +170,15 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit);
  * holding a mesh that does not move, on an eight-wide path); otherwise it
  * only takes them one at a time. */
 bool scene_packets_pay(const scene *s);
+/* Shadow rays of active (bit k: ray k of r) at once: sets *blocked to
+ * the rays an opaque object blocks, where scene_shadow returns true, and
+ * *crosses to those of the others that meet a transmitting object, whose
+ * light scene_shadow's crossings then filter; the rest reach their end
+ * unfiltered. Coherent rays (towards one light from neighbouring points)
+ * share the walk of the scene's tree. False when the rays cannot go
+ * together (the scene's path is not eight-wide, or their directions
+ * differ in sign): then ask scene_shadow ray by ray. */
+bool scene_shadow8(const scene *s, const ray8 *r, int active, int *blocked, int *crosses);
 /* Whether an opaque object (transmit == 0) blocks r within (tmin, tmax). */
 bool scene_occluded_opaque(const scene *s, const ray *r);
 

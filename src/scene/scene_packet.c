@@ -6,7 +6,11 @@
  * rays at once where it can be: a mesh in one walk of its tree
  * (mesh_intersect8), a sphere or quad in one test (shape8_hit); any other
  * ray by ray. Otherwise each ray goes through scene_intersect. Either way
- * every ray gets the hit scene_intersect gives it, to the bit. */
+ * every ray gets the hit scene_intersect gives it, to the bit.
+ *
+ * scene_shadow8 walks eight shadow rays the same way, asking each object
+ * the question scene_shadow asks it: whether an opaque one blocks a ray,
+ * whether a transmitting one is crossed. */
 #include <string.h>
 #include "geom/mesh.h"
 #include "scene_trace.h"
@@ -141,6 +145,63 @@ static int one_by_one(const scene *s, const ray8 *r, int active, scene_hit *hit)
             found |= 1 << k;
     }
     return found;
+}
+
+void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int *blocked,
+                          int *crosses)
+{
+    if (!active)
+        return;
+    const object *o = &s->objects[i];
+    int met = -1;
+    if (o->xform < 0 && three_or_more(active)) {
+        shape_hit h[8];
+        met = shape8_on_path(s, &o->shape, r, r->tmax, active, h);
+    }
+    if (met < 0) { /* as scene_shadow_object asks it, ray by ray */
+        met = 0;
+        for (int m = active; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            ray one = ray8_get(r, k), lr = scene_object_ray(s, o, &one);
+            shape_hit h;
+            if (o->transmits ? shape_intersect_inline(&o->shape, &lr, &h)
+                             : shape_occluded_inline(&o->shape, &lr))
+                met |= 1 << k;
+        }
+    }
+    *(o->transmits ? crosses : blocked) |= met;
+}
+
+/* scene_shadow_walk8 on the scene's path; false where it has none. */
+static bool shadow_walk8(const scene *s, const ray8 *r, int active, int *blocked, int *crosses)
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return scene_shadow_walk8_avx512(s, r, active, blocked, crosses);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return scene_shadow_walk8_avx2(s, r, active, blocked, crosses);
+#endif
+    (void)s, (void)r, (void)active, (void)blocked, (void)crosses;
+    return false;
+}
+
+bool scene_shadow8(const scene *s, const ray8 *r, int active, int *blocked, int *crosses)
+{
+    *blocked = *crosses = 0;
+    if (!s->flat && !(eight_wide(s->bvh.isa) && s->bvh.width == 8))
+        return false;
+    for (int i = 0; i < s->nunbounded; i++)
+        scene_shadow8_object(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
+    if (s->flat) {
+        uint32_t first, n = scene_flat_leaf(s, &first);
+        for (uint32_t i = 0; i < n; i++)
+            scene_shadow8_object(s, s->bvh.prims[first + i], r, active & ~*blocked, blocked,
+                                 crosses);
+    } else if ((active & ~*blocked) && !shadow_walk8(s, r, active & ~*blocked, blocked, crosses)) {
+        return false;
+    }
+    *crosses &= ~*blocked;
+    return true;
 }
 
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)

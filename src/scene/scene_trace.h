@@ -216,6 +216,12 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                         scene_hit hit[8]);
 
+/* Object i against the shadow rays of active, as scene_shadow_object asks
+ * it: adds to *blocked the rays an opaque object blocks, to *crosses those
+ * a transmitting one meets (scene_packet.c). */
+void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int *blocked,
+                          int *crosses);
+
 #if defined(GLINT_TRAVERSE_AVX2)
 typedef struct scene_packet_ctx {
     const scene *s;
@@ -255,12 +261,61 @@ __attribute__((always_inline)) static inline int scene_walk8(const scene *s, con
     return c.found;
 }
 
-/* Defines scene_walk8_<isa>. */
+typedef struct scene_shadow8_ctx {
+    const scene *s;
+    const ray8 *r;
+    int active, blocked, crosses;
+} scene_shadow8_ctx;
+
+/* A leaf's objects against the shadow rays that enter it and are not yet
+ * blocked; a blocked ray's lane of *tmax drops below every box, and once
+ * every ray is blocked the walk stops. */
+__attribute__((always_inline)) static inline bool scene_shadow8_leaf(void *ctx, uint32_t first,
+                                                                     uint32_t count, int rays,
+                                                                     __m256 *tmax)
+{
+    scene_shadow8_ctx *c = ctx;
+    for (uint32_t i = 0; i < count; i++)
+        scene_shadow8_object(c->s, c->s->bvh.prims[first + i], c->r, rays & ~c->blocked,
+                             &c->blocked, &c->crosses);
+    if (!(c->active & ~c->blocked))
+        return false;
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256 off = _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(c->blocked), bit), bit));
+    *tmax = _mm256_blendv_ps(*tmax, _mm256_set1_ps(-INFINITY), off);
+    return true;
+}
+
+/* The shadow rays of active through the scene's eight-wide tree together,
+ * adding to *blocked and *crosses (scene_shadow8); false when the rays
+ * differ in their directions' signs. */
+__attribute__((always_inline)) static inline bool scene_shadow_walk8(const scene *s, const ray8 *r,
+                                                                     int active, int *blocked,
+                                                                     int *crosses)
+{
+    packet8 p;
+    if (s->bvh.width != 8 || s->bvh.nnodes == 0 || !packet_make(&p, r, active))
+        return s->bvh.nnodes == 0;
+    scene_shadow8_ctx c = {s, r, active, *blocked, *crosses};
+    __m256 tmax = _mm256_loadu_ps(r->tmax);
+    packet_walk(&s->bvh, &p, active, &tmax, scene_shadow8_leaf, &c);
+    *blocked = c.blocked;
+    *crosses = c.crosses;
+    return true;
+}
+
+/* Defines scene_walk8_<isa> and scene_shadow_walk8_<isa>. */
 #define SCENE_PACKET_KERNELS(isa)                                                              \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
                           scene_hit hit[8])                                                    \
     {                                                                                          \
         return scene_walk8(s, r, active, best, hit);                                           \
+    }                                                                                          \
+    bool scene_shadow_walk8_##isa(const scene *s, const ray8 *r, int active, int *blocked,     \
+                                  int *crosses)                                                \
+    {                                                                                          \
+        return scene_shadow_walk8(s, r, active, blocked, crosses);                             \
     }
 #endif
 
@@ -354,5 +409,9 @@ bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out
 int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8]);
 int scene_walk8_avx512(const scene *s, const ray8 *r, int active, float best[8],
                        scene_hit hit[8]);
+bool scene_shadow_walk8_avx2(const scene *s, const ray8 *r, int active, int *blocked,
+                             int *crosses);
+bool scene_shadow_walk8_avx512(const scene *s, const ray8 *r, int active, int *blocked,
+                               int *crosses);
 
 #endif

@@ -19,29 +19,35 @@ static vec3 shadow_absorb(const scene *s, const ray *sr, const scene_hit *hit,
     return v3(expf(-a.x * len), expf(-a.y * len), expf(-a.z * len));
 }
 
-vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
+/* The shadow ray from p, whose geometric normal is ng, towards light
+ * sample lr, at the time of the sample being traced. */
+static ray shadow_ray(const trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
 {
-    const scene *s = ctx->scene;
     vec3 o = ray_offset(p, ng, lr->dir);
     ray sr = isinf(lr->dist) ? ray_make(o, lr->dir, INFINITY)
                              : ray_make(o, v3_sub(lr->pos, o), 1.0f);
     sr.time = ctx->time;
-    ctx->shadow_rays++;
+    return sr;
+}
+
+/* What reaches the end of shadow ray sr (lighting_shadow). */
+static vec3 shadow_filter(const scene *s, const ray *sr)
+{
     if (!s->any_transmit)
-        return v3s(scene_occluded_opaque(s, &sr) ? 0.0f : 1.0f);
+        return v3s(scene_occluded_opaque(s, sr) ? 0.0f : 1.0f);
     /* One walk finds an opaque blocker or every transmitting surface in the
      * way; those filter the light in order along the ray. */
     scene_crossings cross;
-    if (scene_shadow(s, &sr, &cross))
+    if (scene_shadow(s, sr, &cross))
         return v3s(0.0f);
     vec3 filter = v3s(1.0f);
-    float dlen = v3_len(sr.d), t_prev = 0.0f;
+    float dlen = v3_len(sr->d), t_prev = 0.0f;
     for (int i = 0; i < cross.n; i++) {
         const scene_hit *hit = &cross.hit[i];
         const material *m = scene_hit_material(s, hit);
         filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
         if (material_absorbs(m))
-            filter = v3_mul(filter, shadow_absorb(s, &sr, hit, m, t_prev, dlen));
+            filter = v3_mul(filter, shadow_absorb(s, sr, hit, m, t_prev, dlen));
         if (v3_max_comp(filter) <= 0.0f)
             return filter;
         t_prev = hit->h.t;
@@ -49,17 +55,29 @@ vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
     return filter;
 }
 
-/* One light sample's diffuse and specular share, shadowed. */
-static inline void add_sample(trace_ctx *ctx, const shade_point *sp, const light_ray *lr,
-                       vec3 *diffuse, vec3 *specular)
+vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
+{
+    ray sr = shadow_ray(ctx, p, ng, lr);
+    ctx->shadow_rays++;
+    return shadow_filter(ctx->scene, &sr);
+}
+
+/* Whether light sample lr can light the point, before shadows, with the
+ * cosine *ndl at the normal. */
+static inline bool lit(const shade_point *sp, const light_ray *lr, float *ndl)
+{
+    if (v3_is_zero(lr->color))
+        return false;
+    *ndl = v3_dot(sp->n, lr->dir);
+    return !(*ndl <= 0.0f);
+}
+
+/* The sample's diffuse and specular share, given vis, what reaches the
+ * point of it. */
+static inline void add_lit(const shade_point *sp, const light_ray *lr, float ndl, vec3 vis,
+                           vec3 *diffuse, vec3 *specular)
 {
     const material *m = sp->m;
-    if (v3_is_zero(lr->color))
-        return;
-    float ndl = v3_dot(sp->n, lr->dir);
-    if (ndl <= 0.0f)
-        return;
-    vec3 vis = lighting_shadow(ctx, sp->p, sp->ng, lr);
     if (v3_is_zero(vis))
         return;
     vec3 lc = v3_mul(lr->color, vis);
@@ -69,6 +87,15 @@ static inline void add_sample(trace_ctx *ctx, const shade_point *sp, const light
         if (rv > 0.0f)
             *specular = v3_madd(*specular, lc, m->specular * powf(rv, m->shininess));
     }
+}
+
+/* One light sample's diffuse and specular share, shadowed. */
+static inline void add_sample(trace_ctx *ctx, const shade_point *sp, const light_ray *lr,
+                              vec3 *diffuse, vec3 *specular)
+{
+    float ndl;
+    if (lit(sp, lr, &ndl))
+        add_lit(sp, lr, ndl, lighting_shadow(ctx, sp->p, sp->ng, lr), diffuse, specular);
 }
 
 /* Every sample of light i (lighting.h: the jitter). */
@@ -90,16 +117,94 @@ static inline void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint3
     }
 }
 
-vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
+/* Ambient and lights summed into the point's colour. */
+static vec3 local_sum(const shade_point *sp, vec3 diffuse, vec3 specular)
 {
-    const scene *s = ctx->scene;
     const material *m = sp->m;
-    uint32_t event = ctx->events++;
-    vec3 diffuse = v3_scale(s->ambient, m->ambient);
-    vec3 specular = v3s(0.0f);
-    for (int i = 0; i < s->nlights; i++)
-        add_light(ctx, sp, i, event, &diffuse, &specular);
     float w = maxf(1.0f - m->transmit, 0.0f);
     vec3 c = v3_add(v3_scale(v3_mul(diffuse, sp->base), w), specular);
     return v3_add(c, m->emission);
+}
+
+vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
+{
+    const scene *s = ctx->scene;
+    uint32_t event = ctx->events++;
+    vec3 diffuse = v3_scale(s->ambient, sp->m->ambient);
+    vec3 specular = v3s(0.0f);
+    for (int i = 0; i < s->nlights; i++)
+        add_light(ctx, sp, i, event, &diffuse, &specular);
+    return local_sum(sp, diffuse, specular);
+}
+
+/* The shadow rays of lanes `need` towards their light samples lr[k]:
+ * what reaches each point into vis[k], as lighting_shadow finds it. Three
+ * or more go through the scene together (scene_shadow8), and only those
+ * that cross a transmitting object, or cannot go together, one by one. */
+static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[8],
+                    const light_ray lr[8], int need, vec3 vis[8])
+{
+    const scene *s = ctx->scene;
+    ray rs[8];
+    for (int m = need; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ctx->time = tl->time[k];
+        rs[k] = shadow_ray(ctx, sp[k].p, sp[k].ng, &lr[k]);
+        ctx->shadow_rays++;
+    }
+    int blocked = 0, alone = need;
+    if (need & (need - 1) & ((need & (need - 1)) - 1)) { /* three or more */
+        ray8 p;
+        for (int k = 0; k < 8; k++) /* idle lanes repeat a ray in use */
+            ray8_put(&p, k, &rs[need >> k & 1 ? k : __builtin_ctz((unsigned)need)]);
+        if (!scene_shadow8(s, &p, need, &blocked, &alone))
+            blocked = 0, alone = need;
+    }
+    for (int m = need; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        vis[k] = blocked >> k & 1  ? v3s(0.0f)
+                 : alone >> k & 1 ? shadow_filter(s, &rs[k])
+                                  : v3s(1.0f);
+    }
+}
+
+void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *sp, int lanes,
+                     vec3 out[8])
+{
+    const scene *s = ctx->scene;
+    vec3 diffuse[8], specular[8];
+    for (int m = lanes; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        diffuse[k] = v3_scale(s->ambient, sp[k].m->ambient);
+        specular[k] = v3s(0.0f);
+    }
+    for (int i = 0; i < s->nlights; i++) {
+        const light *l = &s->lights[i];
+        if (light_sample_count(l) != 1) { /* jittered samples, lane by lane */
+            for (int m = lanes; m; m &= m - 1) {
+                int k = __builtin_ctz((unsigned)m);
+                trace_lanes_begin(ctx, tl, k);
+                add_light(ctx, &sp[k], i, 0, &diffuse[k], &specular[k]);
+            }
+            continue;
+        }
+        light_ray lr[8];
+        float ndl[8];
+        int need = 0;
+        for (int m = lanes; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            lr[k] = light_sample(l, sp[k].p, 0, 0.5f, 0.5f);
+            need |= lit(&sp[k], &lr[k], &ndl[k]) << k;
+        }
+        vec3 vis[8];
+        shadow8(ctx, tl, sp, lr, need, vis);
+        for (int m = need; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            add_lit(&sp[k], &lr[k], ndl[k], vis[k], &diffuse[k], &specular[k]);
+        }
+    }
+    for (int m = lanes; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        out[k] = local_sum(&sp[k], diffuse[k], specular[k]);
+    }
 }

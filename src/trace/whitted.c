@@ -45,6 +45,35 @@ static bool adc_keep(trace_ctx *ctx, float share, float k, float total)
     return true;
 }
 
+/* Radiance along r from its nearest hit *hitp, shaded at sp, whose local
+ * light c is known: the reflected and transmitted rays added, and the
+ * segment's fog or absorption. */
+static vec3 trace_rest(trace_ctx *ctx, const ray *r, int depth, const scene_hit *hitp,
+                       const shade_point *sp, vec3 c)
+{
+    float kr, kt;
+    vec3 tdir;
+    split(sp, &kr, &kt, &tdir);
+    if (depth < ctx->max_depth) {
+        float share = ctx->weight, gt = kt * v3_max_comp(sp->m->tint);
+        if (adc_keep(ctx, share, kr, kr + gt)) {
+            vec3 rd = v3_reflect(sp->d, sp->n);
+            ray rr = ray_make(ray_offset(sp->p, sp->ng, rd), rd, INFINITY);
+            rr.time = r->time;
+            ctx->secondary_rays++;
+            c = v3_madd(c, whitted_trace(ctx, &rr, depth + 1), kr);
+        }
+        if (kt > 0.0f && adc_keep(ctx, share, gt, kr + gt)) {
+            ray tr = ray_make(ray_offset(sp->p, sp->ng, tdir), tdir, INFINITY);
+            tr.time = r->time;
+            ctx->secondary_rays++;
+            c = v3_add(c, v3_scale(v3_mul(whitted_trace(ctx, &tr, depth + 1), sp->m->tint), kt));
+        }
+        ctx->weight = share;
+    }
+    return shade_segment(ctx->scene, r, hitp->h.t, sp, c);
+}
+
 /* Radiance along r, whose nearest hit is *hitp (NULL: it hit nothing). */
 static vec3 trace_hit(trace_ctx *ctx, const ray *r, int depth, const scene_hit *hitp)
 {
@@ -53,29 +82,8 @@ static vec3 trace_hit(trace_ctx *ctx, const ray *r, int depth, const scene_hit *
         return shade_segment(s, r, INFINITY, NULL, s->background);
     shade_point sp;
     shade_prepare(ctx, r, hitp, &sp);
-    float kr, kt;
-    vec3 tdir;
-    split(&sp, &kr, &kt, &tdir);
     vec3 c = lighting_local(ctx, &sp);
-
-    if (depth < ctx->max_depth) {
-        float share = ctx->weight, gt = kt * v3_max_comp(sp.m->tint);
-        if (adc_keep(ctx, share, kr, kr + gt)) {
-            vec3 rd = v3_reflect(sp.d, sp.n);
-            ray rr = ray_make(ray_offset(sp.p, sp.ng, rd), rd, INFINITY);
-            rr.time = r->time;
-            ctx->secondary_rays++;
-            c = v3_madd(c, whitted_trace(ctx, &rr, depth + 1), kr);
-        }
-        if (kt > 0.0f && adc_keep(ctx, share, gt, kr + gt)) {
-            ray tr = ray_make(ray_offset(sp.p, sp.ng, tdir), tdir, INFINITY);
-            tr.time = r->time;
-            ctx->secondary_rays++;
-            c = v3_add(c, v3_scale(v3_mul(whitted_trace(ctx, &tr, depth + 1), sp.m->tint), kt));
-        }
-        ctx->weight = share;
-    }
-    return shade_segment(s, r, hitp->h.t, &sp, c);
+    return trace_rest(ctx, r, depth, hitp, &sp, c);
 }
 
 vec3 whitted_trace(trace_ctx *ctx, const ray *r, int depth)
@@ -96,4 +104,28 @@ vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hi
 {
     *coverage = hit ? 1.0f : 0.0f;
     return trace_hit(ctx, r, 0, hit);
+}
+
+void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int active,
+                     int found, const scene_hit *hit, vec3 out[8], float coverage[8])
+{
+    shade_point sp[8] = {0};
+    vec3 local[8];
+    found &= active;
+    for (int m = found; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        shade_prepare(ctx, &r[k], &hit[k], &sp[k]);
+    }
+    lighting_local8(ctx, tl, sp, found, local);
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        trace_lanes_begin(ctx, tl, k);
+        coverage[k] = found >> k & 1 ? 1.0f : 0.0f;
+        if (!(found >> k & 1)) {
+            out[k] = trace_hit(ctx, &r[k], 0, NULL);
+            continue;
+        }
+        ctx->events = 1; /* lighting_local8 had event 0 */
+        out[k] = trace_rest(ctx, &r[k], 0, &hit[k], &sp[k], local[k]);
+    }
 }

@@ -44,6 +44,20 @@ static inline void trace_begin_sample(trace_ctx *ctx, uint32_t x, uint32_t y, ui
     ctx->events = 0;
 }
 
+/* The camera samples of a packet's lanes: lane k is sample `index` of
+ * pixel (x0 + k, y), its rays at time[k]. */
+typedef struct trace_lanes {
+    uint32_t x0, y, index;
+    float time[8];
+} trace_lanes;
+
+/* trace_begin_sample for lane k, and its time. */
+static inline void trace_lanes_begin(trace_ctx *ctx, const trace_lanes *tl, int k)
+{
+    trace_begin_sample(ctx, tl->x0 + (uint32_t)k, tl->y, tl->index);
+    ctx->time = tl->time[k];
+}
+
 static inline uint32_t trace_sample_hash(trace_ctx *ctx)
 {
     if (!ctx->sample_hashed) {
@@ -66,5 +80,13 @@ vec3 whitted_camera(trace_ctx *ctx, const ray *r, float *coverage);
 struct scene_hit;
 vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hit,
                         float *coverage);
+
+/* whitted_camera_hit for the lanes of active of a packet of camera rays
+ * r[k] (tl names their samples), with the hits hit[k] of the lanes in
+ * found: colours into out[k], coverage into coverage[k]. The same colours
+ * to the bit; the first hits' shadow rays go through the scene together
+ * (lighting_local8), the rest of each ray's tree one ray at a time. */
+void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int active,
+                     int found, const struct scene_hit *hit, vec3 out[8], float coverage[8]);
 
 #endif
