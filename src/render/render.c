@@ -188,8 +188,10 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         ray8 p;
         ray rs[8];
         int active = 0;
+        pixel_sample same = sampler_get(&j->smp, x0, y, k);
+        bool alike = sampler_same_in_every_pixel(&j->smp);
         for (int i = 0; i < n; i++) {
-            pixel_sample s = sampler_get(&j->smp, x0 + i, y, k);
+            pixel_sample s = alike ? same : sampler_get(&j->smp, x0 + i, y, k);
             if (camera_ray(&j->frame, (float)(x0 + i) + s.fx, (float)y + s.fy, s.lu, s.lv, &rs[i]))
                 active |= 1 << i;
             rs[i].time = sc->time + s.time * sc->shutter_seconds;

@@ -59,6 +59,11 @@ sampler sampler_make(const glint_settings *s, bool lens, bool motion)
 
 int sampler_count(const sampler *s) { return s->n * s->n; }
 
+bool sampler_same_in_every_pixel(const sampler *s)
+{
+    return s->kind == GLINT_SAMPLER_GRID && !s->lens && !s->motion;
+}
+
 pixel_sample sampler_get(const sampler *s, int x, int y, int k)
 {
     uint32_t ux = (uint32_t)x, uy = (uint32_t)y, uk = (uint32_t)k;

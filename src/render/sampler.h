@@ -41,6 +41,9 @@ typedef struct sampler {
 sampler sampler_make(const glint_settings *s, bool lens, bool motion);
 /* Samples per pixel of grid and jitter: N * N. */
 int sampler_count(const sampler *s);
+/* Whether sample k is the same in every pixel (a grid without lens or
+ * time): sampler_get then gives one pixel's for all. */
+bool sampler_same_in_every_pixel(const sampler *s);
 /* Sample k (0 <= k < sampler_count) of pixel (x, y), for grid and jitter. */
 pixel_sample sampler_get(const sampler *s, int x, int y, int k);
 /* Lens position and time for the adaptive sampler's lattice point (gx, gy)
