@@ -14,8 +14,26 @@ typedef struct lanes {
     uint32_t count[8];
 } lanes;
 
+/* The SAH-optimal choice of which binary nodes become wide nodes, the
+ * binary tree's leaves kept as they are (Ylitie, Karras and Laine,
+ * "Efficient Incoherent Ray Traversal on GPUs Through Compressed Wide
+ * BVHs", HPG 2017, section 4.1). With the leaves fixed the SAH cost of the
+ * leaves is the same whatever the choice, so what is minimised is the sum
+ * of the wide nodes' surface areas: the expected number of node visits.
+ * For binary node n and j slots of a wide node, cost[n][j] is the least
+ * that n's subtree adds when it fills at most j lanes, pick[n][j] how: 0
+ * as with j - 1 lanes, k > 0 its first child in k lanes and its second in
+ * j - k; with one lane an interior node becomes a wide node of its own,
+ * whose lanes split pick[n][0] : width - pick[n][0] between its children. */
+typedef struct plan {
+    int width;
+    float *cost;  /* nnodes x (width + 1) */
+    int8_t *pick; /* the same */
+} plan;
+
 typedef struct collapse {
     const bvh *src;
+    const plan *plan; /* NULL: open the largest child first (gather) */
     int width;
     size_t node_size;
     char *nodes;
@@ -100,6 +118,60 @@ static int gather(const collapse *c, int bin, int kids[8])
     return nk;
 }
 
+/* Works the plan out bottom up: in depth-first order every child comes
+ * after its parent. */
+static bool plan_make(plan *p, const bvh *b, int width)
+{
+    int w1 = width + 1;
+    p->width = width;
+    p->cost = malloc(sizeof *p->cost * (size_t)b->nnodes * (size_t)w1);
+    p->pick = malloc(sizeof *p->pick * (size_t)b->nnodes * (size_t)w1);
+    if (!p->cost || !p->pick)
+        return false;
+    for (int n = b->nnodes - 1; n >= 0; n--) {
+        float *c = p->cost + (size_t)n * (size_t)w1;
+        int8_t *k = p->pick + (size_t)n * (size_t)w1;
+        memset(k, 0, (size_t)w1);
+        if (b->nodes[n].count) {
+            for (int j = 0; j < w1; j++)
+                c[j] = 0.0f;
+            continue;
+        }
+        const float *l = p->cost + (size_t)(n + 1) * (size_t)w1;
+        const float *r = p->cost + (size_t)b->nodes[n].index * (size_t)w1;
+        float own = INFINITY;
+        for (int a = 1; a < width; a++)
+            if (l[a] + r[width - a] < own) {
+                own = l[a] + r[width - a];
+                k[0] = (int8_t)a;
+            }
+        c[1] = aabb_area(b->nodes[n].box) + own;
+        for (int j = 2; j < w1; j++) {
+            c[j] = c[j - 1];
+            for (int a = 1; a < j; a++)
+                if (l[a] + r[j - a] < c[j]) {
+                    c[j] = l[a] + r[j - a];
+                    k[j] = (int8_t)a;
+                }
+        }
+    }
+    return true;
+}
+
+/* The binary nodes that fill j lanes for subtree n, by the plan. */
+static int plan_lanes(const plan *p, const bvh *b, int n, int j, int *kids)
+{
+    const int8_t *k = p->pick + (size_t)n * (size_t)(p->width + 1);
+    while (j > 1 && !b->nodes[n].count && k[j] == 0)
+        j--;
+    if (j == 1 || b->nodes[n].count) {
+        kids[0] = n;
+        return 1;
+    }
+    int got = plan_lanes(p, b, n + 1, k[j], kids);
+    return got + plan_lanes(p, b, b->nodes[n].index, j - k[j], kids + got);
+}
+
 /* Makes a wide node from binary node `bin` (an interior node); returns its
  * index or -1 when out of memory. Nodes are numbered depth first. */
 static int collapse_node(collapse *c, int bin)
@@ -108,8 +180,14 @@ static int collapse_node(collapse *c, int bin)
     if (self < 0)
         return -1;
     const bvh_node *bn = c->src->nodes;
-    int kids[8];
-    int nk = gather(c, bin, kids);
+    int kids[8], nk;
+    if (c->plan) {
+        int a = c->plan->pick[(size_t)bin * (size_t)(c->width + 1)];
+        nk = plan_lanes(c->plan, c->src, bin + 1, a, kids);
+        nk += plan_lanes(c->plan, c->src, c->src->nodes[bin].index, c->width - a, kids + nk);
+    } else {
+        nk = gather(c, bin, kids);
+    }
     lanes l;
     for (int k = 0; k < c->width; k++) {
         l.box[k] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
@@ -133,7 +211,7 @@ static int collapse_node(collapse *c, int bin)
     return self;
 }
 
-glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
+glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, bool optimal, glint_error *err)
 {
     memset(out, 0, sizeof *out);
     out->isa = isa;
@@ -146,10 +224,14 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
     /* Room for about as many wide nodes as a tree of small leaves makes
      * (a fifth of the binary nodes for eight-wide, half for four-wide);
      * pages never written cost nothing, and a larger tree grows it. */
-    collapse c = {b, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node),
+    plan p = {0};
+    bool planned = optimal && b->nnodes > 1;
+    collapse c = {b, planned ? &p : NULL, out->width,
+                  out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node),
                   NULL, 0, b->nnodes / (out->width == 8 ? 5 : 2) + 2};
     c.nodes = array_alloc_big(c.node_size * (size_t)c.cap);
-    if (!c.nodes) {
+    if (!c.nodes || (planned && !plan_make(&p, b, out->width))) {
+        free(c.nodes), free(p.cost), free(p.pick);
         bvh_free(b);
         return err_nomem(err);
     }
@@ -163,10 +245,11 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err)
         store(&c, new_node(&c), &l);
         out->leaf_root = true;
     } else if (collapse_node(&c, 0) < 0) {
-        free(c.nodes);
+        free(c.nodes), free(p.cost), free(p.pick);
         bvh_free(b);
         return err_nomem(err);
     }
+    free(p.cost), free(p.pick);
     if (c.width == 8)
         out->n8 = (bvh8_node *)(void *)c.nodes;
     else

@@ -60,8 +60,12 @@ typedef struct bvhw {
 #define WIDE_FETCH_BYTES (256u * 1024u)
 
 /* Collapses b into out for the kernels of isa, taking over b's primitive
- * array. b is freed in every case, failure included. */
-glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, glint_error *err);
+ * array. b is freed in every case, failure included. Optimal chooses the
+ * wide nodes that the surface area heuristic expects rays to visit least
+ * (fuller nodes, fewer of them; worth its time and memory, about 45 bytes
+ * a binary node, where many rays follow one build: a mesh); otherwise
+ * each node opens its largest children first. */
+glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, bool optimal, glint_error *err);
 void bvhw_free(bvhw *b);
 /* Bytes of the nodes. */
 size_t bvhw_node_bytes(const bvhw *b);

@@ -119,7 +119,7 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
     free(m->tri_material);
     m->tri = tri;
     m->tri_material = tmat;
-    glint_rc rc2 = bvhw_from_bvh(&m->bvh, &bin, accel_isa_active(), err);
+    glint_rc rc2 = bvhw_from_bvh(&m->bvh, &bin, accel_isa_active(), true, err);
     return rc2 == GLINT_OK ? make_blocks(m, err) : rc2;
 }
 

@@ -245,7 +245,7 @@ static glint_rc build_accel(scene *s, glint_error *err)
     /* Leaves refer to objects directly. */
     for (int i = 0; i < bin.nprims; i++)
         bin.prims[i] = bounded[bin.prims[i]];
-    rc = bvhw_from_bvh(&s->bvh, &bin, accel_isa_active(), err);
+    rc = bvhw_from_bvh(&s->bvh, &bin, accel_isa_active(), false, err);
 out:
     free(bounded);
     free(boxes);
