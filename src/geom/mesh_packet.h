@@ -66,6 +66,14 @@ static inline __m256 packet_next_up(__m256 x)
     return _mm256_blendv_ps(y, _mm256_set1_ps(0x1p-149f), _mm256_cmp_ps(x, zero, _CMP_EQ_OQ));
 }
 
+/* The lanes of mask (bit k: lane k) as an all-ones or all-zeros lane. */
+static inline __m256 packet_lanes(int mask)
+{
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256i in = _mm256_and_si256(_mm256_set1_epi32(mask), bit);
+    return _mm256_castsi256_ps(_mm256_cmpeq_epi32(in, bit));
+}
+
 static inline float packet_hmin(__m256 v)
 {
     __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
@@ -84,9 +92,7 @@ __attribute__((always_inline)) static inline int packet_node(const bvh8_node *n,
     float key[8];
     int m = 0;
     const __m256 scale = _mm256_set1_ps(WIDE_FAR_SCALE), inf = _mm256_set1_ps(INFINITY);
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    const __m256 act = _mm256_castsi256_ps(
-        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(active), bit), bit));
+    const __m256 act = packet_lanes(active);
     for (int k = 0; k < 8; k++) {
         if (n->count[k] == 0 && n->child[k] < 0)
             break; /* empty lanes come last */
@@ -170,9 +176,7 @@ __attribute__((always_inline)) static inline void packet_keep(packet_best *best,
     int keep = _mm256_movemask_ps(_mm256_or_ps(nearer, tie)) & mask;
     if (!keep)
         return;
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    __m256 sel = _mm256_castsi256_ps(
-        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(keep), bit), bit));
+    __m256 sel = packet_lanes(keep);
     best->t = _mm256_blendv_ps(best->t, t, sel);
     best->b1 = _mm256_blendv_ps(best->b1, b1, sel);
     best->b2 = _mm256_blendv_ps(best->b2, b2, sel);

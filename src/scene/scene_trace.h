@@ -280,10 +280,7 @@ __attribute__((always_inline)) static inline bool scene_shadow8_leaf(void *ctx, 
                              &c->blocked, &c->crosses);
     if (!(c->active & ~c->blocked))
         return false;
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    __m256 off = _mm256_castsi256_ps(
-        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(c->blocked), bit), bit));
-    *tmax = _mm256_blendv_ps(*tmax, _mm256_set1_ps(-INFINITY), off);
+    *tmax = _mm256_blendv_ps(*tmax, _mm256_set1_ps(-INFINITY), packet_lanes(c->blocked));
     return true;
 }
 
