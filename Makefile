@@ -12,6 +12,9 @@ BUILD    ?= build
 SAN      ?= 0
 CC       ?= cc
 PKGS     := yaml-0.1 stb assimp spng libjpeg libdeflate
+# assimp is opened when a mesh is first imported (src/load/assimp_load.c):
+# compiled against its headers, not linked
+LINK_PKGS := $(filter-out assimp,$(PKGS))
 # OpenEXR's C library alone (OpenEXRCore), not its C++ ones
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 EXR_LIBS   := $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore-3_1)
@@ -27,7 +30,7 @@ LDFLAGS  += -fsanitize=fuzzer,address,undefined
 else
 CFLAGS   += -O2
 endif
-LDLIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthread
+LDLIBS   := $(shell pkg-config --libs $(LINK_PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthread -ldl
 
 # The command line opens SDL2 for its preview window (-p) when the window
 # opens (src/app/sdl_load.c), so it is compiled against SDL2's headers but
@@ -106,8 +109,8 @@ INSTALL_DOC := $(DESTDIR)$(PREFIX)/share/doc/glint
 .PHONY: install
 install: all
 	@mkdir -p $(BUILD)
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES@|$(PKGS)|' \
-		-e 's|@LIBS_PRIVATE@|$(EXR_LIBS) -lm -pthread|' src/api/glint.pc.in > $(BUILD)/glint.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES@|$(LINK_PKGS)|' \
+		-e 's|@LIBS_PRIVATE@|$(EXR_LIBS) -lm -pthread -ldl|' src/api/glint.pc.in > $(BUILD)/glint.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include \
 		$(DESTDIR)$(PREFIX)/share/glint $(INSTALL_DOC)
 	install -m 755 $(BUILD)/glint $(DESTDIR)$(PREFIX)/bin/glint
@@ -151,7 +154,7 @@ $(BUILD)/libglint.so: $(LIB_OBJ) src/api/glint.map
 $(APP_OBJ): CPPFLAGS += $(SDL_CFLAGS)
 
 $(BUILD)/glint: $(APP_OBJ) $(CLI_OBJ) $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) -ldl
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/glint-mpi: $(DIST_OBJ) $(CLI_OBJ) $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)

@@ -792,6 +792,8 @@ typedef struct glint_write_options {
     const float *alpha;      /* NULL (the film's own alpha, if it has one), or width*height
                                 coverage values in [0, 1] (linear): PNG and EXR get an
                                 alpha channel; other formats ignore it */
+    int threads;             /* PNG: threads that compress it, 0 to 1024 (0: one per
+                                core); the file is the same for any number */
 } glint_write_options;
 
 /* Writes the film to path ("-": standard output). Float formats (.hdr,

@@ -561,6 +561,47 @@ Test(load_errors, unknown_material_and_texture_names)
                  "scene.yaml:2:26: unknown texture 'woood' (did you mean 'wood'?)");
 }
 
+/* Texture files are decoded together at the end of the first pass, on
+ * several threads: the first one met that does not decode is the error,
+ * even when the pass went on to another; each image lands in its
+ * texture. */
+Test(load_errors, textures_decoded_together_report_the_first_bad_file)
+{
+    vfile files[] = {
+        {"textures/bad.png", "this is not a PNG file"},
+        {"textures/bad2.png", "nor is this"},
+        {NULL, NULL},
+    };
+    const char *bad = ": not an image glint reads (PNG, JPEG, HDR, EXR, PFM, PPM, BMP, TGA, GIF)";
+    char want[256];
+    snprintf(want, sizeof want, "scene.yaml:2:35: textures/bad.png%s", bad);
+    expect_error_with("textures: {a: {type: image, file: textures/flag.png},\n"
+                      "           b: {type: image, file: textures/bad.png}}\n"
+                      "objects: [{type: sphere, center: [0, 0, 0], radius: -1}]\n",
+                      files, want);
+    snprintf(want, sizeof want, "scene.yaml:1:35: textures/bad2.png%s", bad);
+    expect_error_with("textures: {a: {type: image, file: textures/bad2.png},\n"
+                      "           b: {type: image, file: textures/bad.png}}\n",
+                      files, want);
+    expect_error_with("textures: {a: {type: image, file: textures/flag.png},\n"
+                      "           b: {type: image, file: textures/globe.png}}\n"
+                      "objects: [{type: sphere, center: [0, 0, 0], radius: -1}]\n",
+                      files, "scene.yaml:3:53: radius must be > 0 (got -1)");
+    scene *sc = load_ok_with("textures: {a: {type: image, file: textures/globe.png},\n"
+                             "           b: {type: image, file: textures/flag.png},\n"
+                             "           c: {type: image, file: textures/globe.png}}\n"
+                             "materials: {m: {texture: a}, n: {texture: b}, o: {texture: c}}\n",
+                             files);
+    cr_assert_eq(sc->nimages, 2, "one image per file");
+    const int sizes[3][2] = {{1024, 512}, {600, 400}, {1024, 512}};
+    for (int t = 0; t < 3; t++) {
+        const image *im = &sc->images[sc->textures[t].image.image];
+        cr_expect(im->width == sizes[t][0] && im->height == sizes[t][1] && im->rgb,
+                  "texture %d: %dx%d", t, im->width, im->height);
+    }
+    scene_free(sc);
+}
+
 Test(load_errors, missing_or_unreadable_files)
 {
     vfile files[] = {

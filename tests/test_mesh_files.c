@@ -75,7 +75,7 @@ static const char *write_png(void)
         for (int x = 0; x < 8; x++)
             memcpy(&texels[3 * (8 * y + x)], quadrant[(y >= 4) * 2 + (x >= 4)], 12);
     glint_film film = {.width = 8, .height = 8, .rgb = texels};
-    glint_write_options o = {GLINT_FORMAT_PNG, GLINT_TRANSFER_NONE, 0, 0, NULL};
+    glint_write_options o = {.format = GLINT_FORMAT_PNG};
     char path[512];
     snprintf(path, sizeof path, "%s/tex.png", dir);
     glint_error err = {0};

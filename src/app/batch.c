@@ -120,6 +120,7 @@ static glint_rc write_image(const struct cli *c, const char *path, const glint_s
     progress_phase(bar, what);
     glint_write_options w = c->write;
     w.transfer = s->transfer;
+    w.threads = s->threads;
     glint_rc rc = glint_film_write(film, path, &w, err);
     progress_clear(bar);
     *seconds += cli_now() - t0;

@@ -98,6 +98,7 @@ static void save(preview *p, const glint_film *film)
     glint_error err = {0};
     glint_write_options w = p->cli->write;
     w.transfer = p->settings.transfer;
+    w.threads = p->settings.threads;
     if (glint_film_write(film, p->cli->output, &w, &err) != GLINT_OK)
         fprintf(stderr, "glint: %s\n", err.msg);
     else if (!p->cli->quiet)

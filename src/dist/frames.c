@@ -60,6 +60,7 @@ static glint_rc render_resumable(const dist_job *job, const char *path, glint_st
     } else if (rc == GLINT_OK) {
         glint_write_options w = job->opt->write;
         w.transfer = job->settings.transfer;
+        w.threads = job->settings.threads;
         rc = glint_film_write(&rec.film, path, &w, err);
         if (rc == GLINT_OK && resumed)
             unlink(rpath);

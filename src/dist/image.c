@@ -28,6 +28,7 @@ static glint_rc write_image(const dist_job *job, const char *path, const glint_f
     progress_phase(bar, what);
     glint_write_options w = job->opt->write;
     w.transfer = job->settings.transfer;
+    w.threads = job->settings.threads;
     glint_rc rc = glint_film_write(film, path, &w, err);
     progress_clear(bar);
     return rc;

@@ -44,6 +44,7 @@ typedef struct raster {
     glint_transfer transfer; /* for 8- and 16-bit formats */
     int bits;                /* per channel; already checked for the format */
     int quality;             /* JPEG, 1..100 */
+    int threads;             /* PNG: threads compressing it; 0: one per core */
 } raster;
 
 /* "name: image WxH is too large (limit N pixels)" or an empty-size error. */
@@ -80,10 +81,15 @@ glint_rc rgbe_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc pfm_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err);
 
-/* The fast PNG writer's core, also used by the benchmark: 8- or 16-bit
- * samples (16-bit ones in native order, written big-endian), 1 to 4
- * channels, rows packed. */
+/* The fast PNG writer's core, also used by the benchmark and the tests:
+ * 8- or 16-bit samples (16-bit ones in native order, written big-endian),
+ * 1 to 4 channels, rows packed; threads as in raster. */
 glint_rc png_encode_pixels(int width, int height, int channels, int bits, const void *pixels,
-                           bytebuf *out, glint_error *err);
+                           int threads, bytebuf *out, glint_error *err);
+
+/* The rows of each strip the PNG writer compresses apart (png_write.c): a
+ * function of the image's size alone, so the file's bytes do not depend on
+ * the number of threads. */
+int png_strip_rows(int width, int height, int channels, int bits);
 
 #endif

@@ -198,8 +198,9 @@ static glint_rc replace(const char *shown, const char *path, const void *data, s
     hold_signals(&saved);
     int fd = create_temp(dir, exists ? 0600 : 0666, &tmp);
     if (fd < 0) {
-        rc = err_set(err, GLINT_ERR_IO, "%s: cannot write in folder '%s': %s", shown, dir,
-                     strerror(errno));
+        rc = !tmp ? err_nomem(err)
+                  : err_set(err, GLINT_ERR_IO, "%s: cannot write in folder '%s': %s", shown, dir,
+                            strerror(errno));
         release_signals(&saved);
         goto out;
     }

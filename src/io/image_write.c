@@ -131,6 +131,9 @@ static glint_rc resolve(const char *path, const glint_write_options *o, resolved
     if (r->bits < 0)
         return err_set(err, GLINT_ERR_INPUT, "%s: %d bits per channel is not possible in .%s",
                        shown, o->bits, image_format_name(r->format));
+    if (o->threads < 0 || o->threads > 1024)
+        return err_set(err, GLINT_ERR_INPUT, "%s: threads must be 0 to 1024 (got %d)", shown,
+                       o->threads);
     if (o->quality < 0 || o->quality > 100)
         return err_set(err, GLINT_ERR_INPUT, "%s: JPEG quality must be 1 to 100 (got %d)", shown,
                        o->quality);
@@ -188,6 +191,7 @@ glint_rc image_write_film(const char *path, int width, int height, const float *
         .transfer = opts ? opts->transfer : GLINT_TRANSFER_NONE,
         .bits = res.bits,
         .quality = res.quality,
+        .threads = opts ? opts->threads : 0,
     };
     bytebuf out = {0};
     rc = encode(&r, res.format, &out, err);

@@ -299,6 +299,7 @@ static void loader_free(loader *L)
     free(L->texture_refs);
     free(L->material_refs);
     free(L->pending);
+    free(L->image_jobs); /* emptied by load_decode_images */
     free(L->bump_refs);
     free(L->csg_refs);
 }
@@ -332,6 +333,7 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
     L.ambient = scene_ambient(L.s);
     L.fog = scene_fog(L.s);
     rc = load_text(&L, text, len, data, name, key, dir);
+    rc = load_decode_images(&L, rc);
     if (rc == GLINT_OK)
         rc = finish(&L);
 out:

@@ -83,6 +83,19 @@ enum {
     SET_ANIMATION = 1 << 22,
 };
 
+/* A texture file read in the first pass, its image decoded at the end of
+ * it (load_decode_images), into the scene's image `index`. */
+typedef struct image_job {
+    char *data, *shown; /* the file's bytes; its name in messages */
+    size_t size;
+    int file;      /* where the texture names it */
+    uint32_t node;
+    int index;
+    image img;
+    glint_rc rc;
+    glint_error err;
+} image_job;
+
 typedef struct loader {
     scene *s;
     scene_reader reader;
@@ -119,6 +132,8 @@ typedef struct loader {
     uint32_t fov_node;
     anim_channel *pending; /* keyed values read, waiting for what they animate */
     int npending, cap_pending;
+    image_job *image_jobs; /* texture files waiting to be decoded */
+    int nimage_jobs, cap_image_jobs;
 } loader;
 
 
@@ -236,6 +251,11 @@ glint_rc load_light(loader *L, uint32_t map);          /* lights.c: one item of 
 /* textures.c and materials.c: a texture or material mapping, added;
  * *index gets it. */
 glint_rc load_texture(loader *L, uint32_t map, int *index);
+/* textures.c: the texture files the first pass read, decoded at once, one
+ * thread per file (up to one per core), into their scene images. rc is the
+ * first pass's result: a file that does not decode was met before whatever
+ * ended the pass, so its error is the one reported. Frees the jobs. */
+glint_rc load_decode_images(loader *L, glint_rc rc);
 glint_rc load_material(loader *L, uint32_t map, int *index);
 /* settings.c: fog: at the top level. */
 glint_rc load_fog(loader *L, uint32_t map);

@@ -19,6 +19,7 @@
 #include <assimp/scene.h>
 
 #include "core/error.h"
+#include "load/assimp_load.h"
 #include "load/mesh_material.h"
 #include "load/mesh_normals.h"
 
@@ -408,6 +409,9 @@ glint_rc mesh_assimp_read(const char *name, const void *data, size_t size,
                           const mesh_assimp_opts *opts, mesh_data *out, glint_error *err)
 {
     memset(out, 0, sizeof *out);
+    const char *why_not = NULL;
+    if (!assimp_load(&why_not))
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import meshes: %s", name, why_not);
     struct aiPropertyStore *props = aiCreatePropertyStore();
     if (!props)
         return err_nomem(err);

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "geom/shape.h"
+#include "load/assimp_load.h"
 #include "load/mesh_assimp.h"
 #include "load/mesh_isolate.h"
 #include "load/mesh_limits.h"
@@ -271,6 +272,10 @@ static glint_rc run_import(const char *name, const void *data, size_t size,
         ao.smooth_angle = MESH_DEFAULT_SMOOTH_ANGLE;
     mesh_data md;
     glint_rc rc;
+    /* assimp opened here, before a child process is forked, not in it */
+    const char *why_not = NULL;
+    if (!assimp_load(&why_not))
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot import meshes: %s", name, why_not);
     pthread_mutex_lock(&import_lock);
     if (lim.trusted) {
         rc = mesh_assimp_read(name, data, size, &ao, &md, err);

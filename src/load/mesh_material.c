@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/image.h"
+#include "load/assimp_load.h"
 
 typedef enum format { FORMAT_OTHER, FORMAT_GLTF, FORMAT_COLLADA, FORMAT_PLAIN } format;
 

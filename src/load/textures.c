@@ -3,9 +3,14 @@
  * inline in a material. */
 #include "loader.h"
 
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/array.h"
+#include "scene/settings.h"
 
 /* In texture_kind order. */
 static const char *const texture_types[] = {"image", "checker", "stripes", "rings",
@@ -36,7 +41,9 @@ static const char *const *const texture_keys[TEXTURE_KIND_COUNT] = {
                                            NULL},
 };
 
-/* The image at a path written in the file, read once per resolved path. */
+/* The image at a path written in the file, read once per resolved path:
+ * an empty scene image now, its file decoded at the end of the first pass
+ * with the others (load_decode_images). */
 static glint_rc load_image_file(loader *L, uint32_t v, int *index)
 {
     const char *written = ydoc_text(load_doc(L), load_node(L, v));
@@ -55,27 +62,84 @@ static glint_rc load_image_file(loader *L, uint32_t v, int *index)
     rc = load_named_file(L, v, written, resolved, "texture", &data, &size);
     if (rc != GLINT_OK)
         goto out;
-    image img;
-    glint_error ierr = {0};
-    rc = image_load_memory(data, size, shown_name, &img, &ierr);
-    if (rc == GLINT_ERR_NOMEM) {
-        rc = err_nomem(L->err);
-        goto out;
-    }
-    if (rc != GLINT_OK) {
-        rc = load_fail(L, v, "%s", ierr.msg);
-        goto out;
-    }
-    *index = scene_add_image(L->s, &img);
+    image empty = {0};
+    int job = array_push((void **)&L->image_jobs, &L->nimage_jobs, &L->cap_image_jobs,
+                         sizeof *L->image_jobs);
+    *index = job < 0 ? -1 : scene_add_image(L->s, &empty);
     if (*index < 0 || !names_put(&L->images, resolved, strlen(resolved), *index)) {
-        image_free(&img);
+        L->nimage_jobs -= job >= 0;
         rc = err_nomem(L->err);
+        goto out;
     }
+    L->image_jobs[job] = (image_job){data, shown_name, size, L->cur, v, *index, {0}, GLINT_OK, {0}};
+    data = shown_name = NULL;
 out:
     free(data);
     free(resolved);
     free(shown_name);
     return rc;
+}
+
+typedef struct decoding {
+    image_job *jobs;
+    int n;
+    atomic_int next;
+} decoding;
+
+static void *decode_worker(void *arg)
+{
+    decoding *d = arg;
+    for (int i; (i = atomic_fetch_add(&d->next, 1)) < d->n;) {
+        image_job *j = &d->jobs[i];
+        j->rc = image_load_memory(j->data, j->size, j->shown, &j->img, &j->err);
+    }
+    return NULL;
+}
+
+/* Threads decoding textures at most. */
+#define DECODE_THREADS 16
+
+/* Every job decoded, on up to one thread per core, the calling one
+ * included. */
+static void decode_all(image_job *jobs, int n)
+{
+    decoding d = {.jobs = jobs, .n = n};
+    atomic_init(&d.next, 0);
+    int threads = settings_default_threads();
+    threads = threads < n ? threads : n;
+    threads = threads < DECODE_THREADS ? threads : DECODE_THREADS;
+    pthread_t th[DECODE_THREADS];
+    int started = 0;
+    for (; started < threads - 1; started++)
+        if (pthread_create(&th[started], NULL, decode_worker, &d) != 0)
+            break;
+    decode_worker(&d);
+    for (int i = 0; i < started; i++)
+        pthread_join(th[i], NULL);
+}
+
+glint_rc load_decode_images(loader *L, glint_rc rc)
+{
+    image_job *jobs = L->image_jobs;
+    int n = L->nimage_jobs;
+    if (n > 0 && rc != GLINT_ERR_NOMEM)
+        decode_all(jobs, n);
+    glint_rc first = GLINT_OK;
+    for (int i = 0; i < n; i++) {
+        image_job *j = &jobs[i];
+        if (first == GLINT_OK && rc != GLINT_ERR_NOMEM && j->rc != GLINT_OK)
+            first = j->rc == GLINT_ERR_NOMEM ? err_nomem(L->err)
+                                             : load_fail_in(L, j->file, j->node, "%s", j->err.msg);
+        if (first == GLINT_OK && rc == GLINT_OK)
+            scene_set_image(L->s, j->index, &j->img);
+        image_free(&j->img);
+        free(j->data);
+        free(j->shown);
+    }
+    free(jobs);
+    L->image_jobs = NULL;
+    L->nimage_jobs = L->cap_image_jobs = 0;
+    return first != GLINT_OK ? first : rc;
 }
 
 static glint_rc read_wrap(loader *L, uint32_t v, struct image_texture *t)

@@ -106,6 +106,13 @@ int scene_add_image(scene *s, image *img)
     return i;
 }
 
+void scene_set_image(scene *s, int i, image *img)
+{
+    image_free(&s->images[i]);
+    s->images[i] = *img;
+    *img = (image){0};
+}
+
 int scene_add_object(scene *s, const shape *sh, int mat, int xf)
 {
     object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}, -1, false};

@@ -87,6 +87,8 @@ void scene_free(scene *s);
 int scene_add_material(scene *s, const material *m);
 int scene_add_texture(scene *s, const texture *t);
 int scene_add_image(scene *s, image *img); /* takes ownership of img's pixels */
+/* Puts img (its pixels owned from now on) in image i, added empty before. */
+void scene_set_image(scene *s, int i, image *img);
 int scene_add_light(scene *s, const light *l);
 int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
