@@ -4,7 +4,7 @@
  * (scene_walk8, when their directions' signs agree), each leaf's objects
  * tested against the rays that enter it. An object is tested against the
  * rays at once where it can be: a mesh in one walk of its tree
- * (mesh_intersect8), a sphere or quad in one test (shape8_hit); any other
+ * (mesh_intersect8), a sphere, quad or plane in one test (shape8_hit); any other
  * ray by ray. Otherwise each ray goes through scene_intersect. Either way
  * every ray gets the hit scene_intersect gives it, to the bit. */
 #include <string.h>
@@ -51,8 +51,8 @@ static inline bool three_or_more(int mask)
 }
 
 /* Object i against the rays of active, each searched up to best[k]: a
- * mesh against three or more of them in one walk, a sphere or a quad in
- * one test, anything else ray by ray. */
+ * mesh against three or more of them in one walk, a sphere, a quad or a
+ * plane in one test, anything else ray by ray. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                         scene_hit hit[8])
 {
@@ -116,7 +116,8 @@ static bool packs(const scene *s, const object *o)
     shape_kind k = o->shape.kind;
     if (k == SHAPE_MESH)
         return !o->moving && eight_wide(o->shape.mesh->bvh.isa);
-    return (k == SHAPE_SPHERE || k == SHAPE_QUAD) && o->xform < 0 && eight_wide(s->bvh.isa);
+    return (k == SHAPE_SPHERE || k == SHAPE_QUAD || k == SHAPE_PLANE) && o->xform < 0 &&
+           eight_wide(s->bvh.isa);
 }
 
 bool scene_packets_pay(const scene *s)
