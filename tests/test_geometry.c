@@ -508,6 +508,45 @@ Test(geometry, occluded_agrees_with_intersect_on_random_rays)
     free_poly(l);
 }
 
+/* torus_occluded answers some rays without the root (a ray inside the tube
+ * where it crosses the torus's plane is blocked): against torus_intersect
+ * on shadow-like rays, many of them leaving the surface itself and many
+ * ending a hair before or after their first hit, where rounding t onto
+ * tmin or tmax would decide. */
+Test(geometry, torus_occluded_agrees_with_intersect_near_the_ends)
+{
+    struct torus tor = {v3(0.3f, -0.2f, 0.1f), 0.32f, 0.1f};
+    shape s = shape_torus(tor.center, tor.major, tor.minor);
+    aabb b = shape_bounds(&s);
+    rng g = rng_seed(97, 3);
+    int blocked = 0, near_end = 0;
+    for (int i = 0; i < 400000; i++) {
+        vec3 o = rand_in_box(&g, (aabb){v3_sub(b.lo, v3s(1)), v3_add(b.hi, v3s(1))});
+        vec3 d = v3_sub(rand_in_box(&g, b), o);
+        ray r = ray_make(o, d, INFINITY);
+        shape_hit h;
+        if (i % 4 == 1 && shape_intersect(&s, &r, &h)) { /* from the surface, out or in */
+            surface sf;
+            shape_surface(&s, &r, &h, &sf);
+            vec3 nd = v3_scale(rng_unit_dir(&g), 0.5f + rng_float(&g));
+            r = ray_make(ray_offset(sf.p, sf.ng, nd), nd, INFINITY);
+        }
+        if (i % 3 && shape_intersect(&s, &r, &h)) { /* tmax within a few floats of the hit */
+            r.tmax = h.t;
+            for (int k = (int)(rng_u32(&g) % 5) - 2; k > 0; k--)
+                r.tmax = nextafterf(r.tmax, INFINITY);
+            for (int k = (int)(rng_u32(&g) % 5) - 2; k < 0; k++)
+                r.tmax = nextafterf(r.tmax, 0.0f);
+            near_end++;
+        }
+        bool hit = torus_intersect(&tor, &r, &h);
+        cr_assert_eq(torus_occluded(&tor, &r), hit, "ray %d", i);
+        blocked += hit;
+    }
+    cr_assert_gt(blocked, 100000);
+    cr_assert_gt(near_end, 50000);
+}
+
 /* Through a shear and a turn: the world hit maps back onto the torus and
  * the world normal is the object's gradient through the inverse transpose. */
 Test(geometry, sheared_torus_through_scene_transform)

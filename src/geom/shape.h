@@ -229,6 +229,7 @@ void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *o
 bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit);
 void disk_surface(const struct disk *s, vec3 p, surface *out);
 bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit);
+bool torus_occluded(const struct torus *s, const ray *r);
 void torus_surface(const struct torus *s, vec3 p, surface *out);
 /* The same without (u, v) (left 0), which cost two arc tangents. */
 void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out);
