@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "load/names.h"
+#include "load/yaml_fast.h"
 
 typedef struct anchor {
     uint32_t node;
@@ -105,11 +106,6 @@ static bool reserve(void **p, size_t *cap, size_t need, size_t elem)
     *p = q;
     *cap = ncap;
     return true;
-}
-
-void ydoc_show(const char *text, size_t len, char *buf, size_t cap)
-{
-    text_escape(text, len, YDOC_SHOW_MAX, buf, cap);
 }
 
 /* Types a scalar by its tag, or for an untagged plain scalar by its form. */
@@ -531,52 +527,64 @@ static glint_rc parser_error(builder *b, const yaml_parser_t *p)
     return fail(b, line, col, "%s", problem);
 }
 
-glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
-                    glint_error *err)
+static glint_rc take_event(void *ctx, const yaml_event_t *ev) { return on_event(ctx, ev); }
+
+/* The text through libyaml, event by event. */
+static glint_rc read_libyaml(builder *b, const char *text, size_t len)
 {
-    ydoc *d = calloc(1, sizeof *d);
-    if (!d)
-        return err_nomem(err);
-    d->root = YDOC_NONE;
-    builder b = {.d = d, .name = name, .src = text, .srclen = len, .err = err};
     yaml_parser_t parser;
-    if (!yaml_parser_initialize(&parser)) {
-        free(d);
-        return err_nomem(err);
-    }
+    if (!yaml_parser_initialize(&parser))
+        return err_nomem(b->err);
     yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
     glint_rc rc = GLINT_OK;
-    while (!b.done) {
+    while (!b->done) {
         yaml_event_t ev;
         if (!yaml_parser_parse(&parser, &ev)) {
-            rc = parser_error(&b, &parser);
+            rc = parser_error(b, &parser);
             break;
         }
-        rc = on_event(&b, &ev);
+        rc = on_event(b, &ev);
         yaml_event_delete(&ev);
         if (rc != GLINT_OK)
             break;
     }
     yaml_parser_delete(&parser);
-    names_free(&b.anchor_names);
-    free(b.anchors);
-    free(b.pending);
-    free(b.scratch);
-    free(b.sources);
-    if (rc != GLINT_OK) {
-        ydoc_free(d);
-        return rc;
-    }
-    *out = d;
-    return GLINT_OK;
+    return rc;
 }
 
-void ydoc_free(ydoc *d)
+static void builder_free(builder *b)
 {
-    if (!d)
-        return;
-    free(d->nodes);
-    free(d->kids);
-    free(d->text);
-    free(d);
+    names_free(&b->anchor_names);
+    free(b->anchors);
+    free(b->pending);
+    free(b->scratch);
+    free(b->sources);
+}
+
+/* The plain subset by yaml_fast; any other text, and any text the tree
+ * refuses (for libyaml's word on what comes first), again by libyaml. */
+glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
+                    glint_error *err)
+{
+    glint_rc rc = GLINT_OK;
+    for (int pass = 0; pass < 2; pass++) {
+        ydoc *d = calloc(1, sizeof *d);
+        if (!d)
+            return err_nomem(err);
+        d->root = YDOC_NONE;
+        builder b = {.d = d, .name = name, .src = text, .srclen = len, .err = err};
+        if (pass == 0)
+            rc = yfast_read(text, len, take_event, &b) == YFAST_DONE ? GLINT_OK : GLINT_ERR_INPUT;
+        else
+            rc = read_libyaml(&b, text, len);
+        builder_free(&b);
+        if (rc == GLINT_OK) {
+            *out = d;
+            return GLINT_OK;
+        }
+        ydoc_free(d);
+        if (rc == GLINT_ERR_NOMEM)
+            break;
+    }
+    return rc;
 }
