@@ -93,6 +93,41 @@ Test(roots, first_root_alone_agrees_with_all)
     cr_assert_gt(found, 5000);
 }
 
+/* roots_quartic_above turns a quartic away only where the search finds no
+ * root: over quartics with roots near, at and just past the ends of the
+ * interval, pairs of roots a hair apart and tangent minima a hair above or
+ * below zero. And it does turn the clear cases away. */
+Test(roots, above_only_where_the_search_finds_nothing)
+{
+    uint32_t seed = 777;
+    int above = 0;
+    for (int k = 0; k < 200000; k++) {
+        double v[5];
+        for (int i = 0; i < 5; i++) {
+            seed = seed * 1664525u + 1013904223u;
+            v[i] = (double)(seed >> 8) / (double)(1u << 24);
+        }
+        /* ((x - p)^2 + e)((x - q)^2 + g): minima near p and q, at e and g from zero */
+        double p = 2.0 * v[0] - 0.5, q = 2.0 * v[1] - 0.5;
+        double e = ldexp(v[2] - 0.5, -(int)(v[4] * 60)), g = (v[3] - 0.3) * 0.5;
+        double f[3] = {p * p + e, -2.0 * p, 1}, h[3] = {q * q + g, -2.0 * q, 1};
+        double c[5] = {0};
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                c[i + j] += f[i] * h[j];
+        double hi = 0.5 + v[4], r[4];
+        if (!roots_quartic_above(c, hi))
+            continue;
+        above++;
+        cr_assert_eq(roots_quartic(c, 0.0, hi, r, 4), 0, "quartic %d", k);
+        cr_assert_eq(roots_quartic(c, 0.0, hi, r, 1), 0, "quartic %d", k);
+    }
+    cr_assert_gt(above, 20000);
+    const double clear[5] = {1, 0, 0, 0, 1}, through[5] = {-0.1, 0, 1, 0, 0};
+    cr_assert(roots_quartic_above(clear, 1.0));
+    cr_assert_not(roots_quartic_above(through, 1.0));
+}
+
 /* ---- cone ----------------------------------------------------------------- */
 
 /* Pointed: base at the origin, radius 1, height 2, so R(y) = 1 - y/2 and

@@ -14,7 +14,10 @@
  * the ray starts (about its origin they would grow as distance^4 and
  * swamp the roots); and the direction is made unit length, so the leading
  * coefficient is 1 and the unknown is arc length. A ray from inside the
- * tube starts with f < 0 and finds its way out the same way. */
+ * tube starts with f < 0 and finds its way out the same way. A segment on
+ * which the quartic provably stays above zero (roots_quartic_above: most
+ * rays that pass the box's tests but miss the tube) is turned away before
+ * the search, which would find nothing there either. */
 #include <math.h>
 #include <stddef.h>
 
@@ -99,6 +102,8 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
 /* The nearest root in (tmin, tmax), into hit unless it is NULL. */
 static bool first_hit(const tquartic *q, const ray *r, shape_hit *hit)
 {
+    if (roots_quartic_above(q->c, q->hi))
+        return false;
     double roots[4];
     int n = roots_quartic(q->c, 0.0, q->hi, roots, 1);
     for (int pass = 0; pass < 2 && n > 0; pass++) {
