@@ -9,6 +9,7 @@
 #include <immintrin.h>
 #include "core/ray.h"
 #include "geom/shape.h"
+#include "geom/torus8.h"
 
 /* The rays of a packet, one register per coordinate. */
 typedef struct rays8 {
@@ -155,12 +156,16 @@ static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8]
     return m;
 }
 
-/* Defines shape8_hit_<isa>. */
+/* Defines shape8_hit_<isa> and torus8_hit_<isa>. */
 #define SHAPE8_KERNELS(isa)                                                                    \
     int shape8_hit_##isa(const shape *sh, const ray8 *r, const float tmax[8], int active,      \
                          shape_hit *hit)                                                       \
     {                                                                                          \
         return shape8_hit(sh, r, tmax, active, hit);                                           \
+    }                                                                                          \
+    int torus8_hit_##isa(const struct torus *s, const ray8 *r, int active, shape_hit *hit)     \
+    {                                                                                          \
+        return torus8_hit(s, r, active, hit);                                                  \
     }
 
 #endif

@@ -24,16 +24,9 @@
 #include "core/roots.h"
 #include "shape.h"
 
-/* The ray's quartic in s = (t - t0) |d|, valid for s in (0, hi). */
-typedef struct tquartic {
-    double c[5];
-    double t0, len, hi;
-    double py, uy; /* the entry point's and the direction's y */
-} tquartic;
-
 /* Clips t in (tmin, tmax) to the torus's box, enlarged by 1% so that a
  * root is never on its faces; false when nothing is left. */
-static bool setup(const struct torus *s, const ray *r, double tmin, double tmax, tquartic *q)
+static bool setup(const struct torus *s, const ray *r, double tmin, double tmax, torus_quartic *q)
 {
     double R = s->major, rm = s->minor;
     double o[3] = {(double)r->o.x - s->center.x, (double)r->o.y - s->center.y,
@@ -99,8 +92,7 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
     return true;
 }
 
-/* The nearest root in (tmin, tmax), into hit unless it is NULL. */
-static bool first_hit(const tquartic *q, const ray *r, shape_hit *hit)
+bool torus_solve(const torus_quartic *q, const ray *r, shape_hit *hit)
 {
     if (roots_quartic_above(q->c, q->hi))
         return false;
@@ -125,8 +117,8 @@ static bool first_hit(const tquartic *q, const ray *r, shape_hit *hit)
 
 bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit)
 {
-    tquartic q;
-    return setup(s, r, r->tmin, r->tmax, &q) && first_hit(&q, r, hit);
+    torus_quartic q;
+    return setup(s, r, r->tmin, r->tmax, &q) && torus_solve(&q, r, hit);
 }
 
 /* Whether the quartic, above zero beyond doubt at the entry, is below it
@@ -136,7 +128,7 @@ bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit)
  * between its turning points runs from above zero to below, and Newton's
  * method, started where the quartic bends towards zero, can neither stall
  * nor overshoot when the quartic is that far below zero ahead). */
-static bool dips_below(const tquartic *q, double x)
+static bool dips_below(const torus_quartic *q, double x)
 {
     double h = q->hi, h2 = h * h;
     double size = fabs(q->c[0]) + fabs(q->c[1] * h) + fabs(q->c[2] * h2) +
@@ -152,7 +144,7 @@ static bool dips_below(const tquartic *q, double x)
  * one. */
 bool torus_occluded(const struct torus *s, const ray *r)
 {
-    tquartic q;
+    torus_quartic q;
     if (!setup(s, r, r->tmin, r->tmax, &q))
         return false;
     double t1 = q.t0 + q.hi / q.len;
@@ -161,12 +153,12 @@ bool torus_occluded(const struct torus *s, const ray *r)
         if (x > 0.0 && x < q.hi && dips_below(&q, x))
             return true;
     }
-    return first_hit(&q, r, NULL);
+    return torus_solve(&q, r, NULL);
 }
 
 int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max)
 {
-    tquartic q;
+    torus_quartic q;
     if (!setup(s, r, r->tmin, INFINITY, &q))
         return 0;
     double roots[4];
