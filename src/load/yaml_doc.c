@@ -333,6 +333,38 @@ static glint_rc add_pair(builder *b, size_t *n, uint32_t key, uint32_t value)
     return GLINT_OK;
 }
 
+/* The pairs less merged keys the mapping has, in order; refuses repeated
+ * own keys. A few own pairs, all different (most mappings), need no sorting. */
+static glint_rc dedupe(builder *b, size_t n, size_t own, size_t nsources, size_t *kept)
+{
+    bool repeats = nsources > 0 || n > 16;
+    for (size_t i = 1; i < n && !repeats; i++)
+        for (size_t j = 0; j < i && !repeats; j++)
+            repeats = same_key(&b->scratch[i], &b->scratch[j]);
+    *kept = n;
+    if (!repeats)
+        return GLINT_OK;
+    qsort(b->scratch, n, sizeof *b->scratch, by_key_then_order);
+    *kept = 0;
+    for (size_t i = 0; i < n; i++) {
+        const mpair *p = &b->scratch[i];
+        if (*kept > 0 && same_key(p, &b->scratch[*kept - 1])) {
+            if (p->order < own) {
+                const ynode *k = &b->d->nodes[p->key];
+                const ynode *first = &b->d->nodes[b->scratch[*kept - 1].key];
+                char shown[YDOC_SHOW_MAX * 4 + 8];
+                ydoc_show(p->text, p->len, shown, sizeof shown);
+                return fail(b, k->line, k->col, "duplicate key '%s' (first at line %u, column %u)",
+                            shown, first->line, first->col);
+            }
+            continue;
+        }
+        b->scratch[(*kept)++] = *p;
+    }
+    qsort(b->scratch, *kept, sizeof *b->scratch, by_order);
+    return GLINT_OK;
+}
+
 /* Collects the mapping's own pairs, then those of merged mappings, drops
  * merged keys it already has and refuses repeated own keys (YAML 1.1 merge
  * key type, https://yaml.org/type/merge.html). */
@@ -373,25 +405,10 @@ static glint_rc finish_map(builder *b, ynode *map, const uint32_t *kids, size_t 
                 return rc;
         }
     }
-    if (n > 1)
-        qsort(b->scratch, n, sizeof *b->scratch, by_key_then_order);
-    size_t kept = 0;
-    for (size_t i = 0; i < n; i++) {
-        const mpair *p = &b->scratch[i];
-        if (kept > 0 && same_key(p, &b->scratch[kept - 1])) {
-            if (p->order < own) {
-                const ynode *k = &d->nodes[p->key], *first = &d->nodes[b->scratch[kept - 1].key];
-                char shown[YDOC_SHOW_MAX * 4 + 8];
-                ydoc_show(p->text, p->len, shown, sizeof shown);
-                return fail(b, k->line, k->col, "duplicate key '%s' (first at line %u, column %u)",
-                            shown, first->line, first->col);
-            }
-            continue;
-        }
-        b->scratch[kept++] = *p;
-    }
-    if (kept > 1)
-        qsort(b->scratch, kept, sizeof *b->scratch, by_order);
+    size_t kept;
+    glint_rc rc = dedupe(b, n, own, nsources, &kept);
+    if (rc != GLINT_OK)
+        return rc;
     /* Reuse the sources buffer for the flat key, value list. */
     if (!reserve((void **)&b->sources, &b->cap_sources, 2 * kept, sizeof *b->sources))
         return err_nomem(b->err);
@@ -400,7 +417,7 @@ static glint_rc finish_map(builder *b, ynode *map, const uint32_t *kids, size_t 
         b->sources[2 * i + 1] = b->scratch[i].value;
     }
     uint32_t first;
-    glint_rc rc = push_kids(b, b->sources, 2 * kept, &first);
+    rc = push_kids(b, b->sources, 2 * kept, &first);
     map->first = first;
     map->count = (uint32_t)kept;
     return rc;
@@ -552,15 +569,6 @@ static glint_rc read_libyaml(builder *b, const char *text, size_t len)
     return rc;
 }
 
-static void builder_free(builder *b)
-{
-    names_free(&b->anchor_names);
-    free(b->anchors);
-    free(b->pending);
-    free(b->scratch);
-    free(b->sources);
-}
-
 /* The plain subset by yaml_fast; any other text, and any text the tree
  * refuses (for libyaml's word on what comes first), again by libyaml. */
 glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
@@ -573,11 +581,13 @@ glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
             return err_nomem(err);
         d->root = YDOC_NONE;
         builder b = {.d = d, .name = name, .src = text, .srclen = len, .err = err};
-        if (pass == 0)
-            rc = yfast_read(text, len, take_event, &b) == YFAST_DONE ? GLINT_OK : GLINT_ERR_INPUT;
-        else
-            rc = read_libyaml(&b, text, len);
-        builder_free(&b);
+        rc = pass > 0 ? read_libyaml(&b, text, len)
+             : yfast_read(text, len, take_event, &b) == YFAST_DONE ? GLINT_OK : GLINT_ERR_INPUT;
+        names_free(&b.anchor_names);
+        free(b.anchors);
+        free(b.pending);
+        free(b.scratch);
+        free(b.sources);
         if (rc == GLINT_OK) {
             *out = d;
             return GLINT_OK;
