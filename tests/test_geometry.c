@@ -93,6 +93,41 @@ Test(roots, first_root_alone_agrees_with_all)
     cr_assert_gt(found, 5000);
 }
 
+/* roots_quartic_above turns a quartic away only where the search finds no
+ * root: over quartics with roots near, at and just past the ends of the
+ * interval, pairs of roots a hair apart and tangent minima a hair above or
+ * below zero. And it does turn the clear cases away. */
+Test(roots, above_only_where_the_search_finds_nothing)
+{
+    uint32_t seed = 777;
+    int above = 0;
+    for (int k = 0; k < 200000; k++) {
+        double v[5];
+        for (int i = 0; i < 5; i++) {
+            seed = seed * 1664525u + 1013904223u;
+            v[i] = (double)(seed >> 8) / (double)(1u << 24);
+        }
+        /* ((x - p)^2 + e)((x - q)^2 + g): minima near p and q, at e and g from zero */
+        double p = 2.0 * v[0] - 0.5, q = 2.0 * v[1] - 0.5;
+        double e = ldexp(v[2] - 0.5, -(int)(v[4] * 60)), g = (v[3] - 0.3) * 0.5;
+        double f[3] = {p * p + e, -2.0 * p, 1}, h[3] = {q * q + g, -2.0 * q, 1};
+        double c[5] = {0};
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                c[i + j] += f[i] * h[j];
+        double hi = 0.5 + v[4], r[4];
+        if (!roots_quartic_above(c, hi))
+            continue;
+        above++;
+        cr_assert_eq(roots_quartic(c, 0.0, hi, r, 4), 0, "quartic %d", k);
+        cr_assert_eq(roots_quartic(c, 0.0, hi, r, 1), 0, "quartic %d", k);
+    }
+    cr_assert_gt(above, 20000);
+    const double clear[5] = {1, 0, 0, 0, 1}, through[5] = {-0.1, 0, 1, 0, 0};
+    cr_assert(roots_quartic_above(clear, 1.0));
+    cr_assert_not(roots_quartic_above(through, 1.0));
+}
+
 /* ---- cone ----------------------------------------------------------------- */
 
 /* Pointed: base at the origin, radius 1, height 2, so R(y) = 1 - y/2 and
@@ -506,6 +541,45 @@ Test(geometry, occluded_agrees_with_intersect_on_random_rays)
     }
     free_poly(ico);
     free_poly(l);
+}
+
+/* torus_occluded answers some rays without the root (a ray inside the tube
+ * where it crosses the torus's plane is blocked): against torus_intersect
+ * on shadow-like rays, many of them leaving the surface itself and many
+ * ending a hair before or after their first hit, where rounding t onto
+ * tmin or tmax would decide. */
+Test(geometry, torus_occluded_agrees_with_intersect_near_the_ends)
+{
+    struct torus tor = {v3(0.3f, -0.2f, 0.1f), 0.32f, 0.1f};
+    shape s = shape_torus(tor.center, tor.major, tor.minor);
+    aabb b = shape_bounds(&s);
+    rng g = rng_seed(97, 3);
+    int blocked = 0, near_end = 0;
+    for (int i = 0; i < 400000; i++) {
+        vec3 o = rand_in_box(&g, (aabb){v3_sub(b.lo, v3s(1)), v3_add(b.hi, v3s(1))});
+        vec3 d = v3_sub(rand_in_box(&g, b), o);
+        ray r = ray_make(o, d, INFINITY);
+        shape_hit h;
+        if (i % 4 == 1 && shape_intersect(&s, &r, &h)) { /* from the surface, out or in */
+            surface sf;
+            shape_surface(&s, &r, &h, &sf);
+            vec3 nd = v3_scale(rng_unit_dir(&g), 0.5f + rng_float(&g));
+            r = ray_make(ray_offset(sf.p, sf.ng, nd), nd, INFINITY);
+        }
+        if (i % 3 && shape_intersect(&s, &r, &h)) { /* tmax within a few floats of the hit */
+            r.tmax = h.t;
+            for (int k = (int)(rng_u32(&g) % 5) - 2; k > 0; k--)
+                r.tmax = nextafterf(r.tmax, INFINITY);
+            for (int k = (int)(rng_u32(&g) % 5) - 2; k < 0; k++)
+                r.tmax = nextafterf(r.tmax, 0.0f);
+            near_end++;
+        }
+        bool hit = torus_intersect(&tor, &r, &h);
+        cr_assert_eq(torus_occluded(&tor, &r), hit, "ray %d", i);
+        blocked += hit;
+    }
+    cr_assert_gt(blocked, 100000);
+    cr_assert_gt(near_end, 50000);
 }
 
 /* Through a shear and a turn: the world hit maps back onto the torus and

@@ -241,3 +241,21 @@ Test(mat4, normals_under_rotation_and_uniform_scale)
     xform xt = xform_then(&x, &t);
     ASSERT_V3_NEAR(xform_normal(&xt, v3(0, 1, 0)), -1.0 / 3.0, 0, 0, TOL);
 }
+
+/* xform_is_finite: false as soon as one entry of either matrix is infinite
+ * or NaN, wherever it is. */
+Test(mat4, is_finite_finds_any_bad_entry)
+{
+    xform x = xform_rotate(v3(1, 2, 3), 30);
+    cr_assert(xform_is_finite(&x));
+    const float bad[3] = {INFINITY, -INFINITY, NAN};
+    for (int k = 0; k < 32; k++)
+        for (int b = 0; b < 3; b++) {
+            xform y = x;
+            mat4 *m = k < 16 ? &y.fwd : &y.inv;
+            m->m[k % 16 / 4][k % 4] = bad[b];
+            cr_assert_not(xform_is_finite(&y), "entry %d", k);
+        }
+    xform big = xform_scale(v3(3e38f, 1, 1));
+    cr_assert(xform_is_finite(&big), "large but finite");
+}

@@ -351,6 +351,73 @@ Test(packet, shadow_rays_match_one_ray_at_a_time)
         cr_assert_gt(counts[kind], 500, "kind %d: %d rays", kind, counts[kind]);
 }
 
+/* A ground plane and a grid of turned tori (bench/tori.awk's row 8 in
+ * small), some untransformed and one far larger, that camera packets meet
+ * in many tori each, tested eight at a time by torus8_hit. */
+static scene *torus_scene(void)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    int mat = scene_add_material(s, &mt);
+    shape ground = shape_plane(v3(0, -2, 0), v3(0, 1, 0));
+    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    rng g = rng_seed(31, 2);
+    for (int i = 0; i < 12; i++)
+        for (int j = 0; j < 12; j++) {
+            vec3 at = v3(-6.0f + (float)i, -6.0f + (float)j, -2.0f * (float)((i + j) % 3));
+            if ((i + j) % 5 == 0) {
+                shape t = shape_torus(at, 0.4f, 0.12f);
+                cr_assert_geq(scene_add_object(s, &t, mat, -1), 0);
+                continue;
+            }
+            xform rx = xform_rotate(v3(1, 0, 0), uniform(&g, 0, 180));
+            xform ry = xform_rotate(v3(0, 1, 0), uniform(&g, 0, 360));
+            xform tr = xform_translate(at), a = xform_then(&rx, &ry), b = xform_then(&a, &tr);
+            shape t = shape_torus(v3s(0.0f), 0.32f, 0.1f);
+            cr_assert_geq(scene_add_object(s, &t, mat, scene_add_xform(s, &b)), 0);
+        }
+    shape big = shape_torus(v3(0, 0, -8), 5.0f, 1.5f);
+    cr_assert_geq(scene_add_object(s, &big, mat, -1), 0);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
+{
+    int many = 0;
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = torus_scene();
+        rng g = rng_seed(5, 8);
+        for (int i = 0; i < 6000; i++) {
+            ray8 p = packet_of(&g, i, v3(0.3f, -0.2f, 9.0f));
+            for (int k = 0; k < 8 && i % 4 < 2; k++) { /* narrower: many rays per torus */
+                p.dx[k] = 0.1f * p.dx[k];
+                p.dy[k] = 0.1f * p.dy[k];
+            }
+            int active = i % 7 == 0 ? 0x5b : 0xff;
+            scene_hit h8[8], h1;
+            int found = scene_intersect8(s, &p, active, h8);
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
+                cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
+                if (!hit)
+                    continue;
+                cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+                expect_same_hit(&h8[k].h, &h1.h, i, k);
+                many += s->objects[h1.object].shape.kind == SHAPE_TORUS;
+            }
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    cr_assert_gt(many, 10000);
+}
+
 /* packet_scene with its casters, lights of every kind and a camera
  * looking at it, to render. */
 static scene *lit_packet_scene(int copies)

@@ -166,11 +166,14 @@ bool xform_is_identity(const xform *x)
     return memcmp(&x->fwd, &id, sizeof id) == 0;
 }
 
+/* v - v is 0 for a finite v and NaN for an infinite or NaN one, and a sum
+ * of zeros stays 0 where one NaN makes it NaN: one pass without branches
+ * (loading a scene of thousands of transforms asks this at every step). */
 bool xform_is_finite(const xform *x)
 {
+    float sum = 0.0f;
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++)
-            if (!isfinite(x->fwd.m[i][j]) || !isfinite(x->inv.m[i][j]))
-                return false;
-    return true;
+            sum += (x->fwd.m[i][j] - x->fwd.m[i][j]) + (x->inv.m[i][j] - x->inv.m[i][j]);
+    return sum == 0.0f;
 }

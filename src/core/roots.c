@@ -31,6 +31,10 @@ int roots_quadratic(const double c[3], double lo, double hi, double out[2])
     return k;
 }
 
+/* fmax(1, v) for v >= 0 or NaN, without the library call fmax compiles to
+ * here (a test for convergence made at every Newton step). */
+static inline double at_least_one(double v) { return v > 1.0 ? v : 1.0; }
+
 /* The one root of p in [a, b], where p(a) = fa and p(b) have opposite
  * signs and p is monotonic: Newton from the secant point, bisecting
  * whenever a step would leave the bracket, which shrinks every step. A
@@ -57,11 +61,11 @@ static double bracketed(const double *c, const double *dc, int deg, double a, do
         double df = roots_eval(dc, deg - 1, x);
         double nx = df != 0.0 ? x - f / df : 0.5 * (a + b);
         if (!(nx > a && nx < b)) {
-            if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(x)))
+            if (fabs(nx - x) <= 1e-15 * at_least_one(fabs(x)))
                 return x;
             nx = 0.5 * (a + b);
         }
-        if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(nx)) || nx == a || nx == b)
+        if (fabs(nx - x) <= 1e-15 * at_least_one(fabs(nx)) || nx == a || nx == b)
             return nx;
         x = nx;
     }
@@ -116,7 +120,7 @@ static int convex_first(const double *c, const double *dc, double lo, double e, 
         double nx = x - f / df;
         if (!(nx < e))
             return 0;
-        if (fabs(nx - x) <= 1e-15 * fmax(1.0, fabs(nx))) {
+        if (fabs(nx - x) <= 1e-15 * at_least_one(fabs(nx))) {
             *root = nx;
             return nx > lo ? 1 : -1;
         }

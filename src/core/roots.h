@@ -15,12 +15,31 @@
 #ifndef GLINT_CORE_ROOTS_H
 #define GLINT_CORE_ROOTS_H
 
+#include <stdbool.h>
+
 /* Both roots of c[0] + c[1] x + c[2] x^2 in (lo, hi), touching ones
  * included (these are the turning points of the cubic above). */
 int roots_quadratic(const double c[3], double lo, double hi, double out[2]);
 int roots_cubic(const double c[4], double lo, double hi, double out[3]);
 /* Stops after max roots (1: just the first). */
 int roots_quartic(const double c[5], double lo, double hi, double out[4], int max);
+
+/* True when the quartic c provably stays above zero on [0, hi], so that
+ * roots_quartic(c, 0, hi, ...) finds no root: its Bernstein coefficients on
+ * [0, hi], whose convex hull holds its values (Farin, "Curves and Surfaces
+ * for CAGD", ch. 5), all exceed 1e-9 of the size of its coefficients
+ * there. That margin is a million times the rounding of any value the
+ * search computes, so none it meets changes sign and no Newton step it
+ * takes converges; intervals under 1e-4 long are left to the search. */
+static inline bool roots_quartic_above(const double c[5], double hi)
+{
+    double h2 = hi * hi;
+    double a0 = c[0], a1 = c[1] * hi, a2 = c[2] * h2, a3 = c[3] * h2 * hi, a4 = c[4] * h2 * h2;
+    double m = 1e-9 * (__builtin_fabs(a0) + __builtin_fabs(a1) + __builtin_fabs(a2) +
+                       __builtin_fabs(a3) + __builtin_fabs(a4));
+    return hi >= 1e-4 && a0 > m && a0 + 0.25 * a1 > m && a0 + 0.5 * a1 + a2 * (1.0 / 6.0) > m &&
+           a0 + 0.75 * a1 + 0.5 * a2 + 0.25 * a3 > m && a0 + a1 + a2 + a3 + a4 > m;
+}
 
 static inline double roots_eval(const double *c, int degree, double x)
 {

@@ -89,29 +89,40 @@ void csg_free(csg *c)
     memset(c, 0, sizeof *c);
 }
 
+/* An operand's state: a leaf's or an evaluated node's. */
+static inline bool is_in(int32_t ref, const uint8_t *in, const uint8_t *node_in)
+{
+    return ref >= 0 ? in[ref] : node_in[-1 - ref];
+}
+
 /* The tree's answer for the leaves' states; nodes come after their
- * operands, so one pass in order suffices. */
+ * operands, so one pass in order suffices. Each node stops at the first
+ * operand that settles it. */
 static bool evaluate(const csg *c, const uint8_t *in, uint8_t *node_in)
 {
     for (int k = 0; k < c->nnodes; k++) {
         const csg_node *n = &c->nodes[k];
-        bool v = n->op == CSG_INTERSECTION;
-        for (int i = 0; i < n->count; i++) {
-            int32_t ref = c->kids[n->first + i];
-            bool x = ref >= 0 ? in[ref] : node_in[-1 - ref];
-            switch (n->op) {
-            case CSG_UNION:
-                v = v || x;
-                break;
-            case CSG_INTERSECTION:
-                v = v && x;
-                break;
-            case CSG_DIFFERENCE:
-                v = i == 0 ? x : v && !x;
-                break;
-            case CSG_OP_COUNT:
-                break;
-            }
+        const int32_t *kid = c->kids + n->first;
+        int i = 0;
+        bool v = false;
+        switch (n->op) {
+        case CSG_UNION: /* any */
+            while (i < n->count && !is_in(kid[i], in, node_in))
+                i++;
+            v = i < n->count;
+            break;
+        case CSG_INTERSECTION: /* all */
+            while (i < n->count && is_in(kid[i], in, node_in))
+                i++;
+            v = i == n->count;
+            break;
+        case CSG_DIFFERENCE: /* the first and none of the others */
+            if (n->count > 0 && is_in(kid[0], in, node_in))
+                for (i = 1, v = true; v && i < n->count; i++)
+                    v = !is_in(kid[i], in, node_in);
+            break;
+        case CSG_OP_COUNT:
+            break;
         }
         node_in[k] = v;
     }

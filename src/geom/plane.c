@@ -1,15 +1,10 @@
-/* Infinite plane (p - point) . normal = 0. */
+/* Infinite plane (p - point) . normal = 0; the test is geom/shape_inline.h's. */
 #include <math.h>
-#include "shape.h"
+#include "shape_inline.h"
 
 bool plane_intersect(const struct plane *s, const ray *r, shape_hit *hit)
 {
-    float t;
-    if (!ray_plane(r, s->point, s->normal, &t))
-        return false;
-    hit->t = t;
-    hit->part = 0;
-    return true;
+    return plane_hit(s, r, hit);
 }
 
 void plane_surface(const struct plane *s, vec3 p, surface *out)

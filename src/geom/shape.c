@@ -38,8 +38,9 @@ bool shape_intersect(const shape *s, const ray *r, shape_hit *hit)
 }
 
 /* Analytic shapes find their nearest hit without computing normals, so
- * for them the occlusion query costs the same as intersect; meshes stop at
- * the first triangle found. A csg has to classify the ray up to its first
+ * for them the occlusion query costs the same as intersect, but for the
+ * torus, which often knows that a root lies ahead without finding it;
+ * meshes stop at the first triangle found. A csg has to classify the ray up to its first
  * boundary whichever query it answers. */
 bool shape_occluded(const shape *s, const ray *r)
 {
@@ -53,10 +54,11 @@ bool shape_occluded(const shape *s, const ray *r)
     case SHAPE_TRIANGLE:
     case SHAPE_CONE:
     case SHAPE_DISK:
-    case SHAPE_TORUS:
     case SHAPE_POLYHEDRON:
     case SHAPE_CSG:
         return shape_intersect(s, r, &h);
+    case SHAPE_TORUS:
+        return torus_occluded(&s->torus, r);
     case SHAPE_MESH:
         return mesh_occluded(s->mesh, r);
     case SHAPE_COUNT:

@@ -229,6 +229,23 @@ void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *o
 bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit);
 void disk_surface(const struct disk *s, vec3 p, surface *out);
 bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit);
+bool torus_occluded(const struct torus *s, const ray *r);
+/* torus_intersect in two steps: the ray clipped to the torus's box and its
+ * quartic written about the entry point, in s = (t - t0) |d| for s in
+ * (0, hi) (torus.c for one ray, torus8_hit_<isa> for eight in vector
+ * registers, to the bit the same), then the nearest root in (tmin, tmax),
+ * into hit unless it is NULL. */
+typedef struct torus_quartic {
+    double c[5];
+    double t0, len, hi;
+    double py, uy; /* the entry point's and the direction's y */
+} torus_quartic;
+bool torus_solve(const torus_quartic *q, const ray *r, shape_hit *hit);
+/* torus_intersect against the rays of active, each up to its own tmax:
+ * returns the rays hit, with hit[k] as torus_intersect sets it (the rest
+ * of it zero). On the eight-wide paths (geom/shape8.h). */
+int torus8_hit_avx2(const struct torus *s, const ray8 *r, int active, shape_hit *hit);
+int torus8_hit_avx512(const struct torus *s, const ray8 *r, int active, shape_hit *hit);
 void torus_surface(const struct torus *s, vec3 p, surface *out);
 /* The same without (u, v) (left 0), which cost two arc tangents. */
 void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out);

@@ -1,4 +1,4 @@
-/* shape8: the sphere and quad tests of shape_inline.h against eight rays
+/* shape8: the sphere, quad and plane tests against eight rays
  * at once, one ray per AVX lane, for packets of camera rays
  * (scene_intersect8). Each lane does the one-ray test's operations in the
  * same order, so it finds the same hit to the bit; branches become masks.
@@ -9,6 +9,7 @@
 #include <immintrin.h>
 #include "core/ray.h"
 #include "geom/shape.h"
+#include "geom/torus8.h"
 
 /* The rays of a packet, one register per coordinate. */
 typedef struct rays8 {
@@ -75,22 +76,31 @@ static inline int sphere8_hit(const struct sphere *s, const rays8 *r, __m256 tma
     return active & _mm256_movemask_ps(_mm256_or_ps(first, in_range8(far, r->tmin, tmax)));
 }
 
+/* ray_plane (core/ray.h) likewise: the rays of active that meet the plane
+ * through point with normal n within (tmin, tmax[k]), with t per ray. */
+static inline int plane8_hit(vec3 point, vec3 n, const rays8 *r, __m256 tmax, int active,
+                             __m256 *t)
+{
+    const __m256 zero = _mm256_setzero_ps();
+    __m256 nx = _mm256_set1_ps(n.x), ny = _mm256_set1_ps(n.y), nz = _mm256_set1_ps(n.z);
+    __m256 dn = dot8(r->dx, r->dy, r->dz, nx, ny, nz);
+    active &= ~_mm256_movemask_ps(_mm256_cmp_ps(dn, zero, _CMP_EQ_OQ));
+    if (!active)
+        return 0;
+    __m256 px = _mm256_sub_ps(_mm256_set1_ps(point.x), r->ox);
+    __m256 py = _mm256_sub_ps(_mm256_set1_ps(point.y), r->oy);
+    __m256 pz = _mm256_sub_ps(_mm256_set1_ps(point.z), r->oz);
+    *t = _mm256_div_ps(dot8(px, py, pz, nx, ny, nz), dn);
+    return active & _mm256_movemask_ps(in_range8(*t, r->tmin, tmax));
+}
+
 /* quad_hit likewise, with (u, v) in b1, b2. */
 static inline int quad8_hit(const struct quad *s, const rays8 *r, __m256 tmax, int active,
                             __m256 *t, __m256 *b1, __m256 *b2)
 {
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    __m256 nx = _mm256_set1_ps(s->normal.x), ny = _mm256_set1_ps(s->normal.y);
-    __m256 nz = _mm256_set1_ps(s->normal.z);
-    __m256 dn = dot8(r->dx, r->dy, r->dz, nx, ny, nz);
-    active &= ~_mm256_movemask_ps(_mm256_cmp_ps(dn, zero, _CMP_EQ_OQ));
-    if (!active)
-        return 0;
-    __m256 px = _mm256_sub_ps(_mm256_set1_ps(s->origin.x), r->ox);
-    __m256 py = _mm256_sub_ps(_mm256_set1_ps(s->origin.y), r->oy);
-    __m256 pz = _mm256_sub_ps(_mm256_set1_ps(s->origin.z), r->oz);
-    __m256 tt = _mm256_div_ps(dot8(px, py, pz, nx, ny, nz), dn);
-    active &= _mm256_movemask_ps(in_range8(tt, r->tmin, tmax));
+    __m256 tt = zero;
+    active = plane8_hit(s->origin, s->normal, r, tmax, active, &tt);
     if (!active)
         return 0;
     /* q = ray_at(t) - origin */
@@ -118,18 +128,20 @@ static inline int quad8_hit(const struct quad *s, const rays8 *r, __m256 tmax, i
     return active & _mm256_movemask_ps(in);
 }
 
-/* A sphere or quad against the rays of active, each up to tmax[k]: returns
- * the rays hit, with hit[k] as sphere_hit and quad_hit set it; -1 for any
- * other shape. */
+/* A sphere, quad or plane against the rays of active, each up to tmax[k]:
+ * returns the rays hit, with hit[k] as sphere_hit, quad_hit and
+ * plane_intersect set it; -1 for any other shape. */
 static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8], int active,
                              shape_hit *hit)
 {
-    if (sh->kind != SHAPE_SPHERE && sh->kind != SHAPE_QUAD)
+    if (sh->kind != SHAPE_SPHERE && sh->kind != SHAPE_QUAD && sh->kind != SHAPE_PLANE)
         return -1;
     rays8 rs = rays8_load(r);
     __m256 lim = _mm256_loadu_ps(tmax), t = _mm256_setzero_ps(), b1 = t, b2 = t;
     int m = sh->kind == SHAPE_SPHERE ? sphere8_hit(&sh->sphere, &rs, lim, active, &t)
-                                     : quad8_hit(&sh->quad, &rs, lim, active, &t, &b1, &b2);
+            : sh->kind == SHAPE_QUAD
+                ? quad8_hit(&sh->quad, &rs, lim, active, &t, &b1, &b2)
+                : plane8_hit(sh->plane.point, sh->plane.normal, &rs, lim, active, &t);
     float tv[8], b1v[8], b2v[8];
     _mm256_storeu_ps(tv, t);
     _mm256_storeu_ps(b1v, b1);
@@ -138,18 +150,22 @@ static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8]
         if (m >> k & 1) {
             hit[k].t = tv[k];
             hit[k].part = 0;
-            if (sh->kind == SHAPE_QUAD)
-                hit[k].b1 = b1v[k], hit[k].b2 = b2v[k];
+            hit[k].b1 = b1v[k]; /* 0 but for a quad, as scene_hit_object leaves them */
+            hit[k].b2 = b2v[k];
         }
     return m;
 }
 
-/* Defines shape8_hit_<isa>. */
+/* Defines shape8_hit_<isa> and torus8_hit_<isa>. */
 #define SHAPE8_KERNELS(isa)                                                                    \
     int shape8_hit_##isa(const shape *sh, const ray8 *r, const float tmax[8], int active,      \
                          shape_hit *hit)                                                       \
     {                                                                                          \
         return shape8_hit(sh, r, tmax, active, hit);                                           \
+    }                                                                                          \
+    int torus8_hit_##isa(const struct torus *s, const ray8 *r, int active, shape_hit *hit)     \
+    {                                                                                          \
+        return torus8_hit(s, r, active, hit);                                                  \
     }
 
 #endif

@@ -1,8 +1,8 @@
 /* shape_inline: the intersection tests of the shapes that small scenes are
- * made of (sphere, quad), as inline functions, so that the scene's walks
+ * made of (sphere, quad, plane), as inline functions, so that the scene's walks
  * (scene/scene_trace.h) test them without a call through shape_intersect's
- * switch. sphere.c and quad.c export the same tests for every other
- * caller, so there is one copy of each routine. */
+ * switch. sphere.c, quad.c and plane.c export the same tests for every
+ * other caller, so there is one copy of each routine. */
 #ifndef GLINT_GEOM_SHAPE_INLINE_H
 #define GLINT_GEOM_SHAPE_INLINE_H
 
@@ -90,7 +90,20 @@ __attribute__((always_inline)) static inline void sphere_surface_plain(const str
     out->u = out->v = 0.0f;
 }
 
-/* shape_intersect with the two tests above inlined. */
+/* Infinite plane: plane_intersect, which plane.c exports. */
+__attribute__((always_inline)) static inline bool plane_hit(const struct plane *s, const ray *r,
+                                                            shape_hit *hit)
+{
+    float t;
+    if (!ray_plane(r, s->point, s->normal, &t))
+        return false;
+    hit->t = t;
+    hit->part = 0;
+    return true;
+}
+
+/* shape_intersect with the three tests above inlined (a plane is an
+ * unbounded object, which every ray of the scene meets first). */
 __attribute__((always_inline)) static inline bool shape_intersect_inline(const shape *s,
                                                                          const ray *r,
                                                                          shape_hit *hit)
@@ -99,6 +112,8 @@ __attribute__((always_inline)) static inline bool shape_intersect_inline(const s
         return sphere_hit(&s->sphere, r, hit);
     if (s->kind == SHAPE_QUAD)
         return quad_hit(&s->quad, r, hit);
+    if (s->kind == SHAPE_PLANE)
+        return plane_hit(&s->plane, r, hit);
     if (s->kind == SHAPE_MESH)
         return mesh_intersect(s->mesh, r, hit);
     return shape_intersect(s, r, hit);
@@ -114,6 +129,8 @@ __attribute__((always_inline)) static inline bool shape_occluded_inline(const sh
         return sphere_hit(&s->sphere, r, &h);
     if (s->kind == SHAPE_QUAD)
         return quad_hit(&s->quad, r, &h);
+    if (s->kind == SHAPE_PLANE)
+        return plane_hit(&s->plane, r, &h);
     if (s->kind == SHAPE_MESH)
         return mesh_occluded(s->mesh, r);
     return shape_occluded(s, r);

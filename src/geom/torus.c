@@ -14,21 +14,19 @@
  * the ray starts (about its origin they would grow as distance^4 and
  * swamp the roots); and the direction is made unit length, so the leading
  * coefficient is 1 and the unknown is arc length. A ray from inside the
- * tube starts with f < 0 and finds its way out the same way. */
+ * tube starts with f < 0 and finds its way out the same way. A segment on
+ * which the quartic provably stays above zero (roots_quartic_above: most
+ * rays that pass the box's tests but miss the tube) is turned away before
+ * the search, which would find nothing there either. */
 #include <math.h>
+#include <stddef.h>
 
 #include "core/roots.h"
 #include "shape.h"
 
-/* The ray's quartic in s = (t - t0) |d|, valid for s in (0, hi). */
-typedef struct tquartic {
-    double c[5];
-    double t0, len, hi;
-} tquartic;
-
 /* Clips t in (tmin, tmax) to the torus's box, enlarged by 1% so that a
  * root is never on its faces; false when nothing is left. */
-static bool setup(const struct torus *s, const ray *r, double tmin, double tmax, tquartic *q)
+static bool setup(const struct torus *s, const ray *r, double tmin, double tmax, torus_quartic *q)
 {
     double R = s->major, rm = s->minor;
     double o[3] = {(double)r->o.x - s->center.x, (double)r->o.y - s->center.y,
@@ -87,36 +85,80 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
     q->c[1] = 4.0 * b * beta - 2.0 * k * (p[0] * u[0] + p[2] * u[2]);
     q->c[0] = beta * beta - k * (p[0] * p[0] + p[2] * p[2]);
     q->t0 = t0;
+    q->py = p[1];
+    q->uy = u[1];
     q->len = len;
     q->hi = (t1 - t0) * len;
     return true;
 }
 
-bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit)
+bool torus_solve(const torus_quartic *q, const ray *r, shape_hit *hit)
 {
-    tquartic q;
-    if (!setup(s, r, r->tmin, r->tmax, &q))
+    if (roots_quartic_above(q->c, q->hi))
         return false;
     double roots[4];
-    int n = roots_quartic(q.c, 0.0, q.hi, roots, 1);
+    int n = roots_quartic(q->c, 0.0, q->hi, roots, 1);
     for (int pass = 0; pass < 2 && n > 0; pass++) {
         for (int i = 0; i < n; i++) {
-            float t = (float)(q.t0 + roots[i] / q.len);
+            float t = (float)(q->t0 + roots[i] / q->len);
             if (ray_in_range(r, t)) {
-                hit->t = t;
-                hit->part = 0;
+                if (hit) {
+                    hit->t = t;
+                    hit->part = 0;
+                }
                 return true;
             }
         }
         /* The first root rounded onto tmin: look at the others. */
-        n = pass == 0 ? roots_quartic(q.c, 0.0, q.hi, roots, 4) : 0;
+        n = pass == 0 ? roots_quartic(q->c, 0.0, q->hi, roots, 4) : 0;
     }
     return false;
 }
 
+bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit)
+{
+    torus_quartic q;
+    return setup(s, r, r->tmin, r->tmax, &q) && torus_solve(&q, r, hit);
+}
+
+/* Whether the quartic, above zero beyond doubt at the entry, is below it
+ * beyond doubt at x in (0, hi): by more than 1e-9 of the size of its
+ * coefficients on the segment, a million times the rounding of any value
+ * the search computes. The search then finds a root before x (some piece
+ * between its turning points runs from above zero to below, and Newton's
+ * method, started where the quartic bends towards zero, can neither stall
+ * nor overshoot when the quartic is that far below zero ahead). */
+static bool dips_below(const torus_quartic *q, double x)
+{
+    double h = q->hi, h2 = h * h;
+    double size = fabs(q->c[0]) + fabs(q->c[1] * h) + fabs(q->c[2] * h2) +
+                  fabs(q->c[3] * h2 * h) + fabs(q->c[4] * h2 * h2);
+    double m = 1e-9 * size;
+    return q->c[0] > m && roots_eval(q->c, 4, x) < -m;
+}
+
+/* torus_intersect's answer, without the root itself where it can: when
+ * every t of the clipped segment rounds into (tmin, tmax), any root the
+ * search would find counts, and a ray that is inside the tube where it
+ * crosses the torus's plane (most shadow rays that a torus blocks) has
+ * one. */
+bool torus_occluded(const struct torus *s, const ray *r)
+{
+    torus_quartic q;
+    if (!setup(s, r, r->tmin, r->tmax, &q))
+        return false;
+    double t1 = q.t0 + q.hi / q.len;
+    if ((float)q.t0 > r->tmin && (float)(t1 + 1e-9 * fabs(t1)) < r->tmax && q.uy != 0.0) {
+        double x = -q.py / q.uy;
+        if (x > 0.0 && x < q.hi && dips_below(&q, x))
+            return true;
+    }
+    return torus_solve(&q, r, NULL);
+}
+
 int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max)
 {
-    tquartic q;
+    torus_quartic q;
     if (!setup(s, r, r->tmin, INFINITY, &q))
         return 0;
     double roots[4];

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "load/names.h"
+#include "load/yaml_fast.h"
 
 typedef struct anchor {
     uint32_t node;
@@ -105,11 +106,6 @@ static bool reserve(void **p, size_t *cap, size_t need, size_t elem)
     *p = q;
     *cap = ncap;
     return true;
-}
-
-void ydoc_show(const char *text, size_t len, char *buf, size_t cap)
-{
-    text_escape(text, len, YDOC_SHOW_MAX, buf, cap);
 }
 
 /* Types a scalar by its tag, or for an untagged plain scalar by its form. */
@@ -337,6 +333,38 @@ static glint_rc add_pair(builder *b, size_t *n, uint32_t key, uint32_t value)
     return GLINT_OK;
 }
 
+/* The pairs less merged keys the mapping has, in order; refuses repeated
+ * own keys. A few own pairs, all different (most mappings), need no sorting. */
+static glint_rc dedupe(builder *b, size_t n, size_t own, size_t nsources, size_t *kept)
+{
+    bool repeats = nsources > 0 || n > 16;
+    for (size_t i = 1; i < n && !repeats; i++)
+        for (size_t j = 0; j < i && !repeats; j++)
+            repeats = same_key(&b->scratch[i], &b->scratch[j]);
+    *kept = n;
+    if (!repeats)
+        return GLINT_OK;
+    qsort(b->scratch, n, sizeof *b->scratch, by_key_then_order);
+    *kept = 0;
+    for (size_t i = 0; i < n; i++) {
+        const mpair *p = &b->scratch[i];
+        if (*kept > 0 && same_key(p, &b->scratch[*kept - 1])) {
+            if (p->order < own) {
+                const ynode *k = &b->d->nodes[p->key];
+                const ynode *first = &b->d->nodes[b->scratch[*kept - 1].key];
+                char shown[YDOC_SHOW_MAX * 4 + 8];
+                ydoc_show(p->text, p->len, shown, sizeof shown);
+                return fail(b, k->line, k->col, "duplicate key '%s' (first at line %u, column %u)",
+                            shown, first->line, first->col);
+            }
+            continue;
+        }
+        b->scratch[(*kept)++] = *p;
+    }
+    qsort(b->scratch, *kept, sizeof *b->scratch, by_order);
+    return GLINT_OK;
+}
+
 /* Collects the mapping's own pairs, then those of merged mappings, drops
  * merged keys it already has and refuses repeated own keys (YAML 1.1 merge
  * key type, https://yaml.org/type/merge.html). */
@@ -377,25 +405,10 @@ static glint_rc finish_map(builder *b, ynode *map, const uint32_t *kids, size_t 
                 return rc;
         }
     }
-    if (n > 1)
-        qsort(b->scratch, n, sizeof *b->scratch, by_key_then_order);
-    size_t kept = 0;
-    for (size_t i = 0; i < n; i++) {
-        const mpair *p = &b->scratch[i];
-        if (kept > 0 && same_key(p, &b->scratch[kept - 1])) {
-            if (p->order < own) {
-                const ynode *k = &d->nodes[p->key], *first = &d->nodes[b->scratch[kept - 1].key];
-                char shown[YDOC_SHOW_MAX * 4 + 8];
-                ydoc_show(p->text, p->len, shown, sizeof shown);
-                return fail(b, k->line, k->col, "duplicate key '%s' (first at line %u, column %u)",
-                            shown, first->line, first->col);
-            }
-            continue;
-        }
-        b->scratch[kept++] = *p;
-    }
-    if (kept > 1)
-        qsort(b->scratch, kept, sizeof *b->scratch, by_order);
+    size_t kept;
+    glint_rc rc = dedupe(b, n, own, nsources, &kept);
+    if (rc != GLINT_OK)
+        return rc;
     /* Reuse the sources buffer for the flat key, value list. */
     if (!reserve((void **)&b->sources, &b->cap_sources, 2 * kept, sizeof *b->sources))
         return err_nomem(b->err);
@@ -404,7 +417,7 @@ static glint_rc finish_map(builder *b, ynode *map, const uint32_t *kids, size_t 
         b->sources[2 * i + 1] = b->scratch[i].value;
     }
     uint32_t first;
-    glint_rc rc = push_kids(b, b->sources, 2 * kept, &first);
+    rc = push_kids(b, b->sources, 2 * kept, &first);
     map->first = first;
     map->count = (uint32_t)kept;
     return rc;
@@ -531,52 +544,57 @@ static glint_rc parser_error(builder *b, const yaml_parser_t *p)
     return fail(b, line, col, "%s", problem);
 }
 
-glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
-                    glint_error *err)
+static glint_rc take_event(void *ctx, const yaml_event_t *ev) { return on_event(ctx, ev); }
+
+/* The text through libyaml, event by event. */
+static glint_rc read_libyaml(builder *b, const char *text, size_t len)
 {
-    ydoc *d = calloc(1, sizeof *d);
-    if (!d)
-        return err_nomem(err);
-    d->root = YDOC_NONE;
-    builder b = {.d = d, .name = name, .src = text, .srclen = len, .err = err};
     yaml_parser_t parser;
-    if (!yaml_parser_initialize(&parser)) {
-        free(d);
-        return err_nomem(err);
-    }
+    if (!yaml_parser_initialize(&parser))
+        return err_nomem(b->err);
     yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
     glint_rc rc = GLINT_OK;
-    while (!b.done) {
+    while (!b->done) {
         yaml_event_t ev;
         if (!yaml_parser_parse(&parser, &ev)) {
-            rc = parser_error(&b, &parser);
+            rc = parser_error(b, &parser);
             break;
         }
-        rc = on_event(&b, &ev);
+        rc = on_event(b, &ev);
         yaml_event_delete(&ev);
         if (rc != GLINT_OK)
             break;
     }
     yaml_parser_delete(&parser);
-    names_free(&b.anchor_names);
-    free(b.anchors);
-    free(b.pending);
-    free(b.scratch);
-    free(b.sources);
-    if (rc != GLINT_OK) {
-        ydoc_free(d);
-        return rc;
-    }
-    *out = d;
-    return GLINT_OK;
+    return rc;
 }
 
-void ydoc_free(ydoc *d)
+/* The plain subset by yaml_fast; any other text, and any text the tree
+ * refuses (for libyaml's word on what comes first), again by libyaml. */
+glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
+                    glint_error *err)
 {
-    if (!d)
-        return;
-    free(d->nodes);
-    free(d->kids);
-    free(d->text);
-    free(d);
+    glint_rc rc = GLINT_OK;
+    for (int pass = 0; pass < 2; pass++) {
+        ydoc *d = calloc(1, sizeof *d);
+        if (!d)
+            return err_nomem(err);
+        d->root = YDOC_NONE;
+        builder b = {.d = d, .name = name, .src = text, .srclen = len, .err = err};
+        rc = pass > 0 ? read_libyaml(&b, text, len)
+             : yfast_read(text, len, take_event, &b) == YFAST_DONE ? GLINT_OK : GLINT_ERR_INPUT;
+        names_free(&b.anchor_names);
+        free(b.anchors);
+        free(b.pending);
+        free(b.scratch);
+        free(b.sources);
+        if (rc == GLINT_OK) {
+            *out = d;
+            return GLINT_OK;
+        }
+        ydoc_free(d);
+        if (rc == GLINT_ERR_NOMEM)
+            break;
+    }
+    return rc;
 }

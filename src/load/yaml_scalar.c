@@ -1,6 +1,6 @@
 /* The YAML 1.2 core schema's scalar forms (null, booleans, integers,
  * floats, .inf and .nan) and the questions asked of a built tree: values
- * under keys, descriptions for messages, numbers. */
+ * under keys, descriptions for messages, numbers; and freeing it. */
 #include "yaml_doc.h"
 
 #include <errno.h>
@@ -11,6 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/text.h"
 
 /* Numbers longer than this are taken as strings: no real number needs it,
  * and it keeps conversion in a stack buffer. */
@@ -266,4 +268,19 @@ bool ydoc_int(const ydoc *d, const ynode *n, long long *out)
         return false;
     *out = v;
     return true;
+}
+
+void ydoc_show(const char *text, size_t len, char *buf, size_t cap)
+{
+    text_escape(text, len, YDOC_SHOW_MAX, buf, cap);
+}
+
+void ydoc_free(ydoc *d)
+{
+    if (!d)
+        return;
+    free(d->nodes);
+    free(d->kids);
+    free(d->text);
+    free(d);
 }

@@ -460,18 +460,17 @@ void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *
         x = &moved;
     }
     ray lr = scene_object_ray(s, o, r);
-    /* A turned torus without texture, likewise. */
-    if (o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit))) {
+    /* A turned torus without texture, likewise; its two normals are one. */
+    bool one_normal = o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit));
+    if (one_normal)
         torus_surface_no_uv(&o->shape.torus, ray_at(&lr, hit->h.t), out);
-        out->ng = out->n;
-    } else {
+    else
         shape_surface(&o->shape, &lr, &hit->h, out);
-    }
     if (o->material >= 0)
         out->color = v3s(1.0f);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
-    out->ng = v3_norm(xform_normal(x, out->ng));
+    out->ng = one_normal ? out->n : v3_norm(xform_normal(x, out->ng));
 }
 
 void scene_object_point(const scene *s, int i, vec3 p, vec3 n, vec3 *po, vec3 *no)

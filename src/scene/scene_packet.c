@@ -4,7 +4,8 @@
  * (scene_walk8, when their directions' signs agree), each leaf's objects
  * tested against the rays that enter it. An object is tested against the
  * rays at once where it can be: a mesh in one walk of its tree
- * (mesh_intersect8), a sphere or quad in one test (shape8_hit); any other
+ * (mesh_intersect8), a sphere, quad or plane in one test (shape8_hit), a
+ * torus's setup in one (torus8_hit) and its roots ray by ray; any other
  * ray by ray. Otherwise each ray goes through scene_intersect. Either way
  * every ray gets the hit scene_intersect gives it, to the bit.
  *
@@ -45,6 +46,40 @@ static int shape8_on_path(const scene *s, const shape *sh, const ray8 *r, const 
     return -1;
 }
 
+/* torus8_hit on the scene's path; -1 where it has none. */
+static int torus8_on_path(const scene *s, const struct torus *t, const ray8 *r, int active,
+                          shape_hit h[8])
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return torus8_hit_avx512(t, r, active, h);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return torus8_hit_avx2(t, r, active, h);
+#endif
+    (void)s, (void)t, (void)r, (void)active, (void)h;
+    return -1;
+}
+
+/* The rays of active in object o's space, each searched up to best[k] (as
+ * scene_hit_object searches them); idle lanes repeat an active ray. */
+static void object_rays(const scene *s, const object *o, const ray8 *r, int active,
+                        const float best[8], ray8 *lr)
+{
+    int first = __builtin_ctz((unsigned)active);
+    for (int k = first; k < 8; k++) {
+        if (!(active >> k & 1))
+            continue;
+        ray one = ray8_get(r, k);
+        one.tmax = next_up(best[k]);
+        ray l = scene_object_ray(s, o, &one);
+        ray8_put(lr, k, &l);
+    }
+    ray idle = ray8_get(lr, first);
+    for (int k = 0; k < 8; k++)
+        if (!(active >> k & 1))
+            ray8_put(lr, k, &idle);
+}
+
 /* Whether mask has three bits or more (without a popcount instruction,
  * which this file is not compiled for). */
 static inline bool three_or_more(int mask)
@@ -55,31 +90,22 @@ static inline bool three_or_more(int mask)
 }
 
 /* Object i against the rays of active, each searched up to best[k]: a
- * mesh against three or more of them in one walk, a sphere or a quad in
- * one test, anything else ray by ray. */
+ * mesh against three or more of them in one walk, a torus or (untransformed)
+ * a sphere, a quad or a plane in one test, anything else ray by ray. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                         scene_hit hit[8])
 {
     const object *o = &s->objects[i];
     int found = 0;
     bool many = three_or_more(active);
-    if (o->shape.kind == SHAPE_MESH && !o->moving && many) {
+    if ((o->shape.kind == SHAPE_MESH || o->shape.kind == SHAPE_TORUS) && !o->moving && many) {
         ray8 lr;
-        int first = __builtin_ctz((unsigned)active);
-        for (int k = first; k < 8; k++) {
-            if (!(active >> k & 1))
-                continue;
-            ray one = ray8_get(r, k);
-            one.tmax = next_up(best[k]); /* as scene_hit_object */
-            ray l = scene_object_ray(s, o, &one);
-            ray8_put(&lr, k, &l);
-        }
-        ray idle = ray8_get(&lr, first);
-        for (int k = 0; k < 8; k++) /* idle lanes repeat an active ray */
-            if (!(active >> k & 1))
-                ray8_put(&lr, k, &idle);
         shape_hit h[8];
-        return keep8(i, mesh_intersect8(o->shape.mesh, &lr, active, h), h, best, hit);
+        object_rays(s, o, r, active, best, &lr);
+        int any = o->shape.kind == SHAPE_MESH ? mesh_intersect8(o->shape.mesh, &lr, active, h)
+                                              : torus8_on_path(s, &o->shape.torus, &lr, active, h);
+        if (any >= 0)
+            return keep8(i, any, h, best, hit);
     }
     if (o->xform < 0 && many) {
         float lim[8];
@@ -120,7 +146,8 @@ static bool packs(const scene *s, const object *o)
     shape_kind k = o->shape.kind;
     if (k == SHAPE_MESH)
         return !o->moving && eight_wide(o->shape.mesh->bvh.isa);
-    return (k == SHAPE_SPHERE || k == SHAPE_QUAD) && o->xform < 0 && eight_wide(s->bvh.isa);
+    return (k == SHAPE_SPHERE || k == SHAPE_QUAD || k == SHAPE_PLANE) && o->xform < 0 &&
+           eight_wide(s->bvh.isa);
 }
 
 bool scene_packets_pay(const scene *s)
