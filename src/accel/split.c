@@ -1,6 +1,7 @@
 #include "split.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -215,6 +216,58 @@ static void bin_prims(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bin
     }
 }
 
+/* Ranges of at least this many primitives are binned on several threads,
+ * each a part of the range into bins of its own, then merged: minima and
+ * exact counts are the same whatever the parts. */
+#define BIN_PAR_MIN 65536
+#define BIN_PAR_MAX 8
+
+typedef struct bin_job {
+    const split_ctx *b;
+    int lo, hi;
+    v4 cmin, scale;
+    bins *out;
+} bin_job;
+
+static void *bin_run(void *arg)
+{
+    bin_job *j = arg;
+    bin_prims(j->b, j->lo, j->hi, j->cmin, j->scale, j->out);
+    return NULL;
+}
+
+static void bin_prims_par(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bins *out)
+{
+    int t = b->threads < BIN_PAR_MAX ? b->threads : BIN_PAR_MAX;
+    bins part[BIN_PAR_MAX];
+    bin_job job[BIN_PAR_MAX];
+    pthread_t th[BIN_PAR_MAX];
+    bool started[BIN_PAR_MAX] = {false};
+    long n = hi - lo;
+    for (int i = 0; i < t; i++) {
+        part[i].nbins = out->nbins;
+        job[i] = (bin_job){b, lo + (int)(n * i / t), lo + (int)(n * (i + 1) / t), cmin, scale,
+                           i == 0 ? out : &part[i]};
+        if (i > 0)
+            started[i] = pthread_create(&th[i], NULL, bin_run, &job[i]) == 0;
+    }
+    bin_run(&job[0]);
+    for (int i = 1; i < t; i++) {
+        if (started[i])
+            pthread_join(th[i], NULL);
+        else
+            bin_run(&job[i]);
+        for (int a = 0; a < 3; a++)
+            for (int k = 0; k < out->nbins; k++) {
+                box4 *o = &out->box[a][k], p = part[i].box[a][k];
+                float count = v4_w(o->lo) + v4_w(p.lo);
+                v4 m = v4_min(o->lo, p.lo);
+                o->lo = v4_set(v4_x(m), v4_y(m), v4_z(m), count);
+                o->nhi = v4_min(o->nhi, p.nhi);
+            }
+    }
+}
+
 /* The areas of four boxes at once, as box4_area computes each but for the
  * test of an empty box (the unions swept here are of at least one box,
  * or are not used). hi - lo is -(-hi + lo) exactly, and the signs cancel
@@ -369,7 +422,11 @@ float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int
     v4 ext = v4_sub(cb.hi, cb.lo);
     for (int a = 0; a < 3; a++)
         scale[a] = v4_at(ext, a) > 0.0f ? (float)bn.nbins / v4_at(ext, a) : 0.0f;
-    bin_prims(b, lo, hi, cb.lo, v4_set(scale[0], scale[1], scale[2], 0.0f), &bn);
+    v4 sc = v4_set(scale[0], scale[1], scale[2], 0.0f);
+    if (b->threads > 1 && n >= BIN_PAR_MIN && n <= BIN_CHUNK)
+        bin_prims_par(b, lo, hi, cb.lo, sc, &bn);
+    else
+        bin_prims(b, lo, hi, cb.lo, sc, &bn);
     box4 box = box4_empty();
     for (int k = 0; k < bn.nbins; k++)
         box = box4_union(box, bn.box[0][k]);

@@ -78,6 +78,7 @@ typedef struct split_ctx {
     int block;    /* primitives tested block-wide at a time */
     int max_leaf; /* most primitives a leaf takes */
     primref *refs;
+    int threads;  /* large ranges are binned on this many threads at once */
 } split_ctx;
 
 /* Cost of testing n primitives: they are tested block-wide at a time. */

@@ -1,8 +1,13 @@
+#define _GNU_SOURCE /* sched_getaffinity */
 #include "wide.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "accel/split.h"
 #include "core/array.h"
@@ -110,18 +115,26 @@ static void open_kid(wbuild *w, const wkid *k, wkid *left, wkid *right)
     eval_kid(w, right, gathered ? &ub : NULL);
 }
 
+/* Room for `need` nodes. */
+static bool wreserve(wbuild *w, int need)
+{
+    int cap = w->cap;
+    while (cap < need)
+        cap *= 2;
+    char *n = array_alloc_big(w->node_size * (size_t)cap);
+    if (!n)
+        return false;
+    memcpy(n, w->nodes, w->node_size * (size_t)w->nnodes);
+    free(w->nodes);
+    w->nodes = n;
+    w->cap = cap;
+    return true;
+}
+
 static int wnew(wbuild *w)
 {
-    if (w->nnodes == w->cap) {
-        int cap = w->cap * 2;
-        char *n = aligned_alloc(64, w->node_size * (size_t)cap);
-        if (!n)
-            return -1;
-        memcpy(n, w->nodes, w->node_size * (size_t)w->nnodes);
-        free(w->nodes);
-        w->nodes = n;
-        w->cap = cap;
-    }
+    if (w->nnodes == w->cap && !wreserve(w, w->cap + 1))
+        return -1;
     return w->nnodes++;
 }
 
@@ -236,7 +249,110 @@ static int wlane(wbuild *w, const wkid *k, uint32_t *count)
     }
 }
 
-static int wnode(wbuild *w, const wkid *k)
+/* A kid's subtree built into a node array of its own (wtask), on one of
+ * the threads of a wpool. */
+typedef struct wtask {
+    wbuild own;
+    wbuild *w; /* own, or for the first the parent's array, which it extends in place */
+    wkid kid;
+    int root; /* -1: out of memory */
+} wtask;
+
+typedef struct wpool {
+    wtask *task;
+    int order[8]; /* largest first, so that the threads finish together */
+    int ntasks;
+    atomic_int next;
+} wpool;
+
+static void *wpool_run(void *arg)
+{
+    wpool *p = arg;
+    for (int i; (i = atomic_fetch_add(&p->next, 1)) < p->ntasks;) {
+        wtask *t = &p->task[p->order[i]];
+        uint32_t count;
+        t->root = wlane(t->w, &t->kid, &count);
+    }
+    return NULL;
+}
+
+/* Appends t's nodes to w's, renumbering its children; returns where its
+ * root went, or -1. */
+static int wadopt(wbuild *w, const wtask *t)
+{
+    if (t->root < 0)
+        return -1;
+    if (t->w == w)
+        return t->root;
+    const wbuild *o = &t->own;
+    if (w->nnodes + o->nnodes > w->cap && !wreserve(w, w->nnodes + o->nnodes))
+        return -1;
+    int base = w->nnodes, wd = w->width;
+    memcpy(w->nodes + (size_t)base * w->node_size, o->nodes, (size_t)o->nnodes * w->node_size);
+    for (int i = 0; i < o->nnodes; i++) {
+        int32_t *child = (int32_t *)(void *)(w->nodes + (size_t)(base + i) * w->node_size +
+                                             6 * (size_t)wd * sizeof(float));
+        for (int k = 0; k < wd; k++)
+            child[k] += child[k] >= 0 ? base : 0;
+    }
+    w->nnodes += o->nnodes;
+    return base + t->root;
+}
+
+/* The subtrees of kids[0, nk) that are nodes, built on `threads` threads
+ * at once, then appended in order: the same nodes in the same order as
+ * one thread makes. Sets child[i] for them. */
+static bool wkids_par(wbuild *w, const wkid *kids, int nk, int threads, int32_t *child)
+{
+    wtask task[8];
+    wpool pool = {task, {0}, 0, 0};
+    int of[8];
+    bool ok = true;
+    for (int i = 0; i < nk; i++) {
+        of[i] = -1;
+        if (kids[i].kind != KID_INNER && kids[i].kind != KID_BUNDLE)
+            continue;
+        wtask *t = &task[pool.ntasks];
+        *t = (wtask){*w, &t->own, kids[i], -1};
+        t->own.s.threads = 1;
+        t->own.nnodes = 0;
+        t->own.nodes = NULL;
+        if (pool.ntasks == 0) { /* right after this node: in place */
+            t->w = w;
+        } else {
+            t->own.cap = (kids[i].hi - kids[i].lo) / 2 + 16;
+            t->own.nodes = array_alloc_big(t->own.node_size * (size_t)t->own.cap);
+            ok = ok && t->own.nodes;
+        }
+        of[i] = pool.ntasks;
+        int j = pool.ntasks++, size = kids[i].hi - kids[i].lo;
+        for (; j > 0 && task[pool.order[j - 1]].kid.hi - task[pool.order[j - 1]].kid.lo < size; j--)
+            pool.order[j] = pool.order[j - 1];
+        pool.order[j] = of[i];
+    }
+    pthread_t th[8];
+    bool started[8] = {false};
+    int par = w->s.threads;
+    w->s.threads = 1; /* the threads are busy with the kids */
+    int extra = ok ? (threads - 1 < pool.ntasks - 1 ? threads - 1 : pool.ntasks - 1) : 0;
+    for (int i = 0; i < extra; i++)
+        started[i] = pthread_create(&th[i], NULL, wpool_run, &pool) == 0;
+    if (ok)
+        wpool_run(&pool);
+    for (int i = 0; i < extra; i++)
+        if (started[i])
+            pthread_join(th[i], NULL);
+    w->s.threads = par;
+    for (int i = 0; i < nk; i++)
+        if (of[i] >= 0 && ok)
+            ok = (child[i] = wadopt(w, &task[of[i]])) >= 0;
+    for (int i = 0; i < pool.ntasks; i++)
+        free(task[i].own.nodes);
+    return ok;
+}
+
+/* threads > 1: the kids' subtrees are built on that many threads. */
+static int wnode_on(wbuild *w, const wkid *k, int threads)
 {
     int self = wnew(w);
     if (self < 0)
@@ -254,13 +370,36 @@ static int wnode(wbuild *w, const wkid *k)
             continue;
         box[i] = lane_box(kids[i].kind == KID_PRIM ? box4_load(&w->s.refs[kids[i].lo])
                                                    : kids[i].box);
+        if (threads > 1 && (kids[i].kind == KID_INNER || kids[i].kind == KID_BUNDLE))
+            continue; /* below */
         child[i] = wlane(w, &kids[i], &count[i]);
         if (child[i] == -1 && count[i] == 0)
             return -1;
     }
+    if (threads > 1 && !wkids_par(w, kids, nk, threads, child))
+        return -1;
     wstore(w, self, box, child, count);
     return self;
 }
+
+static int wnode(wbuild *w, const wkid *k) { return wnode_on(w, k, 1); }
+
+/* CPUs to build on: cpus, or with 0 those of the process's affinity mask. */
+static int cpu_count(int cpus)
+{
+    if (cpus > 0)
+        return cpus;
+#if defined(CPU_COUNT)
+    cpu_set_t set;
+    return sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 1;
+#else
+    long c = sysconf(_SC_NPROCESSORS_ONLN);
+    return c > 0 ? (int)c : 1;
+#endif
+}
+
+/* Trees smaller than this are built on one thread. */
+#define PAR_MIN 16384
 
 glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
                     int bundle, accel_isa isa, int cpus, glint_error *err)
@@ -271,8 +410,8 @@ glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int
     out->bounds = aabb_empty();
     if (n <= 0)
         return GLINT_OK;
-    (void)cpus;
-    wbuild w = {{1, max_leaf, NULL}, bundle < out->width ? bundle : out->width, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node), NULL, 0,
+    int threads = n >= PAR_MIN ? cpu_count(cpus) : 1;
+    wbuild w = {{1, max_leaf, NULL, threads}, bundle < out->width ? bundle : out->width, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node), NULL, 0,
                 n / 2 + 16};
     w.s.refs = array_alloc_big(sizeof *w.s.refs * (size_t)n);
     out->prims = malloc(sizeof *out->prims * (size_t)n);
@@ -288,7 +427,7 @@ glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int
     wkid root = {.lo = 0, .hi = n, .depth = 0};
     eval_kid(&w, &root, NULL);
     if (root.kind == KID_INNER) {
-        if (wnode(&w, &root) < 0)
+        if (wnode_on(&w, &root, threads) < 0)
             goto nomem;
     } else { /* one leaf, or a bundle: one node */
         int self = wnew(&w);
