@@ -11,7 +11,9 @@
  *
  * BVH: closest hits and occlusion through the mesh BVH and the scene BVH
  * agree with brute force over every primitive on fixed-seed random rays
- * (same primitive, same t within 1e-5). */
+ * (same primitive, same t within 1e-5); the builds make the same tree on
+ * any number of threads, and the wide build the tree the binary build and
+ * its collapse make. */
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <math.h>
@@ -21,6 +23,7 @@
 #include <unistd.h>
 
 #include "accel/bvh.h"
+#include "accel/wide.h"
 #include "core/mat4.h"
 #include "core/rng.h"
 #include "geom/mesh.h"
@@ -763,6 +766,86 @@ Test(bvh, parallel_build_makes_the_serial_tree)
         bvh_free(&many);
     }
     bvh_free(&one);
+}
+
+/* Random boxes for the wide builds below, a tenth of them in a cluster
+ * that no plane separates. */
+static void wide_test_boxes(aabb *boxes, int n, uint64_t seed)
+{
+    rng g = rng_seed(seed, 3);
+    for (int i = 0; i < n; i++) {
+        vec3 c = rand_in(&g, -100, 100);
+        if (i % 10 == 0)
+            c = v3(-7, 4, 9);
+        vec3 e = rand_in(&g, 0, 1.5f);
+        boxes[i] = (aabb){v3_sub(c, e), v3_add(c, e)};
+    }
+}
+
+static bool wide_same(const bvhw *a, const bvhw *b)
+{
+    return a->nnodes == b->nnodes && a->nprims == b->nprims &&
+           memcmp(a->n8, b->n8, bvhw_node_bytes(a)) == 0 &&
+           memcmp(a->prims, b->prims, sizeof *a->prims * (size_t)a->nprims) == 0;
+}
+
+/* bvhw_build without bundles makes the tree bvh_build (or
+ * bvh_build_leaves) and bvhw_from_bvh make, node for node, four and eight
+ * wide. */
+Test(bvh, wide_build_makes_the_collapsed_tree)
+{
+    enum { N = 30000 };
+    static aabb boxes[N];
+    wide_test_boxes(boxes, N, 7);
+    glint_error err = {0};
+    accel_isa isas[] = {ACCEL_SSE, ACCEL_AVX512};
+    for (int k = 0; k < 2; k++)
+        for (int leaf = 1; leaf <= 4; leaf += 3) {
+            bvh bin;
+            cr_assert_eq(leaf == 1 ? bvh_build_leaves(&bin, boxes, N, 1, &err)
+                                   : bvh_build_threads(&bin, boxes, N, 1, 1, &err),
+                         GLINT_OK, "%s", err.msg);
+            bvhw collapsed, direct;
+            cr_assert_eq(bvhw_from_bvh(&collapsed, &bin, isas[k], false, &err), GLINT_OK, "%s", err.msg);
+            cr_assert_eq(bvhw_build(&direct, boxes, NULL, N, leaf, 0, isas[k], 1, &err), GLINT_OK,
+                         "%s", err.msg);
+            cr_assert(wide_same(&collapsed, &direct), "width %d, leaves of %d: the trees differ",
+                      collapsed.width, leaf);
+            bvhw_free(&collapsed);
+            bvhw_free(&direct);
+        }
+}
+
+/* The wide build with bundles makes the same tree on 2, 3 and 8 CPUs as on
+ * one, node for node and in the same order (its top node's subtrees are
+ * built on threads, and ranges of 65536 or more are binned in parts); the
+ * primitives are the given ids, each once. */
+Test(bvh, parallel_wide_build_makes_the_serial_tree)
+{
+    enum { N = 200000 };
+    static aabb boxes[N];
+    static int32_t ids[N];
+    wide_test_boxes(boxes, N, 11);
+    for (int i = 0; i < N; i++)
+        ids[i] = N - 1 - i;
+    glint_error err = {0};
+    bvhw one;
+    cr_assert_eq(bvhw_build(&one, boxes, ids, N, 4, 4, ACCEL_AVX512, 1, &err), GLINT_OK, "%s",
+                 err.msg);
+    static bool seen[N];
+    for (int i = 0; i < N; i++) {
+        cr_assert(!seen[one.prims[i]], "primitive %d twice", one.prims[i]);
+        seen[one.prims[i]] = true;
+    }
+    int cpus[] = {2, 3, 8};
+    for (int k = 0; k < 3; k++) {
+        bvhw many;
+        cr_assert_eq(bvhw_build(&many, boxes, ids, N, 4, 4, ACCEL_AVX512, cpus[k], &err),
+                     GLINT_OK, "%s", err.msg);
+        cr_assert(wide_same(&one, &many), "%d CPUs: the trees differ", cpus[k]);
+        bvhw_free(&many);
+    }
+    bvhw_free(&one);
 }
 
 /* The scene's BVH over objects (with transforms, and a plane outside it):

@@ -66,6 +66,14 @@ typedef struct bvhw {
  * a binary node, where many rays follow one build: a mesh); otherwise
  * each node opens its largest children first. */
 glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, bool optimal, glint_error *err);
+/* The tree that bvh_build_leaves (max_leaf) followed by bvhw_from_bvh
+ * makes over boxes[ids[i]] for i < n (ids NULL: boxes[i]), built directly
+ * (accel/bvh.c), with ranges of at most `bundle` primitives (0: none)
+ * taken whole: each primitive a lane of its own, in a node of its own or
+ * in its parent's if they fit. prims are the ids. cpus as for
+ * bvh_build_threads. */
+glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
+                    int bundle, accel_isa isa, int cpus, glint_error *err);
 void bvhw_free(bvhw *b);
 /* Bytes of the nodes. */
 size_t bvhw_node_bytes(const bvhw *b);

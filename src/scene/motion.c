@@ -54,8 +54,11 @@ static aabb moving_bounds(const scene *s, const object *o, aabb b)
 
 aabb scene_object_bounds(const scene *s, int i)
 {
-    const object *o = &s->objects[i];
-    aabb b = shape_bounds(&o->shape);
+    return scene_object_bounds_of(s, &s->objects[i], shape_bounds(&s->objects[i].shape));
+}
+
+aabb scene_object_bounds_of(const scene *s, const object *o, aabb b)
+{
     if (o->moving)
         return moving_bounds(s, o, b);
     return o->xform >= 0 ? shape_bounds_mapped(&o->shape, &s->xforms[o->xform].fwd) : b;

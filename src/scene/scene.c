@@ -214,51 +214,6 @@ static bool object_is_dear(const object *o)
     return o->xform >= 0;
 }
 
-/* The BVH over bounded objects; unbounded ones are listed apart. When
- * most of them are dear to test (object_is_dear) a leaf holds one, so
- * that a ray tests only the objects whose own boxes it enters: on row 8
- * of the benchmark (10,000 turned tori) 5 % fewer instructions. */
-static glint_rc build_accel(scene *s, glint_error *err)
-{
-    bvhw_free(&s->bvh);
-    free(s->unbounded);
-    s->unbounded = NULL;
-    s->nunbounded = 0;
-    size_t n = (size_t)(s->nobjects ? s->nobjects : 1);
-    int32_t *bounded = malloc(sizeof *bounded * n);
-    aabb *boxes = malloc(sizeof *boxes * n);
-    s->unbounded = malloc(sizeof *s->unbounded * n);
-    glint_rc rc = GLINT_OK;
-    if (!bounded || !boxes || !s->unbounded) {
-        rc = err_nomem(err);
-        goto out;
-    }
-    int nb = 0, dear = 0;
-    for (int i = 0; i < s->nobjects; i++) {
-        if (aabb_is_empty(s->bounds[i]) || !v3_is_finite(s->bounds[i].lo) ||
-            !v3_is_finite(s->bounds[i].hi)) {
-            s->unbounded[s->nunbounded++] = i;
-        } else {
-            boxes[nb] = s->bounds[i];
-            bounded[nb++] = i;
-            dear += object_is_dear(&s->objects[i]);
-        }
-    }
-    bvh bin;
-    rc = nb > 4 && 2 * dear > nb ? bvh_build_leaves(&bin, boxes, nb, 1, err)
-                                 : bvh_build(&bin, boxes, nb, err);
-    if (rc != GLINT_OK)
-        goto out;
-    /* Leaves refer to objects directly. */
-    for (int i = 0; i < bin.nprims; i++)
-        bin.prims[i] = bounded[bin.prims[i]];
-    rc = bvhw_from_bvh(&s->bvh, &bin, accel_isa_active(), false, err);
-out:
-    free(bounded);
-    free(boxes);
-    return rc;
-}
-
 /* Whether the material a shape uses (mat, or with mat -1 those of a
  * mesh's triangles or a csg's operands) exist; *transmits is set when one
  * of them transmits. */
@@ -309,16 +264,56 @@ static glint_rc check_shading(const scene *s, glint_error *err)
     return GLINT_OK;
 }
 
-/* Where object-space textures have their origin: the centre of the
- * shape's bounds, or a plane's point (texture.h). */
-static vec3 texture_origin(const shape *sh)
+/* Scenes of at least this many bounded objects take ranges of up to four
+ * of them whole in their BVH (bvhw_build's bundles): each object keeps a
+ * lane of its own, and the build does not split below four. */
+#define BUNDLE_MIN 4096
+#define BUNDLE 4
+
+static inline bool object_unbounded(aabb b)
 {
-    if (sh->kind == SHAPE_PLANE)
-        return sh->plane.point;
-    aabb b = shape_bounds(sh);
-    if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
-        return v3s(0.0f);
-    return v3_scale(v3_add(b.lo, b.hi), 0.5f);
+    return aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi);
+}
+
+/* The BVH over bounded objects; unbounded ones are listed apart. When
+ * most of them are dear to test (object_is_dear) a leaf holds one, so
+ * that a ray tests only the objects whose own boxes it enters: on row 8
+ * of the benchmark (10,000 turned tori) 5 % fewer instructions. nb: the
+ * bounded objects, dear: how many of them are dear. */
+static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
+{
+    bvhw_free(&s->bvh);
+    s->nunbounded = 0;
+    int32_t *bounded = NULL;
+    if (nb < s->nobjects) { /* the unbounded apart, the others' indices in order */
+        bounded = malloc(sizeof *bounded * (size_t)(nb ? nb : 1));
+        if (!bounded)
+            return err_nomem(err);
+        for (int i = 0, k = 0; i < s->nobjects; i++) {
+            if (object_unbounded(s->bounds[i]))
+                s->unbounded[s->nunbounded++] = i;
+            else
+                bounded[k++] = i;
+        }
+    }
+    glint_rc rc = bvhw_build(&s->bvh, s->bounds, bounded, nb, nb > 4 && 2 * dear > nb ? 1 : 4,
+                             nb >= BUNDLE_MIN ? BUNDLE : 0, accel_isa_active(), 0, err);
+    free(bounded);
+    return rc;
+}
+
+/* Object i's world bounds (scene_object_bounds) and where its object-space
+ * textures have their origin (texture_origin), from one shape_bounds. */
+static aabb object_bounds(const scene *s, object *o)
+{
+    aabb b = shape_bounds(&o->shape);
+    if (o->shape.kind == SHAPE_PLANE)
+        o->origin = o->shape.plane.point;
+    else if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+        o->origin = v3s(0.0f);
+    else
+        o->origin = v3_scale(v3_add(b.lo, b.hi), 0.5f);
+    return scene_object_bounds_of(s, o, b);
 }
 
 static glint_rc build(scene *s, glint_error *err)
@@ -328,21 +323,43 @@ static glint_rc build(scene *s, glint_error *err)
         rc = scene_link_motions(s, err);
     if (rc != GLINT_OK)
         return rc;
-    free(s->bounds);
-    s->bounds = malloc(sizeof *s->bounds * (size_t)(s->nobjects ? s->nobjects : 1));
-    if (!s->bounds)
-        return err_nomem(err);
+    /* The arrays of the last build are kept when they are large enough:
+     * fresh memory would be cleared by the kernel first. */
+    size_t n = (size_t)(s->nobjects ? s->nobjects : 1);
+    if (n > s->cap_bounds) {
+        aabb *bounds = malloc(sizeof *bounds * n);
+        int32_t *unbounded = malloc(sizeof *unbounded * n);
+        if (!bounds || !unbounded) {
+            free(bounds);
+            free(unbounded);
+            return err_nomem(err);
+        }
+        if (s->nunbounded > 0) /* the built scene's, until this build is done */
+            memcpy(unbounded, s->unbounded, sizeof *unbounded * (size_t)s->nunbounded);
+        free(s->bounds);
+        free(s->unbounded);
+        s->bounds = bounds;
+        s->unbounded = unbounded;
+        s->cap_bounds = n;
+    }
+    int nb = 0, dear = 0;
     for (int i = 0; i < s->nobjects; i++) {
         object *o = &s->objects[i];
         o->transmits = false;
-        if (!materials_ok(s, &o->shape, o->material, &o->transmits))
+        if (o->material >= 0 && o->material < s->nmaterials)
+            o->transmits = s->materials[o->material].transmit > 0.0f;
+        else if (!materials_ok(s, &o->shape, o->material, &o->transmits))
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
-        s->bounds[i] = scene_object_bounds(s, i);
-        o->origin = texture_origin(&o->shape);
+        aabb b = object_bounds(s, o);
+        s->bounds[i] = b;
+        if (!object_unbounded(b)) {
+            nb++;
+            dear += object_is_dear(o);
+        }
     }
-    rc = build_accel(s, err);
+    rc = build_accel(s, nb, dear, err);
     if (rc != GLINT_OK)
         return rc;
     s->flat = s->bvh.nnodes == 0 || s->bvh.leaf_root;

@@ -38,6 +38,7 @@ struct glint_scene {
     object *objects;
     int nobjects, cap_objects;
     aabb *bounds; /* world bounds per object, by scene_build */
+    size_t cap_bounds; /* room in bounds and unbounded */
     xform *xforms;
     int nxforms, cap_xforms;
     material *materials;
@@ -150,6 +151,8 @@ glint_rc scene_camera_changed(scene *s, glint_error *err);
 camera scene_camera_at(const scene *s, float t);
 /* Bounds of object i over the shutter interval (scene_build's rule). */
 aabb scene_object_bounds(const scene *s, int i);
+/* The same for object o, whose shape's own bounds (shape_bounds) are b. */
+aabb scene_object_bounds_of(const scene *s, const object *o, aabb b);
 /* scene_build's first step: which objects have a motion, and which of
  * them move while the shutter is open. */
 glint_rc scene_link_motions(scene *s, glint_error *err);
