@@ -38,16 +38,3 @@ void *array_alloc_big(size_t n)
 #endif
     return p;
 }
-
-void *array_calloc_big(size_t count, size_t size)
-{
-    void *p = calloc(count, size);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    /* calloc hands large blocks out as fresh, untouched mappings */
-    uintptr_t at = (uintptr_t)p, first = (at + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
-    uintptr_t end = (at + count * size) / HUGE_PAGE * HUGE_PAGE;
-    if (p && end > first)
-        madvise((void *)first, end - first, MADV_HUGEPAGE); /* advice only */
-#endif
-    return p;
-}

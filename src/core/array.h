@@ -17,11 +17,4 @@ int array_push(void **items, int *n, int *cap, size_t elem);
  * with free(). */
 void *array_alloc_big(size_t n);
 
-/* count * size zeroed bytes for a large array that threads fill (a film):
- * calloc's, with the whole 2 MiB pages inside it advised as transparent
- * huge pages, so that filling it takes a page fault per 2 MiB rather than
- * per 4 KiB and giving it back at the end is quicker. NULL when memory
- * runs out; free with free(). */
-void *array_calloc_big(size_t count, size_t size);
-
 #endif
