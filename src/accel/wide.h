@@ -55,6 +55,9 @@ typedef struct bvhw {
     /* The whole tree is one leaf (lane 0 of node 0): an owner may test its
      * primitives without a traversal (scene.c does). */
     bool leaf_root;
+    /* Room in the node and primitive arrays, which bvhw_rebuild reuses (0:
+     * none known). */
+    int cap_nodes, cap_prims;
 } bvhw;
 
 #define WIDE_FETCH_BYTES (256u * 1024u)
@@ -74,6 +77,11 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, bool optimal, glint_err
  * bvh_build_threads. */
 glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
                     int bundle, accel_isa isa, int cpus, glint_error *err);
+/* The same into b, which holds a tree (or is zeroed): its arrays are
+ * reused where they are large enough (memory the kernel would otherwise
+ * clear first), the rest freed. */
+glint_rc bvhw_rebuild(bvhw *b, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
+                      int bundle, accel_isa isa, int cpus, glint_error *err);
 void bvhw_free(bvhw *b);
 /* Bytes of the nodes. */
 size_t bvhw_node_bytes(const bvhw *b);

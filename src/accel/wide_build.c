@@ -401,21 +401,83 @@ static int cpu_count(int cpus)
 /* Trees smaller than this are built on one thread. */
 #define PAR_MIN 16384
 
+/* The tree of a root that does not split: one node, whose first lane is
+ * the leaf, or whose lanes are the bundle's primitives. */
+static bool wsingle(wbuild *w, const wkid *root)
+{
+    int self = wnew(w), n = root->hi - root->lo;
+    if (self < 0)
+        return false;
+    aabb box[8];
+    int32_t child[8];
+    uint32_t count[8];
+    for (int i = 0; i < w->width; i++) {
+        box[i] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
+        child[i] = -1;
+        count[i] = 0;
+    }
+    if (root->kind == KID_LEAF) {
+        box[0] = lane_box(root->box);
+        count[0] = (uint32_t)n;
+    } else
+        for (int i = 0; i < n; i++) {
+            box[i] = lane_box(box4_load(&w->s.refs[i]));
+            child[i] = -1 - i;
+            count[i] = 1;
+        }
+    wstore(w, self, box, child, count);
+    return true;
+}
+
 glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
                     int bundle, accel_isa isa, int cpus, glint_error *err)
 {
     memset(out, 0, sizeof *out);
+    return bvhw_rebuild(out, boxes, ids, n, max_leaf, bundle, isa, cpus, err);
+}
+
+glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
+                      int bundle, accel_isa isa, int cpus, glint_error *err)
+{
+    bvhw old = *out;
+    memset(out, 0, sizeof *out);
     out->isa = isa;
     out->width = accel_isa_width(isa);
     out->bounds = aabb_empty();
-    if (n <= 0)
-        return GLINT_OK;
     int threads = n >= PAR_MIN ? cpu_count(cpus) : 1;
-    wbuild w = {{1, max_leaf, NULL, threads}, bundle < out->width ? bundle : out->width, out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node), NULL, 0,
+    /* Room for as many nodes as half the primitives (a tree of bundles
+     * makes about 0.29 per primitive, eight wide); pages never written
+     * cost nothing, and a larger tree grows it. */
+    wbuild w = {{1, max_leaf, NULL, threads}, bundle < out->width ? bundle : out->width,
+                out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node), NULL, 0,
                 n / 2 + 16};
+    if (old.width == out->width && old.cap_nodes >= w.cap) {
+        w.nodes = (char *)(old.width == 8 ? (void *)old.n8 : (void *)old.n4);
+        w.cap = old.cap_nodes;
+        old.n8 = NULL;
+    }
+    if (old.cap_prims >= n) {
+        out->prims = old.prims;
+        out->cap_prims = old.cap_prims;
+        old.prims = NULL;
+    }
+    bvhw_free(&old);
+    if (n <= 0) {
+        free(w.nodes);
+        free(out->prims);
+        memset(out, 0, sizeof *out);
+        out->isa = isa;
+        out->width = accel_isa_width(isa);
+        out->bounds = aabb_empty();
+        return GLINT_OK;
+    }
     w.s.refs = array_alloc_big(sizeof *w.s.refs * (size_t)n);
-    out->prims = malloc(sizeof *out->prims * (size_t)n);
-    w.nodes = array_alloc_big(w.node_size * (size_t)w.cap);
+    if (!out->prims) {
+        out->prims = malloc(sizeof *out->prims * (size_t)n);
+        out->cap_prims = n;
+    }
+    if (!w.nodes)
+        w.nodes = array_alloc_big(w.node_size * (size_t)w.cap);
     if (!w.s.refs || !out->prims || !w.nodes)
         goto nomem;
     for (int i = 0; i < n; i++) {
@@ -429,28 +491,10 @@ glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int
     if (root.kind == KID_INNER) {
         if (wnode_on(&w, &root, threads) < 0)
             goto nomem;
-    } else { /* one leaf, or a bundle: one node */
-        int self = wnew(&w);
-        aabb box[8];
-        int32_t child[8];
-        uint32_t count[8];
-        for (int i = 0; i < w.width; i++) {
-            box[i] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
-            child[i] = -1;
-            count[i] = 0;
-        }
-        if (root.kind == KID_LEAF) {
-            box[0] = lane_box(root.box);
-            child[0] = -1;
-            count[0] = (uint32_t)n;
-            out->leaf_root = true;
-        } else
-            for (int i = 0; i < n; i++) {
-                box[i] = lane_box(box4_load(&w.s.refs[i]));
-                child[i] = -1 - i;
-                count[i] = 1;
-            }
-        wstore(&w, self, box, child, count);
+    } else if (wsingle(&w, &root)) {
+        out->leaf_root = root.kind == KID_LEAF;
+    } else {
+        goto nomem;
     }
     for (int i = 0; i < n; i++)
         out->prims[i] = w.s.refs[i].id;
@@ -460,6 +504,7 @@ glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int
     else
         out->n4 = (bvh4_node *)(void *)w.nodes;
     out->nnodes = w.nnodes;
+    out->cap_nodes = w.cap;
     out->fetch_ahead = bvhw_node_bytes(out) > WIDE_FETCH_BYTES;
     out->nprims = n;
     out->bounds = lane_box(root.box);

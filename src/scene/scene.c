@@ -282,13 +282,14 @@ static inline bool object_unbounded(aabb b)
  * bounded objects, dear: how many of them are dear. */
 static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
 {
-    bvhw_free(&s->bvh);
     s->nunbounded = 0;
     int32_t *bounded = NULL;
     if (nb < s->nobjects) { /* the unbounded apart, the others' indices in order */
         bounded = malloc(sizeof *bounded * (size_t)(nb ? nb : 1));
-        if (!bounded)
+        if (!bounded) {
+            bvhw_free(&s->bvh);
             return err_nomem(err);
+        }
         for (int i = 0, k = 0; i < s->nobjects; i++) {
             if (object_unbounded(s->bounds[i]))
                 s->unbounded[s->nunbounded++] = i;
@@ -296,8 +297,9 @@ static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
                 bounded[k++] = i;
         }
     }
-    glint_rc rc = bvhw_build(&s->bvh, s->bounds, bounded, nb, nb > 4 && 2 * dear > nb ? 1 : 4,
-                             nb >= BUNDLE_MIN ? BUNDLE : 0, accel_isa_active(), 0, err);
+    /* The last build's arrays are reused (bvhw_rebuild) */
+    glint_rc rc = bvhw_rebuild(&s->bvh, s->bounds, bounded, nb, nb > 4 && 2 * dear > nb ? 1 : 4,
+                               nb >= BUNDLE_MIN ? BUNDLE : 0, accel_isa_active(), 0, err);
     free(bounded);
     return rc;
 }
