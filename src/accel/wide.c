@@ -7,13 +7,6 @@
 #include "core/array.h"
 #include "core/error.h"
 
-/* A node's children before they are stored in one layout or the other. */
-typedef struct lanes {
-    aabb box[8];
-    int32_t child[8];
-    uint32_t count[8];
-} lanes;
-
 /* The SAH-optimal choice of which binary nodes become wide nodes, the
  * binary tree's leaves kept as they are (Ylitie, Karras and Laine,
  * "Efficient Incoherent Ray Traversal on GPUs Through Compressed Wide
@@ -40,10 +33,20 @@ typedef struct collapse {
     int nnodes, cap;
 } collapse;
 
-static void store(const collapse *c, int at, const lanes *l)
+void bvhw_lanes_empty(bvhw_lanes *l)
 {
-    int w = c->width;
-    float *box = (float *)(c->nodes + (size_t)at * c->node_size); /* box[6][w] */
+    for (int k = 0; k < 8; k++) {
+        l->box[k] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
+        l->child[k] = -1;
+        l->count[k] = 0;
+    }
+}
+
+void bvhw_store(void *nodes, int width, int at, const bvhw_lanes *l)
+{
+    int w = width;
+    size_t size = w == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node);
+    float *box = (float *)(void *)((char *)nodes + (size_t)at * size); /* box[6][w] */
     int32_t *child = (int32_t *)(box + 6 * w);
     uint32_t *count = (uint32_t *)(child + w);
     for (int k = 0; k < w; k++) {
@@ -188,13 +191,9 @@ static int collapse_node(collapse *c, int bin)
     } else {
         nk = gather(c, bin, kids);
     }
-    lanes l;
-    for (int k = 0; k < c->width; k++) {
-        l.box[k] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
-        l.child[k] = -1;
-        l.count[k] = 0;
-        if (k >= nk)
-            continue;
+    bvhw_lanes l;
+    bvhw_lanes_empty(&l);
+    for (int k = 0; k < nk; k++) {
         const bvh_node *kid = &bn[kids[k]];
         l.box[k] = kid->box;
         if (kid->count) {
@@ -207,7 +206,7 @@ static int collapse_node(collapse *c, int bin)
             l.child[k] = sub;
         }
     }
-    store(c, self, &l);
+    bvhw_store(c->nodes, c->width, self, &l);
     return self;
 }
 
@@ -236,13 +235,12 @@ glint_rc bvhw_from_bvh(bvhw *out, bvh *b, accel_isa isa, bool optimal, glint_err
         return err_nomem(err);
     }
     if (b->nodes[0].count) { /* a single leaf: one node with one lane */
-        lanes l;
-        for (int k = 0; k < c.width; k++) {
-            l.box[k] = k == 0 ? b->nodes[0].box : (aabb){v3s(INFINITY), v3s(-INFINITY)};
-            l.child[k] = k == 0 ? -1 - b->nodes[0].index : -1;
-            l.count[k] = k == 0 ? b->nodes[0].count : 0;
-        }
-        store(&c, new_node(&c), &l);
+        bvhw_lanes l;
+        bvhw_lanes_empty(&l);
+        l.box[0] = b->nodes[0].box;
+        l.child[0] = -1 - b->nodes[0].index;
+        l.count[0] = b->nodes[0].count;
+        bvhw_store(c.nodes, c.width, new_node(&c), &l);
         out->leaf_root = true;
     } else if (collapse_node(&c, 0) < 0) {
         free(c.nodes), free(p.cost), free(p.pick);

@@ -82,6 +82,20 @@ glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int
  * clear first), the rest freed. */
 glint_rc bvhw_rebuild(bvhw *b, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
                       int bundle, accel_isa isa, int cpus, glint_error *err);
+/* A node's children before they are stored: lane k's box, child (a node,
+ * or -1 - first for a leaf) and count; an empty lane has an empty box,
+ * child -1 and count 0. */
+typedef struct bvhw_lanes {
+    aabb box[8];
+    int32_t child[8];
+    uint32_t count[8];
+} bvhw_lanes;
+
+/* Every lane of l empty. */
+void bvhw_lanes_empty(bvhw_lanes *l);
+/* Stores l as node `at` of a node array of the given width (bvh4_node or
+ * bvh8_node), boxes per axis and lane. */
+void bvhw_store(void *nodes, int width, int at, const bvhw_lanes *l);
 void bvhw_free(bvhw *b);
 /* Bytes of the nodes. */
 size_t bvhw_node_bytes(const bvhw *b);

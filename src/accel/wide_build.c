@@ -146,42 +146,20 @@ static inline aabb lane_box(box4 b)
     return (aabb){v3(v4_x(lo), v4_y(lo), v4_z(lo)), v3(v4_x(hi), v4_y(hi), v4_z(hi))};
 }
 
-static void wstore(wbuild *w, int at, const aabb *box, const int32_t *child, const uint32_t *count)
-{
-    int wd = w->width;
-    float *bx = (float *)(void *)(w->nodes + (size_t)at * w->node_size); /* box[6][wd] */
-    int32_t *ch = (int32_t *)(bx + 6 * wd);
-    uint32_t *cn = (uint32_t *)(ch + wd);
-    for (int k = 0; k < wd; k++) {
-        aabb b = box[k];
-        bx[0 * wd + k] = b.lo.x;
-        bx[1 * wd + k] = b.hi.x;
-        bx[2 * wd + k] = b.lo.y;
-        bx[3 * wd + k] = b.hi.y;
-        bx[4 * wd + k] = b.lo.z;
-        bx[5 * wd + k] = b.hi.z;
-        ch[k] = child[k];
-        cn[k] = count[k];
-    }
-}
-
 /* A wide node of bundle k's primitives, a lane each. */
 static int wbundle(wbuild *w, const wkid *k)
 {
     int self = wnew(w);
     if (self < 0)
         return -1;
-    aabb box[8];
-    int32_t child[8];
-    uint32_t count[8];
-    for (int i = 0; i < w->width; i++) {
-        bool used = i < k->hi - k->lo;
-        box[i] = used ? lane_box(box4_load(&w->s.refs[k->lo + i]))
-                      : (aabb){v3s(INFINITY), v3s(-INFINITY)};
-        child[i] = used ? -1 - (k->lo + i) : -1;
-        count[i] = used;
+    bvhw_lanes l;
+    bvhw_lanes_empty(&l);
+    for (int i = 0; i < k->hi - k->lo; i++) {
+        l.box[i] = lane_box(box4_load(&w->s.refs[k->lo + i]));
+        l.child[i] = -1 - (k->lo + i);
+        l.count[i] = 1;
     }
-    wstore(w, self, box, child, count);
+    bvhw_store(w->nodes, w->width, self, &l);
     return self;
 }
 
@@ -359,26 +337,20 @@ static int wnode_on(wbuild *w, const wkid *k, int threads)
         return -1;
     wkid kids[8];
     int nk = wgather(w, k, kids);
-    aabb box[8];
-    int32_t child[8];
-    uint32_t count[8];
-    for (int i = 0; i < w->width; i++) {
-        box[i] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
-        child[i] = -1;
-        count[i] = 0;
-        if (i >= nk)
-            continue;
-        box[i] = lane_box(kids[i].kind == KID_PRIM ? box4_load(&w->s.refs[kids[i].lo])
-                                                   : kids[i].box);
+    bvhw_lanes l;
+    bvhw_lanes_empty(&l);
+    for (int i = 0; i < nk; i++) {
+        l.box[i] = lane_box(kids[i].kind == KID_PRIM ? box4_load(&w->s.refs[kids[i].lo])
+                                                     : kids[i].box);
         if (threads > 1 && (kids[i].kind == KID_INNER || kids[i].kind == KID_BUNDLE))
             continue; /* below */
-        child[i] = wlane(w, &kids[i], &count[i]);
-        if (child[i] == -1 && count[i] == 0)
+        l.child[i] = wlane(w, &kids[i], &l.count[i]);
+        if (l.child[i] == -1 && l.count[i] == 0)
             return -1;
     }
-    if (threads > 1 && !wkids_par(w, kids, nk, threads, child))
+    if (threads > 1 && !wkids_par(w, kids, nk, threads, l.child))
         return -1;
-    wstore(w, self, box, child, count);
+    bvhw_store(w->nodes, w->width, self, &l);
     return self;
 }
 
@@ -408,24 +380,18 @@ static bool wsingle(wbuild *w, const wkid *root)
     int self = wnew(w), n = root->hi - root->lo;
     if (self < 0)
         return false;
-    aabb box[8];
-    int32_t child[8];
-    uint32_t count[8];
-    for (int i = 0; i < w->width; i++) {
-        box[i] = (aabb){v3s(INFINITY), v3s(-INFINITY)};
-        child[i] = -1;
-        count[i] = 0;
-    }
+    bvhw_lanes l;
+    bvhw_lanes_empty(&l);
     if (root->kind == KID_LEAF) {
-        box[0] = lane_box(root->box);
-        count[0] = (uint32_t)n;
+        l.box[0] = lane_box(root->box);
+        l.count[0] = (uint32_t)n;
     } else
         for (int i = 0; i < n; i++) {
-            box[i] = lane_box(box4_load(&w->s.refs[i]));
-            child[i] = -1 - i;
-            count[i] = 1;
+            l.box[i] = lane_box(box4_load(&w->s.refs[i]));
+            l.child[i] = -1 - i;
+            l.count[i] = 1;
         }
-    wstore(w, self, box, child, count);
+    bvhw_store(w->nodes, w->width, self, &l);
     return true;
 }
 

@@ -44,6 +44,24 @@ static inline void ray8_put(ray8 *p, int k, const ray *r)
     p->tmin[k] = r->tmin, p->tmax[k] = r->tmax, p->time[k] = r->time;
 }
 
+/* The rays r[k] of the lanes of active (not 0) as a packet; idle lanes
+ * repeat an active ray, so that every lane holds numbers. */
+static inline void ray8_pack(ray8 *p, const ray r[8], int active)
+{
+    int first = __builtin_ctz((unsigned)active);
+    for (int k = 0; k < 8; k++)
+        ray8_put(p, k, &r[active >> k & 1 ? k : first]);
+}
+
+/* Whether mask has three lanes or more: enough for a packet to pay
+ * (without a popcount instruction, which baseline builds lack). */
+static inline bool ray8_three_or_more(int mask)
+{
+    mask &= mask - 1;
+    mask &= mask - 1;
+    return mask != 0;
+}
+
 #define RAY_EPS_REL 1e-4f
 
 static inline vec3 ray_at(const ray *r, float t) { return v3_madd(r->o, r->d, t); }

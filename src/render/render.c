@@ -184,12 +184,12 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
 {
     const scene *sc = j->scene;
     bool alpha = j->film->alpha || (j->work->accum && j->settings->alpha);
+    bool alike = sampler_same_in_every_pixel(&j->smp);
     for (int k = k0; k < k1; k++) {
         ray8 p;
         ray rs[8];
         int active = 0;
-        pixel_sample same = sampler_get(&j->smp, x0, y, k);
-        bool alike = sampler_same_in_every_pixel(&j->smp);
+        pixel_sample same = alike ? sampler_get(&j->smp, x0, y, k) : (pixel_sample){0};
         for (int i = 0; i < n; i++) {
             pixel_sample s = alike ? same : sampler_get(&j->smp, x0 + i, y, k);
             if (camera_ray(&j->frame, (float)(x0 + i) + s.fx, (float)y + s.fy, s.lu, s.lv, &rs[i]))
@@ -198,8 +198,7 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         }
         if (!active)
             continue;
-        for (int i = 0; i < 8; i++) /* idle lanes repeat an active ray */
-            ray8_put(&p, i, &rs[active >> i & 1 ? i : __builtin_ctz((unsigned)active)]);
+        ray8_pack(&p, rs, active);
         scene_hit h[8];
         int found = scene_intersect8(sc, &p, active, h);
         trace_lanes tl = {(uint32_t)x0, (uint32_t)y, (uint32_t)k, {0}};

@@ -65,28 +65,14 @@ static int torus8_on_path(const scene *s, const struct torus *t, const ray8 *r, 
 static void object_rays(const scene *s, const object *o, const ray8 *r, int active,
                         const float best[8], ray8 *lr)
 {
-    int first = __builtin_ctz((unsigned)active);
-    for (int k = first; k < 8; k++) {
-        if (!(active >> k & 1))
-            continue;
+    ray in[8];
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
         one.tmax = next_up(best[k]);
-        ray l = scene_object_ray(s, o, &one);
-        ray8_put(lr, k, &l);
+        in[k] = scene_object_ray(s, o, &one);
     }
-    ray idle = ray8_get(lr, first);
-    for (int k = 0; k < 8; k++)
-        if (!(active >> k & 1))
-            ray8_put(lr, k, &idle);
-}
-
-/* Whether mask has three bits or more (without a popcount instruction,
- * which this file is not compiled for). */
-static inline bool three_or_more(int mask)
-{
-    mask &= mask - 1;
-    mask &= mask - 1;
-    return mask != 0;
+    ray8_pack(lr, in, active);
 }
 
 /* Object i against the rays of active, each searched up to best[k]: a
@@ -97,7 +83,7 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
 {
     const object *o = &s->objects[i];
     int found = 0;
-    bool many = three_or_more(active);
+    bool many = ray8_three_or_more(active);
     if ((o->shape.kind == SHAPE_MESH || o->shape.kind == SHAPE_TORUS) && !o->moving && many) {
         ray8 lr;
         shape_hit h[8];
@@ -181,7 +167,7 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
         return;
     const object *o = &s->objects[i];
     int met = -1;
-    if (o->xform < 0 && three_or_more(active)) {
+    if (o->xform < 0 && ray8_three_or_more(active)) {
         shape_hit h[8];
         met = shape8_on_path(s, &o->shape, r, r->tmax, active, h);
     }

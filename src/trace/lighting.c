@@ -153,10 +153,9 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
         ctx->shadow_rays++;
     }
     int blocked = 0, alone = need;
-    if (need & (need - 1) & ((need & (need - 1)) - 1)) { /* three or more */
+    if (ray8_three_or_more(need)) {
         ray8 p;
-        for (int k = 0; k < 8; k++) /* idle lanes repeat a ray in use */
-            ray8_put(&p, k, &rs[need >> k & 1 ? k : __builtin_ctz((unsigned)need)]);
+        ray8_pack(&p, rs, need);
         if (!scene_shadow8(s, &p, need, &blocked, &alone))
             blocked = 0, alone = need;
     }
