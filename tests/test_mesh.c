@@ -816,6 +816,41 @@ Test(bvh, wide_build_makes_the_collapsed_tree)
         }
 }
 
+static bool bvh_same(const bvh *a, const bvh *b)
+{
+    return a->nnodes == b->nnodes && a->nprims == b->nprims &&
+           memcmp(a->nodes, b->nodes, sizeof *a->nodes * (size_t)a->nnodes) == 0 &&
+           memcmp(a->prims, b->prims, sizeof *a->prims * (size_t)a->nprims) == 0;
+}
+
+/* The AVX2 binning and partitioning loops (accel/split_avx2.c), which the
+ * builds use where the active path has AVX2, make the tree the 128-bit
+ * loops make, node for node: leaves of single primitives and of blocks,
+ * on boxes with a cluster that no plane separates. */
+Test(bvh, avx2_loops_make_the_same_tree)
+{
+    enum { N = 50000 };
+    static aabb boxes[N];
+    wide_test_boxes(boxes, N, 5);
+    glint_error err = {0};
+    int tried = 0;
+    for (int block = 1; block <= 4; block += 3) {
+        bvh loops[2];
+        accel_isa path[2] = {ACCEL_SSE, ACCEL_AVX2};
+        for (int k = 0; k < 2; k++) {
+            tried += accel_isa_force(path[k]) == path[k];
+            cr_assert_eq(bvh_build_threads(&loops[k], boxes, N, block, 1, &err), GLINT_OK, "%s",
+                         err.msg);
+        }
+        accel_isa_force(ACCEL_AUTO);
+        cr_assert(bvh_same(&loops[0], &loops[1]), "blocks of %d: the trees differ", block);
+        bvh_free(&loops[0]);
+        bvh_free(&loops[1]);
+    }
+    if (tried < 4)
+        cr_log_warn("this CPU has no AVX2: only the 128-bit loops were built");
+}
+
 /* The wide build with bundles makes the same tree on 2, 3 and 8 CPUs as on
  * one, node for node and in the same order (its top node's subtrees are
  * built on threads, and ranges of 65536 or more are binned in parts); the

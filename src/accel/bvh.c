@@ -250,7 +250,8 @@ static glint_rc build_tree(bvh *out, const aabb *boxes, int n, int block, int ma
     memset(out, 0, sizeof *out);
     if (n <= 0)
         return GLINT_OK;
-    build b = {{block, max_leaf, NULL, 1}, NULL, 0, 0, spawn_depth(cpus)};
+    build b = {{block, max_leaf, NULL, 1, accel_isa_active() >= ACCEL_AVX2}, NULL, 0, 0,
+               spawn_depth(cpus)};
     b.s.refs = array_alloc_big(sizeof *b.s.refs * (size_t)n);
     out->prims = malloc(sizeof *out->prims * (size_t)n);
     b.cap = node_room(&b, n);

@@ -63,33 +63,24 @@ void split_bounds(const split_ctx *b, int lo, int hi, box4 *box, cbox *cb)
     *cb = c;
 }
 
-/* Partitions refs[lo, hi) so that those with centre below `split` on
- * `axis` come first; returns the first index of the upper part, and the
- * centre bounds of each part (which spares each child a pass of its own).
- * No branch depends on the data, which goes either way: large ranges are
- * partitioned in place a block at a time (Edelkamp and Weiss,
- * "BlockQuicksort", ESA 2016): the primitives of a block at each end that
- * belong to the other side are noted, then swapped in pairs; what is left,
- * fewer than 2 * PART_BLOCK, goes through a buffer. */
-#define PART_BLOCK 64
-
+/* Whether r goes below the split, its centre added to that side's
+ * bounds without a branch: c + -0 is c (whatever its sign), c + inf is
+ * inf and c + -inf is -inf, which leave a minimum and a maximum as they
+ * were; so adding one or the other selects. */
 typedef struct part_acc {
     v4 lmin, lmax, umin, umax;
     v4 split;
     int axis;
 } part_acc;
 
-/* Whether r goes below the split, its centre added to that side's
- * bounds without a branch: c + -0 is c (whatever its sign), c + inf is
- * inf and c + -inf is -inf, which leave a minimum and a maximum as they
- * were; so adding one or the other selects. */
-static inline int part_side(part_acc *p, const primref *r)
+static inline int part_side(void *acc, const primref *r)
 {
 #define I_ INFINITY
     static const float add[2][4][4] __attribute__((aligned(16))) = {
         {{I_, I_, I_, I_}, {-I_, -I_, -I_, -I_}, {-0.f, -0.f, -0.f, -0.f}, {-0.f, -0.f, -0.f, -0.f}},
         {{-0.f, -0.f, -0.f, -0.f}, {-0.f, -0.f, -0.f, -0.f}, {I_, I_, I_, I_}, {-I_, -I_, -I_, -I_}}};
 #undef I_
+    part_acc *p = acc;
     v4 c = box4_center(box4_load(r));
     int below = (v4_lt(c, p->split) >> p->axis) & 1;
     const float(*t)[4] = add[below];
@@ -103,56 +94,16 @@ static inline int part_side(part_acc *p, const primref *r)
 int split_partition(split_ctx *b, int lo, int hi, int axis, float split, cbox *below,
                     cbox *above)
 {
-    primref *r = b->refs;
+#if defined(GLINT_WIDE_KERNELS)
+    if (b->avx2)
+        return split_partition_avx2(b, lo, hi, axis, split, below, above);
+#endif
     part_acc p = {v4_splat(FLT_MAX), v4_splat(-FLT_MAX), v4_splat(FLT_MAX), v4_splat(-FLT_MAX),
                   v4_splat(split), axis};
-    int l = lo, h = hi; /* [l, h) is not settled yet */
-    unsigned char offl[PART_BLOCK], offh[PART_BLOCK];
-    int nl = 0, nh = 0, sl = 0, sh = 0;
-    while (h - l > 2 * PART_BLOCK) {
-        if (nl == 0) {
-            sl = 0;
-            for (int k = 0; k < PART_BLOCK; k++) {
-                offl[nl] = (unsigned char)k;
-                nl += !part_side(&p, &r[l + k]);
-            }
-        }
-        if (nh == 0) {
-            sh = 0;
-            for (int k = 0; k < PART_BLOCK; k++) {
-                offh[nh] = (unsigned char)k;
-                nh += part_side(&p, &r[h - 1 - k]);
-            }
-        }
-        int num = nl < nh ? nl : nh;
-        for (int j = 0; j < num; j++) {
-            primref *x = &r[l + offl[sl + j]], *y = &r[h - 1 - offh[sh + j]];
-            primref t = *x;
-            *x = *y;
-            *y = t;
-        }
-        nl -= num;
-        nh -= num;
-        sl += num;
-        sh += num;
-        if (nl == 0)
-            l += PART_BLOCK;
-        if (nh == 0)
-            h -= PART_BLOCK;
-    }
-    /* The rest through a buffer: below from its start, above from its end. */
-    primref tmp[2 * PART_BLOCK];
-    int m = h - l, a = 0, z = m - 1;
-    for (int i = 0; i < m; i++) {
-        int s = part_side(&p, &r[l + i]);
-        tmp[s ? a : z] = r[l + i];
-        a += s;
-        z -= 1 - s;
-    }
-    memcpy(&r[l], tmp, sizeof *tmp * (size_t)m);
+    int mid = split_partition_by(b->refs, lo, hi, &p, part_side);
     *below = (cbox){p.lmin, p.lmax};
     *above = (cbox){p.umin, p.umax};
-    return l + a;
+    return mid;
 }
 
 /* Primitive counts and bounds per bin, on each of the three axes: lane 3
@@ -162,7 +113,7 @@ int split_partition(split_ctx *b, int lo, int hi, int axis, float split, cbox *b
 typedef struct bins {
     int nbins;
     bool counted;
-    box4 box[3][BINS];
+    box4 box[3][BINS] __attribute__((aligned(32)));
     int n[3][BINS];
 } bins;
 
@@ -191,8 +142,14 @@ static void bin_prims(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bin
     v4 top = v4_splat((float)(nb - 1)), one = v4_set(0.0f, 0.0f, 0.0f, 1.0f);
     const primref *refs = b->refs;
     for (int start = lo; start < hi; start += BIN_CHUNK) {
-        int end = hi - start > BIN_CHUNK ? start + BIN_CHUNK : hi;
-        for (int i = start; i < end; i++) {
+        int end = hi - start > BIN_CHUNK ? start + BIN_CHUNK : hi, first = start;
+#if defined(GLINT_WIDE_KERNELS)
+        if (b->avx2) {
+            split_bin_avx2(refs, start, end, cmin, scale, top, out->box);
+            first = end; /* nothing left for the loop below */
+        }
+#endif
+        for (int i = first; i < end; i++) {
             box4 box = box4_load(&refs[i]);
             v4 f = v4_mul(v4_sub(box4_center(box), cmin), scale);
             f = v4_min(v4_max(f, v4_splat(0.0f)), top); /* max gives 0 for NaN */
@@ -404,12 +361,25 @@ static float split_pair(const split_ctx *b, int lo, box4 *box_out, cbox cb, int 
     return cost;
 }
 
+/* The bins of a range of n primitives. Primitives tested block-wide (a
+ * mesh's triangles) get BINS from BINS primitives up, and max(n, 8) below
+ * that: more would mostly stay empty, and sweeping them costs more than
+ * binning the primitives. Single primitives (a scene's objects) get
+ * 4 + n / 10, at least 8, at most BINS, as Embree maps them ("BinMapping"
+ * in its binned SAH builder): on 10^6 random spheres the build is 9 %
+ * faster and rays cost 0.6 % more instructions; mesh trees, which carry
+ * far more rays per primitive, keep every bin. */
+static int bins_for(const split_ctx *b, int n)
+{
+    int want = b->block == 1 ? 4 + n / 10 : n;
+    return want >= BINS ? BINS : want > 8 ? want : 8;
+}
+
 /* The best binned SAH split of [lo, hi) over all three axes: sets *axis
  * and *plane (a centre coordinate) and returns its cost relative to the
  * parent's area, or INFINITY when no plane separates the centres; *box_out
- * is the box of [lo, hi), the union of the bins. A node of n < BINS
- * primitives gets max(n, 8) bins: more would mostly stay empty, and
- * sweeping them costs more than binning the primitives. */
+ * is the box of [lo, hi), the union of the bins (bins_for says how
+ * many). */
 float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int *axis,
                         float *plane)
 {
@@ -418,7 +388,7 @@ float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int
     int n = hi - lo;
     if (n == 2)
         return split_pair(b, lo, box_out, cb, axis, plane);
-    bn.nbins = n >= BINS ? BINS : n > 8 ? n : 8;
+    bn.nbins = bins_for(b, n);
     v4 ext = v4_sub(cb.hi, cb.lo);
     for (int a = 0; a < 3; a++)
         scale[a] = v4_at(ext, a) > 0.0f ? (float)bn.nbins / v4_at(ext, a) : 0.0f;

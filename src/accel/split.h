@@ -11,6 +11,8 @@
 #include <float.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
+#include "accel/isa.h"
 #include "accel/v4.h"
 #include "core/aabb.h"
 
@@ -79,6 +81,7 @@ typedef struct split_ctx {
     int max_leaf; /* most primitives a leaf takes */
     primref *refs;
     int threads;  /* large ranges are binned on this many threads at once */
+    bool avx2;    /* bin and partition with split_avx2.c's loops (the same results) */
 } split_ctx;
 
 /* Cost of testing n primitives: they are tested block-wide at a time. */
@@ -100,6 +103,74 @@ float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int
  * centre bounds of each part. */
 int split_partition(split_ctx *b, int lo, int hi, int axis, float plane, cbox *below,
                     cbox *above);
+/* split_partition with AVX2 (split_avx2.c), and its binning loop: the
+ * primitives of refs[lo, hi) added to the bins box[axis][bin] as
+ * split.c's bin_prims adds them. */
+int split_partition_avx2(split_ctx *b, int lo, int hi, int axis, float plane, cbox *below,
+                         cbox *above);
+void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 top,
+                    box4 (*box)[BINS]);
+
+/* The partition behind split_partition, for a `side` that tells whether
+ * a primitive goes below and adds its centre to that side's bounds in
+ * acc. No branch depends on the data, which goes either way: large ranges
+ * are partitioned in place a block at a time (Edelkamp and Weiss,
+ * "BlockQuicksort", ESA 2016): the primitives of a block at each end that
+ * belong to the other side are noted, then swapped in pairs; what is
+ * left, fewer than 2 * PART_BLOCK, goes through a buffer. Inlined into
+ * each caller, so that `side` is too. */
+#define PART_BLOCK 64
+
+static inline __attribute__((always_inline)) int
+split_partition_by(primref *r, int lo, int hi, void *acc, int (*side)(void *, const primref *))
+{
+    int l = lo, h = hi; /* [l, h) is not settled yet */
+    unsigned char offl[PART_BLOCK], offh[PART_BLOCK];
+    int nl = 0, nh = 0, sl = 0, sh = 0;
+    while (h - l > 2 * PART_BLOCK) {
+        if (nl == 0) {
+            sl = 0;
+            for (int k = 0; k < PART_BLOCK; k++) {
+                offl[nl] = (unsigned char)k;
+                nl += !side(acc, &r[l + k]);
+            }
+        }
+        if (nh == 0) {
+            sh = 0;
+            for (int k = 0; k < PART_BLOCK; k++) {
+                offh[nh] = (unsigned char)k;
+                nh += side(acc, &r[h - 1 - k]);
+            }
+        }
+        int num = nl < nh ? nl : nh;
+        for (int j = 0; j < num; j++) {
+            primref *x = &r[l + offl[sl + j]], *y = &r[h - 1 - offh[sh + j]];
+            primref t = *x;
+            *x = *y;
+            *y = t;
+        }
+        nl -= num;
+        nh -= num;
+        sl += num;
+        sh += num;
+        if (nl == 0)
+            l += PART_BLOCK;
+        if (nh == 0)
+            h -= PART_BLOCK;
+    }
+    /* The rest through a buffer: below from its start, above from its end. */
+    primref tmp[2 * PART_BLOCK];
+    int m = h - l, a = 0, z = m - 1;
+    for (int i = 0; i < m; i++) {
+        int s = side(acc, &r[l + i]);
+        tmp[s ? a : z] = r[l + i];
+        a += s;
+        z -= 1 - s;
+    }
+    memcpy(&r[l], tmp, sizeof *tmp * (size_t)m);
+    return l + a;
+}
+
 /* The fallback when binning cannot separate the centres: the lower half
  * by centre on axis (ties by index) to [lo, mid), mid the middle. */
 void split_median(split_ctx *b, int lo, int hi, int axis, int *mid);

@@ -414,7 +414,7 @@ glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, i
     /* Room for as many nodes as half the primitives (a tree of bundles
      * makes about 0.29 per primitive, eight wide); pages never written
      * cost nothing, and a larger tree grows it. */
-    wbuild w = {{1, max_leaf, NULL, threads}, bundle < out->width ? bundle : out->width,
+    wbuild w = {{1, max_leaf, NULL, threads, isa >= ACCEL_AVX2}, bundle < out->width ? bundle : out->width,
                 out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node), NULL, 0,
                 n / 2 + 16};
     if (old.width == out->width && old.cap_nodes >= w.cap) {
