@@ -247,24 +247,21 @@ typedef struct cands {
 /* The cheapest candidate's cost relative to the node's area (COST_TRAVERSE
  * + raw / area), with its axis and plane (a centre coordinate: the upper
  * end of its bin, cmin + (bin + 1) / scale); INFINITY when there is none
- * or the area is 0. Of equal costs, the first in the order a sweep meets
- * them (axis by axis, each from low to high) is kept. m: the candidates
- * of each axis, a multiple of 4. */
-static float pick_split(cands *c, int m, float area, v4 cmin, const float scale[3], int *axis,
-                        float *plane)
+ * or the area is 0. Of equal raw costs, the first in the order a sweep
+ * meets them (axis by axis, each from low to high) is kept. m: the
+ * candidates of each axis, a multiple of 4. */
+static float pick_split(const cands *c, int m, float area, v4 cmin, const float scale[3],
+                        int *axis, float *plane)
 {
     if (!(area > 0.0f))
         return INFINITY;
-    v4 ar = v4_splat(area), t = v4_splat(COST_TRAVERSE), best = v4_splat(INFINITY);
+    v4 best = v4_splat(INFINITY);
     for (int a = 0; a < 3; a++)
-        for (int k = 0; k < m; k += 4) {
-            v4 cost = v4_add(t, v4_div(v4_load(&c->raw[a][k]), ar));
-            v4_store(&c->raw[a][k], cost);
-            best = v4_min(cost, best); /* NaN (a cost of NaN) keeps best */
-        }
+        for (int k = 0; k < m; k += 4)
+            best = v4_min(v4_load(&c->raw[a][k]), best);
     best = v4_min(best, v4_min(v4_shuffle(best, 1, 0, 3, 2), v4_shuffle(best, 2, 3, 0, 1)));
     best = v4_min(best, v4_shuffle(best, 2, 3, 0, 1));
-    float cost = v4_x(best);
+    float cost = COST_TRAVERSE + v4_x(best) / area;
     if (!(cost < INFINITY))
         return INFINITY;
     for (int a = 0; a < 3; a++)
@@ -287,6 +284,13 @@ static float pick_split(cands *c, int m, float area, v4 cmin, const float scale[
  * (pick_split); a plane with nothing on one side is no candidate. */
 static void sweep_axis(const split_ctx *b, const bins *bn, int a, int n, cands *c)
 {
+    bool fast = b->block == 1 && !bn->counted;
+#if defined(GLINT_WIDE_KERNELS)
+    if (fast && b->avx2) {
+        split_sweep_avx2(bn->box[a], bn->nbins, n, c->raw[a]);
+        return;
+    }
+#endif
     int nb = bn->nbins, m = nb - 1, m4 = (m + 3) & ~3;
     v4 llo[BINS], lnh[BINS], rlo[BINS], rnh[BINS], lcnt[BINS];
     const v4 big = v4_splat(FLT_MAX), zero = v4_splat(0.0f);
@@ -310,7 +314,6 @@ static void sweep_axis(const split_ctx *b, const bins *bn, int a, int n, cands *
         llo[k] = rlo[k] = lnh[k] = rnh[k] = big;
         lcnt[k] = zero;
     }
-    bool fast = b->block == 1 && !bn->counted;
     v4 total = v4_splat((float)n);
     float lcs[BINS], rcs[BINS];
     if (!fast) /* leaf costs from integer counts */

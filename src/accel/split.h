@@ -110,6 +110,10 @@ int split_partition_avx2(split_ctx *b, int lo, int hi, int axis, float plane, cb
                          cbox *above);
 void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 top,
                     box4 (*box)[BINS]);
+/* split.c's sweep_axis for a range of single primitives counted in their
+ * bins (its fast case): the raw cost of the plane after each of the first
+ * nb - 1 bins, INFINITY up to the next multiple of 8. */
+void split_sweep_avx2(const box4 *bins, int nb, int n, float raw[BINS]);
 
 /* The partition behind split_partition, for a `side` that tells whether
  * a primitive goes below and adds its centre to that side's bounds in

@@ -30,20 +30,100 @@ static inline void bin_add(float *bin, __m256 r, __m256 one)
     _mm256_store_ps(bin, _mm256_add_ps(_mm256_min_ps(_mm256_load_ps(bin), r), one));
 }
 
+/* Two primitives at a time: their bins worked out in one 256-bit pass
+ * (lower half a's, upper half b's), then each bin takes its primitive. */
 void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 top,
                     box4 (*box)[BINS])
 {
     const __m256 one = _mm256_setr_ps(0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+    const __m256 half = _mm256_set1_ps(0.5f), zero = _mm256_setzero_ps();
+    const __m256 cmin2 = _mm256_set_m128(cmin, cmin), scale2 = _mm256_set_m128(scale, scale);
+    const __m256 top2 = _mm256_set_m128(top, top);
     float *b0 = (float *)(void *)box[0], *b1 = (float *)(void *)box[1];
     float *b2 = (float *)(void *)box[2];
-    for (int i = lo; i < hi; i++) {
+    int32_t k[8] __attribute__((aligned(32)));
+    int i = lo;
+    for (; i + 1 < hi; i += 2) {
+        __m256 ra = ref_load(&refs[i]), rb = ref_load(&refs[i + 1]);
+        __m256 los = _mm256_permute2f128_ps(ra, rb, 0x20), nhis = _mm256_permute2f128_ps(ra, rb, 0x31);
+        __m256 f = _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(los, nhis), half), cmin2),
+                                 scale2);
+        f = _mm256_min_ps(_mm256_max_ps(f, zero), top2); /* max gives 0 for NaN */
+        /* eight floats a bin */
+        _mm256_store_si256((__m256i *)(void *)k, _mm256_slli_epi32(_mm256_cvttps_epi32(f), 3));
+        bin_add(b0 + k[0], ra, one);
+        bin_add(b1 + k[1], ra, one);
+        bin_add(b2 + k[2], ra, one);
+        bin_add(b0 + k[4], rb, one);
+        bin_add(b1 + k[5], rb, one);
+        bin_add(b2 + k[6], rb, one);
+    }
+    if (i < hi) {
         __m256 r = ref_load(&refs[i]);
         __m128 f = _mm_mul_ps(_mm_sub_ps(ref_centre(r), cmin), scale);
-        f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top); /* max gives 0 for NaN */
-        __m128i k = _mm_slli_epi32(_mm_cvttps_epi32(f), 3);   /* eight floats a bin */
-        bin_add(b0 + _mm_cvtsi128_si32(k), r, one);
-        bin_add(b1 + _mm_extract_epi32(k, 1), r, one);
-        bin_add(b2 + _mm_extract_epi32(k, 2), r, one);
+        f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top);
+        _mm_store_si128((__m128i *)(void *)k, _mm_slli_epi32(_mm_cvttps_epi32(f), 3));
+        bin_add(b0 + k[0], r, one);
+        bin_add(b1 + k[1], r, one);
+        bin_add(b2 + k[2], r, one);
+    }
+}
+
+/* The areas of eight boxes from their extents (x, y, z, any; of either
+ * sign), as split.c's area4 computes each. */
+static inline __m256 area8(const __m128 *e)
+{
+    __m256 t0 = _mm256_set_m128(e[4], e[0]), t1 = _mm256_set_m128(e[5], e[1]);
+    __m256 t2 = _mm256_set_m128(e[6], e[2]), t3 = _mm256_set_m128(e[7], e[3]);
+    __m256 u0 = _mm256_unpacklo_ps(t0, t1), u1 = _mm256_unpacklo_ps(t2, t3);
+    __m256 u2 = _mm256_unpackhi_ps(t0, t1), u3 = _mm256_unpackhi_ps(t2, t3);
+    __m256 x = _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(1, 0, 1, 0));
+    __m256 y = _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 z = _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(1, 0, 1, 0));
+    __m256 sum = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, y), _mm256_mul_ps(y, z)),
+                               _mm256_mul_ps(z, x));
+    return _mm256_mul_ps(_mm256_set1_ps(2.0f), sum);
+}
+
+/* A box [lo | -hi]'s extents, negated: lo - hi. */
+static inline __m128 box_nextent(__m256 b)
+{
+    return _mm_add_ps(_mm256_extractf128_ps(b, 1), _mm256_castps256_ps128(b));
+}
+
+void split_sweep_avx2(const box4 *bins, int nb, int n, float raw[BINS])
+{
+    int m = nb - 1, m8 = (m + 7) & ~7;
+    __m128 below[BINS], above[BINS];
+    float count[BINS];
+    const __m256 big = _mm256_set1_ps(FLT_MAX);
+    const float *bin = (const float *)(const void *)bins;
+    __m256 acc = big;
+    float cnt = 0.0f;
+    for (int k = 0; k < m; k++) {
+        __m256 b = _mm256_load_ps(bin + 8 * k);
+        acc = _mm256_min_ps(acc, b);
+        below[k] = box_nextent(acc);
+        cnt += bin[8 * k + 3];
+        count[k] = cnt;
+    }
+    acc = big;
+    for (int k = m; k > 0; k--) {
+        acc = _mm256_min_ps(acc, _mm256_load_ps(bin + 8 * k));
+        above[k - 1] = box_nextent(acc);
+    }
+    for (int k = m; k < m8; k++) { /* no candidates */
+        below[k] = above[k] = _mm_set1_ps(INFINITY);
+        count[k] = 0.0f;
+    }
+    const __m256 inf = _mm256_set1_ps(INFINITY), total = _mm256_set1_ps((float)n);
+    for (int k = 0; k < m8; k += 8) {
+        __m256 lc = _mm256_loadu_ps(&count[k]), rc = _mm256_sub_ps(total, lc);
+        __m256 cost = _mm256_add_ps(_mm256_mul_ps(area8(&below[k]), lc),
+                                    _mm256_mul_ps(area8(&above[k]), rc));
+        cost = _mm256_blendv_ps(cost, inf, _mm256_cmp_ps(cost, cost, _CMP_UNORD_Q));
+        __m256 both = _mm256_cmp_ps(_mm256_min_ps(lc, rc), _mm256_setzero_ps(), _CMP_GT_OQ);
+        _mm256_storeu_ps(&raw[k], _mm256_blendv_ps(inf, cost, both));
     }
 }
 

@@ -266,6 +266,7 @@ void bvhw_free(bvhw *b)
 {
     free(b->width == 8 ? (void *)b->n8 : (void *)b->n4);
     free(b->prims);
+    free(b->refs);
     memset(b, 0, sizeof *b);
 }
 

@@ -58,6 +58,11 @@ typedef struct bvhw {
     /* Room in the node and primitive arrays, which bvhw_rebuild reuses (0:
      * none known). */
     int cap_nodes, cap_prims;
+    /* The direct build's working array (split.h's primrefs, 32 bytes an
+     * object), kept for the next bvhw_rebuild: fresh memory that size
+     * would be cleared by the kernel first, a tenth of a rebuild's time. */
+    struct primref *refs;
+    int cap_refs;
 } bvhw;
 
 #define WIDE_FETCH_BYTES (256u * 1024u)

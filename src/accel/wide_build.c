@@ -427,9 +427,15 @@ glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, i
         out->cap_prims = old.cap_prims;
         old.prims = NULL;
     }
+    if (old.cap_refs >= n) {
+        w.s.refs = old.refs;
+        out->cap_refs = old.cap_refs;
+        old.refs = NULL;
+    }
     bvhw_free(&old);
     if (n <= 0) {
         free(w.nodes);
+        free(w.s.refs);
         free(out->prims);
         memset(out, 0, sizeof *out);
         out->isa = isa;
@@ -437,7 +443,10 @@ glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, i
         out->bounds = aabb_empty();
         return GLINT_OK;
     }
-    w.s.refs = array_alloc_big(sizeof *w.s.refs * (size_t)n);
+    if (!w.s.refs) {
+        w.s.refs = array_alloc_big(sizeof *w.s.refs * (size_t)n);
+        out->cap_refs = n;
+    }
     if (!out->prims) {
         out->prims = malloc(sizeof *out->prims * (size_t)n);
         out->cap_prims = n;
@@ -464,7 +473,7 @@ glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, i
     }
     for (int i = 0; i < n; i++)
         out->prims[i] = w.s.refs[i].id;
-    free(w.s.refs);
+    out->refs = w.s.refs;
     if (out->width == 8)
         out->n8 = (bvh8_node *)(void *)w.nodes;
     else
