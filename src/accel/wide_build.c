@@ -395,6 +395,40 @@ static bool wsingle(wbuild *w, const wkid *root)
     return true;
 }
 
+/* The arrays of the last build (old) large enough for n primitives go to
+ * w and out, the others are freed, and those missing are allocated:
+ * false when out of memory. */
+static bool wtake_arrays(bvhw *old, bvhw *out, wbuild *w, int n)
+{
+    if (old->width == out->width && old->cap_nodes >= w->cap) {
+        w->nodes = (char *)(old->width == 8 ? (void *)old->n8 : (void *)old->n4);
+        w->cap = old->cap_nodes;
+        old->n8 = NULL;
+    }
+    if (old->cap_prims >= n) {
+        out->prims = old->prims;
+        out->cap_prims = old->cap_prims;
+        old->prims = NULL;
+    }
+    if (old->cap_refs >= n) {
+        w->s.refs = old->refs;
+        out->cap_refs = old->cap_refs;
+        old->refs = NULL;
+    }
+    bvhw_free(old);
+    if (!w->s.refs) {
+        w->s.refs = array_alloc_big(sizeof *w->s.refs * (size_t)n);
+        out->cap_refs = n;
+    }
+    if (!out->prims) {
+        out->prims = malloc(sizeof *out->prims * (size_t)n);
+        out->cap_prims = n;
+    }
+    if (!w->nodes)
+        w->nodes = array_alloc_big(w->node_size * (size_t)w->cap);
+    return w->s.refs && out->prims && w->nodes;
+}
+
 glint_rc bvhw_build(bvhw *out, const aabb *boxes, const int32_t *ids, int n, int max_leaf,
                     int bundle, accel_isa isa, int cpus, glint_error *err)
 {
@@ -414,46 +448,18 @@ glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, i
     /* Room for as many nodes as half the primitives (a tree of bundles
      * makes about 0.29 per primitive, eight wide); pages never written
      * cost nothing, and a larger tree grows it. */
-    wbuild w = {{1, max_leaf, NULL, threads, isa >= ACCEL_AVX2}, bundle < out->width ? bundle : out->width,
-                out->width, out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node), NULL, 0,
+    wbuild w = {{1, max_leaf, NULL, threads, isa >= ACCEL_AVX2},
+                bundle < out->width ? bundle : out->width,
+                out->width,
+                out->width == 8 ? sizeof(bvh8_node) : sizeof(bvh4_node),
+                NULL,
+                0,
                 n / 2 + 16};
-    if (old.width == out->width && old.cap_nodes >= w.cap) {
-        w.nodes = (char *)(old.width == 8 ? (void *)old.n8 : (void *)old.n4);
-        w.cap = old.cap_nodes;
-        old.n8 = NULL;
-    }
-    if (old.cap_prims >= n) {
-        out->prims = old.prims;
-        out->cap_prims = old.cap_prims;
-        old.prims = NULL;
-    }
-    if (old.cap_refs >= n) {
-        w.s.refs = old.refs;
-        out->cap_refs = old.cap_refs;
-        old.refs = NULL;
-    }
-    bvhw_free(&old);
     if (n <= 0) {
-        free(w.nodes);
-        free(w.s.refs);
-        free(out->prims);
-        memset(out, 0, sizeof *out);
-        out->isa = isa;
-        out->width = accel_isa_width(isa);
-        out->bounds = aabb_empty();
+        bvhw_free(&old);
         return GLINT_OK;
     }
-    if (!w.s.refs) {
-        w.s.refs = array_alloc_big(sizeof *w.s.refs * (size_t)n);
-        out->cap_refs = n;
-    }
-    if (!out->prims) {
-        out->prims = malloc(sizeof *out->prims * (size_t)n);
-        out->cap_prims = n;
-    }
-    if (!w.nodes)
-        w.nodes = array_alloc_big(w.node_size * (size_t)w.cap);
-    if (!w.s.refs || !out->prims || !w.nodes)
+    if (!wtake_arrays(&old, out, &w, n))
         goto nomem;
     for (int i = 0; i < n; i++) {
         int id = ids ? ids[i] : i;
