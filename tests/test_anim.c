@@ -182,6 +182,12 @@ Test(anim, animation_block_and_keyed_value_errors)
                  "scene.yaml:1:12: animation needs frames (a count) or end (seconds)");
     expect_error("animation: {frame: 2}\n",
                  "scene.yaml:1:13: unknown key 'frame' in animation (did you mean 'frames'?)");
+    /* a block of another kind is refused before any key is looked up in it */
+    expect_error("animation:\n ot\n or mr:ound a\n",
+                 "scene.yaml:2:2: expected a mapping for 'animation', got the string "
+                 "'ot or mr:ound a'");
+    expect_error("animation: [frames, 2, fps, 3, end, 4]\n",
+                 "scene.yaml:1:12: expected a mapping for 'animation', got a sequence");
     expect_error("camera: {eye: {keys: [[1, [0, 0, 1]], [1, [0, 0, 2]]]}}\n",
                  "scene.yaml:1:39: key times must increase (1 s comes after 1 s)");
     expect_error("camera: {eye: {keys: []}}\n",

@@ -206,6 +206,8 @@ glint_rc load_animation(loader *L, uint32_t map)
     glint_rc rc = load_want_map(L, map, "animation");
     if (rc == GLINT_OK)
         rc = load_check_keys(L, map, animation_keys, "in animation");
+    if (rc != GLINT_OK)
+        return rc;
     uint32_t frames = load_get(L, map, "frames"), end = load_get(L, map, "end"), v;
     if (rc == GLINT_OK && frames != YDOC_NONE && end != YDOC_NONE)
         rc = load_fail(L, end, "animation takes frames or end, not both");

@@ -95,7 +95,8 @@ static inline uint32_t ydoc_value(const ydoc *d, const ynode *n, uint32_t i)
     return d->kids[n->first + 2 * (size_t)i + 1];
 }
 
-/* The value under key in mapping n, or YDOC_NONE. */
+/* The value under key in mapping n, or YDOC_NONE (also when n is no
+ * mapping). */
 uint32_t ydoc_get(const ydoc *d, const ynode *map, const char *key);
 
 /* The kind a plain (unquoted, untagged) scalar has by its form in the core

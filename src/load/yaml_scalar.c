@@ -126,6 +126,8 @@ ynode_kind ydoc_plain_kind(const char *s, size_t len, bool *is_true, bool *is_in
 
 uint32_t ydoc_get(const ydoc *d, const ynode *map, const char *key)
 {
+    if (map->kind != YNODE_MAP) /* a caller that goes on after a kind error */
+        return YDOC_NONE;
     size_t len = strlen(key);
     for (uint32_t i = 0; i < map->count; i++) {
         const ynode *k = &d->nodes[ydoc_key(d, map, i)];
