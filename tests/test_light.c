@@ -287,3 +287,30 @@ Test(light, fresnel_off_and_emission)
     glint_film_free(&f);
     scene_free(s);
 }
+
+/* The highlight's power is powf's to the bit, the cases it answers without
+ * powf (results of +0) included: every binade of (0, 1], mantissas from a
+ * fixed seed, shininess from 0.5 to 10^4. */
+Test(light, highlight_power_is_powf_to_the_bit)
+{
+    const float shininess[] = {0.5f, 1.0f, 2.0f, 5.0f, 10.0f, 40.0f, 50.0f, 100.0f,
+                               151.0f, 152.0f, 153.0f, 1000.0f, 10000.0f};
+    uint32_t seed = 12345u;
+    int zeros = 0;
+    for (uint32_t exp = 1; exp <= 127; exp++)
+        for (int k = 0; k < 64; k++) {
+            seed = seed * 1664525u + 1013904223u;
+            uint32_t bits = exp << 23 | (seed >> 9);
+            float x;
+            memcpy(&x, &bits, sizeof x);
+            if (!(x > 0.0f && x <= 1.0f))
+                continue;
+            for (size_t i = 0; i < sizeof shininess / sizeof *shininess; i++) {
+                float a = material_highlight(x, shininess[i]), b = powf(x, shininess[i]);
+                cr_assert_eq(memcmp(&a, &b, sizeof a), 0, "%a^%g: %a, powf %a", (double)x,
+                             (double)shininess[i], (double)a, (double)b);
+                zeros += a == 0.0f;
+            }
+        }
+    cr_assert_gt(zeros, 10000, "only %d results of 0", zeros);
+}

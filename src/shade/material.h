@@ -23,7 +23,10 @@
 #ifndef GLINT_SHADE_MATERIAL_H
 #define GLINT_SHADE_MATERIAL_H
 
+#include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
 #include "core/vec3.h"
 
 typedef struct material {
@@ -44,6 +47,18 @@ typedef struct material {
  * scene_surface may skip computing them. Whatever reads (u, v) in shading
  * must be named here. */
 static inline bool material_uses_uv(const material *m) { return m->texture >= 0 || m->bump >= 0; }
+
+/* The highlight's max(0, r.v)^shininess for r.v = x > 0: powf(x, n), to
+ * the bit, without the call where it is 0. Below 2^e, x^n is below
+ * 2^(e n), and from 2^-152 down powf gives +0 (half the least subnormal
+ * is 2^-150); those calls underflow, the slowest powf makes. */
+static inline float material_highlight(float x, float n)
+{
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    float e = (float)((int)(bits >> 23 & 0xffu) - 126); /* x < 2^e */
+    return e * n <= -152.0f ? 0.0f : powf(x, n);
+}
 
 /* Matte white: ambient 1, diffuse 1, specular 0, no reflection or
  * transmission, no absorption or emission, Fresnel on, no bump. */

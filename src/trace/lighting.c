@@ -85,7 +85,7 @@ static inline void add_lit(const shade_point *sp, const light_ray *lr, float ndl
     if (m->specular > 0.0f) {
         float rv = -v3_dot(v3_reflect(v3_neg(lr->dir), sp->n), sp->d);
         if (rv > 0.0f)
-            *specular = v3_madd(*specular, lc, m->specular * powf(rv, m->shininess));
+            *specular = v3_madd(*specular, lc, m->specular * material_highlight(rv, m->shininess));
     }
 }
 
