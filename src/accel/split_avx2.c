@@ -1,11 +1,12 @@
-/* The AVX2 forms of split.c's binning and partitioning loops, for CPUs
- * that have AVX2 (split_ctx.avx2): a primref, and a bin's box, are each
- * one 256-bit register, lo in the lower half and -hi in the upper, so a
- * bin takes in a primitive with one minimum, and both sides' centre
- * bounds grow with one minimum and one maximum. The same operations on
- * the same lanes as split.c's loops, so the tree is the same on either
- * (tests/test_bvh.c builds with both). The Makefile compiles this file
- * with the avx2 flags. */
+/* The AVX2 forms of split.c's binning, partitioning and sweeping loops,
+ * for CPUs that have AVX2 (split_ctx.avx2): a primref, and a bin's box,
+ * are each one 256-bit register, lo in the lower half and -hi in the
+ * upper, so a bin takes in a primitive with one minimum, both sides'
+ * centre bounds grow with one minimum and one maximum, and a sweep unites
+ * boxes with one minimum and costs eight planes at once. The same
+ * operations on the same lanes as split.c's loops, so the tree is the same
+ * on either (tests/test_mesh.c, avx2_loops_make_the_same_tree). The
+ * Makefile compiles this file with the avx2 flags. */
 #include "split.h"
 
 #if defined(GLINT_WIDE_KERNELS)
@@ -45,9 +46,10 @@ void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 t
     int i = lo;
     for (; i + 1 < hi; i += 2) {
         __m256 ra = ref_load(&refs[i]), rb = ref_load(&refs[i + 1]);
-        __m256 los = _mm256_permute2f128_ps(ra, rb, 0x20), nhis = _mm256_permute2f128_ps(ra, rb, 0x31);
-        __m256 f = _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(los, nhis), half), cmin2),
-                                 scale2);
+        __m256 los = _mm256_permute2f128_ps(ra, rb, 0x20);
+        __m256 nhis = _mm256_permute2f128_ps(ra, rb, 0x31);
+        __m256 c = _mm256_mul_ps(_mm256_sub_ps(los, nhis), half);
+        __m256 f = _mm256_mul_ps(_mm256_sub_ps(c, cmin2), scale2);
         f = _mm256_min_ps(_mm256_max_ps(f, zero), top2); /* max gives 0 for NaN */
         /* eight floats a bin */
         _mm256_store_si256((__m256i *)(void *)k, _mm256_slli_epi32(_mm256_cvttps_epi32(f), 3));
