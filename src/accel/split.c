@@ -63,16 +63,17 @@ void split_bounds(const split_ctx *b, int lo, int hi, box4 *box, cbox *cb)
     *cb = c;
 }
 
-/* Whether r goes below the split, its centre added to that side's
- * bounds without a branch: c + -0 is c (whatever its sign), c + inf is
- * inf and c + -inf is -inf, which leave a minimum and a maximum as they
- * were; so adding one or the other selects. */
+/* The centre bounds of the parts below and above, and the plane. */
 typedef struct part_acc {
     v4 lmin, lmax, umin, umax;
     v4 split;
     int axis;
 } part_acc;
 
+/* Whether r goes below the split, its centre added to that side's
+ * bounds without a branch: c + -0 is c (whatever its sign), c + inf is
+ * inf and c + -inf is -inf, which leave a minimum and a maximum as they
+ * were; so adding one or the other selects. */
 static inline int part_side(void *acc, const primref *r)
 {
 #define I_ INFINITY
