@@ -146,7 +146,7 @@ static void bin_prims(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bin
         int end = hi - start > BIN_CHUNK ? start + BIN_CHUNK : hi, first = start;
 #if defined(GLINT_WIDE_KERNELS)
         if (b->avx2) {
-            split_bin_avx2(refs, start, end, cmin, scale, top, out->box);
+            split_bin_avx2(refs, start, end, cmin, scale, nb, out->box);
             first = end; /* nothing left for the loop below */
         }
 #endif

@@ -108,7 +108,7 @@ int split_partition(split_ctx *b, int lo, int hi, int axis, float plane, cbox *b
  * split.c's bin_prims adds them. */
 int split_partition_avx2(split_ctx *b, int lo, int hi, int axis, float plane, cbox *below,
                          cbox *above);
-void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 top,
+void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, int nb,
                     box4 (*box)[BINS]);
 /* split.c's sweep_axis for a range of single primitives counted in their
  * bins (its fast case): the raw cost of the plane after each of the first

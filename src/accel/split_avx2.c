@@ -31,17 +31,35 @@ static inline void bin_add(float *bin, __m256 r, __m256 one)
     _mm256_store_ps(bin, _mm256_add_ps(_mm256_min_ps(_mm256_load_ps(bin), r), one));
 }
 
+/* Ranges of at least this many primitives bin the second of each pair
+ * into bins of their own, merged at the end: primitives that come in
+ * spatial order (a mesh's triangles) fall into the bins of the one before,
+ * and each bin would wait for the last one's store. */
+#define BIN_TWO_SETS 256
+
 /* Two primitives at a time: their bins worked out in one 256-bit pass
  * (lower half a's, upper half b's), then each bin takes its primitive. */
-void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 top,
+void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, int nb,
                     box4 (*box)[BINS])
 {
     const __m256 one = _mm256_setr_ps(0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f);
     const __m256 half = _mm256_set1_ps(0.5f), zero = _mm256_setzero_ps();
+    const __m128 top = _mm_set1_ps((float)(nb - 1));
     const __m256 cmin2 = _mm256_set_m128(cmin, cmin), scale2 = _mm256_set_m128(scale, scale);
     const __m256 top2 = _mm256_set_m128(top, top);
-    float *b0 = (float *)(void *)box[0], *b1 = (float *)(void *)box[1];
-    float *b2 = (float *)(void *)box[2];
+    float *a0 = (float *)(void *)box[0], *a1 = (float *)(void *)box[1];
+    float *a2 = (float *)(void *)box[2];
+    float other[3][BINS][8] __attribute__((aligned(32)));
+    bool two = hi - lo >= BIN_TWO_SETS;
+    if (two) {
+        const __m256 empty = _mm256_setr_ps(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f, FLT_MAX, FLT_MAX,
+                                            FLT_MAX, FLT_MAX);
+        for (int a = 0; a < 3; a++)
+            for (int j = 0; j < nb; j++)
+                _mm256_store_ps(other[a][j], empty);
+    }
+    float *b0 = two ? other[0][0] : a0, *b1 = two ? other[1][0] : a1;
+    float *b2 = two ? other[2][0] : a2;
     int32_t k[8] __attribute__((aligned(32)));
     int i = lo;
     for (; i + 1 < hi; i += 2) {
@@ -53,9 +71,9 @@ void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 t
         f = _mm256_min_ps(_mm256_max_ps(f, zero), top2); /* max gives 0 for NaN */
         /* eight floats a bin */
         _mm256_store_si256((__m256i *)(void *)k, _mm256_slli_epi32(_mm256_cvttps_epi32(f), 3));
-        bin_add(b0 + k[0], ra, one);
-        bin_add(b1 + k[1], ra, one);
-        bin_add(b2 + k[2], ra, one);
+        bin_add(a0 + k[0], ra, one);
+        bin_add(a1 + k[1], ra, one);
+        bin_add(a2 + k[2], ra, one);
         bin_add(b0 + k[4], rb, one);
         bin_add(b1 + k[5], rb, one);
         bin_add(b2 + k[6], rb, one);
@@ -65,10 +83,17 @@ void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, v4 t
         __m128 f = _mm_mul_ps(_mm_sub_ps(ref_centre(r), cmin), scale);
         f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top);
         _mm_store_si128((__m128i *)(void *)k, _mm_slli_epi32(_mm_cvttps_epi32(f), 3));
-        bin_add(b0 + k[0], r, one);
-        bin_add(b1 + k[1], r, one);
-        bin_add(b2 + k[2], r, one);
+        bin_add(a0 + k[0], r, one);
+        bin_add(a1 + k[1], r, one);
+        bin_add(a2 + k[2], r, one);
     }
+    if (two) /* the minima of both, the counts (lane 3) added */
+        for (int a = 0; a < 3; a++)
+            for (int j = 0; j < nb; j++) {
+                float *p = (float *)(void *)&box[a][j];
+                __m256 x = _mm256_load_ps(p), y = _mm256_load_ps(other[a][j]);
+                _mm256_store_ps(p, _mm256_blend_ps(_mm256_min_ps(x, y), _mm256_add_ps(x, y), 0x08));
+            }
 }
 
 /* The areas of eight boxes from their extents (x, y, z, any; of either
