@@ -81,7 +81,7 @@ typedef struct split_ctx {
     int max_leaf; /* most primitives a leaf takes */
     primref *refs;
     int threads;  /* large ranges are binned on this many threads at once */
-    bool avx2;    /* bin and partition with split_avx2.c's loops (the same results) */
+    bool avx2;    /* bin, partition and sweep with split_avx2.c's loops (the same tree) */
 } split_ctx;
 
 /* Cost of testing n primitives: they are tested block-wide at a time. */
@@ -104,8 +104,8 @@ float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int
 int split_partition(split_ctx *b, int lo, int hi, int axis, float plane, cbox *below,
                     cbox *above);
 /* split_partition with AVX2 (split_avx2.c), and its binning loop: the
- * primitives of refs[lo, hi) added to the bins box[axis][bin] as
- * split.c's bin_prims adds them. */
+ * primitives of refs[lo, hi) added to the first nb bins of each axis,
+ * box[axis][bin], as split.c's bin_prims adds them. */
 int split_partition_avx2(split_ctx *b, int lo, int hi, int axis, float plane, cbox *below,
                          cbox *above);
 void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, int nb,
