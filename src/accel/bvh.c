@@ -133,58 +133,25 @@ static int build_node(build *b, int lo, int hi, int depth, const cbox *given)
     int self = new_node(b);
     if (self < 0)
         return -1;
-    int n = hi - lo, mid;
+    int n = hi - lo, mid = lo, axis;
+    float plane = 0.0f;
     box4 box;
-    cbox cb, lb, ub;
+    cbox lb, ub;
     bool gathered = false;
-    if (n == 1) {
-        set_box(&b->nodes[self], box4_load(&b->s.refs[lo]));
-        b->nodes[self].index = lo;
-        b->nodes[self].count = 1;
-        b->nodes[self].axis = 0;
-        return self;
-    }
-    if (given)
-        cb = *given;
-    else
-        split_bounds(&b->s, lo, hi, &box, &cb);
-    /* The median fallback splits along the axis of largest centre extent. */
-    v4 ext = v4_sub(cb.hi, cb.lo);
-    float ex = v4_x(ext), ey = v4_y(ext), ez = v4_z(ext);
-    int axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
-
-    if (n <= 1 || depth >= BVH_MAX_DEPTH - 1) {
-        if (given)
-            split_bounds(&b->s, lo, hi, &box, &cb);
-    leaf:
-        set_box(&b->nodes[self], box);
-        if (n > UINT16_MAX) /* a leaf's count must fit; median splits halve n */
-            goto split_median;
+    split_kind kind = split_decide(&b->s, lo, hi, depth, given, &box, &axis, &plane);
+    set_box(&b->nodes[self], box);
+    if (kind == SPLIT_LEAF) {
         b->nodes[self].index = lo;
         b->nodes[self].count = (uint16_t)n;
         b->nodes[self].axis = 0;
         return self;
     }
-    {
-        float plane = 0.0f;
-        float split = split_best(&b->s, lo, hi, cb, &box, &axis, &plane);
-        set_box(&b->nodes[self], box);
-        if (split == INFINITY) {
-            if (n <= b->s.max_leaf)
-                goto leaf;
-            goto split_median;
-        }
-        if (n <= b->s.max_leaf && leaf_cost(&b->s, n) <= split)
-            goto leaf;
+    if (kind == SPLIT_PLANE) {
         mid = split_partition(&b->s, lo, hi, axis, plane, &lb, &ub);
-        if (mid == lo || mid == hi)
-            goto split_median;
-        gathered = true;
-        goto recurse;
+        gathered = mid != lo && mid != hi;
     }
-split_median:
-    split_median(&b->s, lo, hi, axis, &mid);
-recurse:
+    if (!gathered)
+        split_median(&b->s, lo, hi, axis, &mid);
     b->nodes[self].axis = (uint8_t)axis;
     b->nodes[self].count = 0;
     int second = build_children(b, lo, mid, hi, depth + 1, gathered ? &lb : NULL,

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bvh.h"
+
 /* The order median_split sorts by: the centre on axis (the float's bits
  * made to sort as integers, so NaN has a place too), then the index, which
  * sets every tie: the two halves are the same whatever order the
@@ -130,6 +132,28 @@ static inline int bin_count(const bins *bn, int a, int k)
  * holds the centres in [cmin + k / scale, cmin + (k + 1) / scale)); bin k
  * of a centre is (c - cmin) * scale, truncated, in [0, nbins - 1], NaN (a
  * zero extent's 0 * inf) going to 0. */
+/* The primitives of refs[lo, hi) added to the first nb bins of each axis,
+ * one at a time (split_bin_avx2 adds them as this does, two at a time). */
+static void bin_range(const primref *refs, int lo, int hi, v4 cmin, v4 scale, int nb,
+                      box4 (*box)[BINS])
+{
+    v4 top = v4_splat((float)(nb - 1)), one = v4_set(0.0f, 0.0f, 0.0f, 1.0f);
+    for (int i = lo; i < hi; i++) {
+        box4 r = box4_load(&refs[i]);
+        v4 f = v4_mul(v4_sub(box4_center(r), cmin), scale);
+        f = v4_min(v4_max(f, v4_splat(0.0f)), top); /* max gives 0 for NaN */
+        int k[3];
+        v4_trunc3(f, k);
+        box4 *b0 = &box[0][k[0]], *b1 = &box[1][k[1]], *b2 = &box[2][k[2]];
+        b0->lo = v4_add(v4_min(b0->lo, r.lo), one);
+        b0->nhi = v4_min(b0->nhi, r.nhi);
+        b1->lo = v4_add(v4_min(b1->lo, r.lo), one);
+        b1->nhi = v4_min(b1->nhi, r.nhi);
+        b2->lo = v4_add(v4_min(b2->lo, r.lo), one);
+        b2->nhi = v4_min(b2->nhi, r.nhi);
+    }
+}
+
 static void bin_prims(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bins *out)
 {
     int nb = out->nbins;
@@ -140,30 +164,14 @@ static void bin_prims(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bin
     out->counted = hi - lo > BIN_CHUNK;
     if (out->counted)
         memset(out->n, 0, sizeof out->n);
-    v4 top = v4_splat((float)(nb - 1)), one = v4_set(0.0f, 0.0f, 0.0f, 1.0f);
-    const primref *refs = b->refs;
     for (int start = lo; start < hi; start += BIN_CHUNK) {
-        int end = hi - start > BIN_CHUNK ? start + BIN_CHUNK : hi, first = start;
+        int end = hi - start > BIN_CHUNK ? start + BIN_CHUNK : hi;
 #if defined(GLINT_WIDE_KERNELS)
-        if (b->avx2) {
-            split_bin_avx2(refs, start, end, cmin, scale, nb, out->box);
-            first = end; /* nothing left for the loop below */
-        }
+        if (b->avx2)
+            split_bin_avx2(b->refs, start, end, cmin, scale, nb, out->box);
+        else
 #endif
-        for (int i = first; i < end; i++) {
-            box4 box = box4_load(&refs[i]);
-            v4 f = v4_mul(v4_sub(box4_center(box), cmin), scale);
-            f = v4_min(v4_max(f, v4_splat(0.0f)), top); /* max gives 0 for NaN */
-            int k[3];
-            v4_trunc3(f, k);
-            box4 *b0 = &out->box[0][k[0]], *b1 = &out->box[1][k[1]], *b2 = &out->box[2][k[2]];
-            b0->lo = v4_add(v4_min(b0->lo, box.lo), one);
-            b0->nhi = v4_min(b0->nhi, box.nhi);
-            b1->lo = v4_add(v4_min(b1->lo, box.lo), one);
-            b1->nhi = v4_min(b1->nhi, box.nhi);
-            b2->lo = v4_add(v4_min(b2->lo, box.lo), one);
-            b2->nhi = v4_min(b2->nhi, box.nhi);
-        }
+            bin_range(b->refs, start, end, cmin, scale, nb, out->box);
         if (out->counted)
             for (int a = 0; a < 3; a++)
                 for (int k = 0; k < nb; k++) {
@@ -417,3 +425,29 @@ float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int
     return pick_split(&c, m, box4_area(box), cb.lo, scale, axis, plane);
 }
 
+split_kind split_decide(const split_ctx *b, int lo, int hi, int depth, const cbox *given,
+                        box4 *box, int *axis, float *plane)
+{
+    int n = hi - lo;
+    cbox cb;
+    if (given)
+        cb = *given;
+    else
+        split_bounds(b, lo, hi, box, &cb);
+    v4 ext = v4_sub(cb.hi, cb.lo);
+    float ex = v4_x(ext), ey = v4_y(ext), ez = v4_z(ext);
+    *axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
+    split_kind kind;
+    if (n <= 1 || depth >= BVH_MAX_DEPTH - 1) {
+        if (given)
+            split_bounds(b, lo, hi, box, &cb);
+        kind = SPLIT_LEAF;
+    } else {
+        float cost = split_best(b, lo, hi, cb, box, axis, plane);
+        if (cost == INFINITY)
+            kind = n <= b->max_leaf ? SPLIT_LEAF : SPLIT_MEDIAN;
+        else
+            kind = n <= b->max_leaf && leaf_cost(b, n) <= cost ? SPLIT_LEAF : SPLIT_PLANE;
+    }
+    return kind == SPLIT_LEAF && n > UINT16_MAX ? SPLIT_MEDIAN : kind;
+}

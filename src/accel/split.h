@@ -98,6 +98,22 @@ void split_bounds(const split_ctx *b, int lo, int hi, box4 *box, cbox *cb);
  * the centres; *box_out is the box of [lo, hi). */
 float split_best(const split_ctx *b, int lo, int hi, cbox cb, box4 *box_out, int *axis,
                  float *plane);
+/* What a range becomes. */
+typedef enum split_kind {
+    SPLIT_LEAF,   /* a leaf of all its primitives */
+    SPLIT_PLANE,  /* two halves, by centre, at *plane on *axis */
+    SPLIT_MEDIAN, /* two halves at the median on *axis (split_median) */
+} split_kind;
+
+/* What the builders make of refs[lo, hi), a range `depth` below the root
+ * (given: its centre bounds, or NULL to work them out), and *box, its box:
+ * a leaf at the depth limit or where the SAH finds it no dearer than the
+ * best split (of at most max_leaf primitives); else that split; else,
+ * where no plane separates the centres or a leaf's count would not fit in
+ * 16 bits, the median on the axis of largest centre extent (or of the
+ * split that was found). */
+split_kind split_decide(const split_ctx *b, int lo, int hi, int depth, const cbox *given,
+                        box4 *box, int *axis, float *plane);
 /* Partitions refs[lo, hi) so that those with centre below `plane` on
  * `axis` come first; returns the first index of the upper part, and the
  * centre bounds of each part. */
@@ -105,7 +121,7 @@ int split_partition(split_ctx *b, int lo, int hi, int axis, float plane, cbox *b
                     cbox *above);
 /* split_partition with AVX2 (split_avx2.c), and its binning loop: the
  * primitives of refs[lo, hi) added to the first nb bins of each axis,
- * box[axis][bin], as split.c's bin_prims adds them. */
+ * box[axis][bin], as split.c's bin_range adds them. */
 int split_partition_avx2(split_ctx *b, int lo, int hi, int axis, float plane, cbox *below,
                          cbox *above);
 void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, int nb,

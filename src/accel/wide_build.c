@@ -49,52 +49,19 @@ typedef struct wbuild {
 static void eval_kid(const wbuild *w, wkid *k, const cbox *given)
 {
     int lo = k->lo, hi = k->hi, n = hi - lo;
-    cbox cb;
-    k->median = false;
     if (n <= w->bundle && n > 1) {
+        cbox cb;
         split_bounds(&w->s, lo, hi, &k->box, &cb);
         k->kind = KID_BUNDLE;
         return;
     }
-    if (n == 1) {
-        k->box = box4_load(&w->s.refs[lo]);
-        k->kind = KID_LEAF;
-        return;
-    }
-    if (given)
-        cb = *given;
-    else
-        split_bounds(&w->s, lo, hi, &k->box, &cb);
-    v4 ext = v4_sub(cb.hi, cb.lo);
-    float ex = v4_x(ext), ey = v4_y(ext), ez = v4_z(ext);
-    int axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
-    if (k->depth >= BVH_MAX_DEPTH - 1) {
-        if (given)
-            split_bounds(&w->s, lo, hi, &k->box, &cb);
-        goto leaf;
-    }
     float plane = 0.0f;
-    float split = split_best(&w->s, lo, hi, cb, &k->box, &axis, &plane);
-    if (split == INFINITY) {
-        if (n <= w->s.max_leaf)
-            goto leaf;
-        goto median;
-    }
-    if (n <= w->s.max_leaf && leaf_cost(&w->s, n) <= split)
-        goto leaf;
-    k->kind = KID_INNER;
+    int axis;
+    split_kind kind = split_decide(&w->s, lo, hi, k->depth, given, &k->box, &axis, &plane);
+    k->kind = kind == SPLIT_LEAF ? KID_LEAF : KID_INNER;
     k->axis = axis;
     k->plane = plane;
-    return;
-leaf:
-    if (n > UINT16_MAX)
-        goto median;
-    k->kind = KID_LEAF;
-    return;
-median:
-    k->kind = KID_INNER;
-    k->axis = axis;
-    k->median = true;
+    k->median = kind == SPLIT_MEDIAN;
 }
 
 /* Splits inner kid k into its two halves, evaluated. */
