@@ -345,6 +345,7 @@ static glint_rc build(scene *s, glint_error *err)
         s->cap_bounds = n;
     }
     int nb = 0, dear = 0;
+    s->ncrossed = 0;
     for (int i = 0; i < s->nobjects; i++) {
         object *o = &s->objects[i];
         o->transmits = false;
@@ -354,6 +355,10 @@ static glint_rc build(scene *s, glint_error *err)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
         if (o->xform >= s->nxforms)
             return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
+        if (o->transmits && s->ncrossed >= 0)
+            s->ncrossed = s->ncrossed < SCENE_FEW_CROSSED ? s->ncrossed + 1 : -1;
+        if (o->transmits && s->ncrossed > 0)
+            s->crossed[s->ncrossed - 1] = i;
         aabb b = object_bounds(s, o);
         s->bounds[i] = b;
         if (!object_unbounded(b)) {
@@ -421,6 +426,21 @@ bool scene_occluded_opaque(const scene *s, const ray *r)
     return isa == ACCEL_SCALAR ? scene_occluded_scalar(s, r) : scene_occluded_sse(s, r);
 }
 
+/* Crossings by t, ties by object; few, mostly in order already:
+ * insertion sort. */
+static void sort_crossings(scene_crossings *out)
+{
+    for (int i = 1; i < out->n; i++) {
+        scene_hit h = out->hit[i];
+        int j = i;
+        for (; j > 0 && (out->hit[j - 1].h.t > h.h.t ||
+                         (out->hit[j - 1].h.t == h.h.t && out->hit[j - 1].object > h.object));
+             j--)
+            out->hit[j] = out->hit[j - 1];
+        out->hit[j] = h;
+    }
+}
+
 bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
 {
     accel_isa isa = s->bvh.isa;
@@ -438,16 +458,20 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
                                       : scene_shadow_walk_sse(s, r, out);
     if (blocked)
         return true;
-    /* few entries, mostly in order already: insertion sort */
-    for (int i = 1; i < out->n; i++) {
-        scene_hit h = out->hit[i];
-        int j = i;
-        for (; j > 0 && (out->hit[j - 1].h.t > h.h.t ||
-                         (out->hit[j - 1].h.t == h.h.t && out->hit[j - 1].object > h.object));
-             j--)
-            out->hit[j] = out->hit[j - 1];
-        out->hit[j] = h;
-    }
+    sort_crossings(out);
+    return false;
+}
+
+bool scene_shadow_unblocked(const scene *s, const ray *r, scene_crossings *out)
+{
+    if (s->ncrossed < 0)
+        return scene_shadow(s, r, out);
+    scene_shadow_ctx c = {s, r, v3_len(r->d), out};
+    out->n = 0;
+    for (int i = 0; i < s->ncrossed; i++)
+        if (scene_shadow_object(&c, s->crossed[i]))
+            return true;
+    sort_crossings(out);
     return false;
 }
 

@@ -34,6 +34,8 @@ typedef struct object {
                        at each ray's time, not xforms[xform] (by scene_build) */
 } object;
 
+#define SCENE_FEW_CROSSED 8
+
 struct glint_scene {
     object *objects;
     int nobjects, cap_objects;
@@ -67,6 +69,10 @@ struct glint_scene {
     char *warnings; /* lines for the user from building the scene, or NULL */
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
+    /* The objects that transmit, in order, when there are at most
+     * SCENE_FEW_CROSSED; ncrossed -1 when there are more (by scene_build). */
+    int32_t crossed[SCENE_FEW_CROSSED];
+    int ncrossed;
     bool flat;         /* the BVH is one leaf or empty: rays test objects in turn */
     double build_seconds; /* wall time of the last scene_build */
     char **sources;       /* files the scene was read from, each once (front ends add them) */
@@ -201,6 +207,10 @@ typedef struct scene_crossings {
  * object). After each crossing of an object the next is sought
  * ray_epsilon beyond it (core/ray.h). */
 bool scene_shadow(const scene *s, const ray *r, scene_crossings *out);
+/* scene_shadow for a shadow ray that no opaque object blocks (as
+ * scene_shadow8 found it): the same crossings, found by asking only the
+ * objects that transmit where they are few. */
+bool scene_shadow_unblocked(const scene *s, const ray *r, scene_crossings *out);
 
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may
  * be left 0 where the hit's material does not use them (material_uses_uv). */

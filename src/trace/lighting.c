@@ -30,20 +30,14 @@ static ray shadow_ray(const trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr
     return sr;
 }
 
-/* What reaches the end of shadow ray sr (lighting_shadow). */
-static vec3 shadow_filter(const scene *s, const ray *sr)
+/* What reaches the end of shadow ray sr through its crossings of
+ * transmitting objects, which filter the light in order along the ray. */
+static vec3 crossings_filter(const scene *s, const ray *sr, const scene_crossings *cross)
 {
-    if (!s->any_transmit)
-        return v3s(scene_occluded_opaque(s, sr) ? 0.0f : 1.0f);
-    /* One walk finds an opaque blocker or every transmitting surface in the
-     * way; those filter the light in order along the ray. */
-    scene_crossings cross;
-    if (scene_shadow(s, sr, &cross))
-        return v3s(0.0f);
     vec3 filter = v3s(1.0f);
     float dlen = v3_len(sr->d), t_prev = 0.0f;
-    for (int i = 0; i < cross.n; i++) {
-        const scene_hit *hit = &cross.hit[i];
+    for (int i = 0; i < cross->n; i++) {
+        const scene_hit *hit = &cross->hit[i];
         const material *m = scene_hit_material(s, hit);
         filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
         if (material_absorbs(m))
@@ -53,6 +47,25 @@ static vec3 shadow_filter(const scene *s, const ray *sr)
         t_prev = hit->h.t;
     }
     return filter;
+}
+
+/* What reaches the end of shadow ray sr (lighting_shadow). */
+static vec3 shadow_filter(const scene *s, const ray *sr)
+{
+    if (!s->any_transmit)
+        return v3s(scene_occluded_opaque(s, sr) ? 0.0f : 1.0f);
+    /* One walk finds an opaque blocker or every transmitting surface in the
+     * way. */
+    scene_crossings cross;
+    return scene_shadow(s, sr, &cross) ? v3s(0.0f) : crossings_filter(s, sr, &cross);
+}
+
+/* shadow_filter for a shadow ray no opaque object blocks, which crosses
+ * a transmitting one (scene_shadow8). */
+static vec3 crossed_filter(const scene *s, const ray *sr)
+{
+    scene_crossings cross;
+    return scene_shadow_unblocked(s, sr, &cross) ? v3s(0.0f) : crossings_filter(s, sr, &cross);
 }
 
 vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
@@ -152,23 +165,24 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
         rs[k] = shadow_ray(ctx, sp[k].p, sp[k].ng, &lr[k]);
         ctx->shadow_rays++;
     }
-    int blocked = 0, alone = need;
+    int blocked = 0, crosses = 0, alone = need;
     if (ray8_three_or_more(need)) {
         ray8 p;
         ray8_pack(&p, rs, need);
-        if (!scene_shadow8(s, &p, need, &blocked, &alone))
-            blocked = 0, alone = need;
+        if (scene_shadow8(s, &p, need, &blocked, &crosses))
+            alone = 0;
     }
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        vis[k] = blocked >> k & 1  ? v3s(0.0f)
-                 : alone >> k & 1 ? shadow_filter(s, &rs[k])
-                                  : v3s(1.0f);
+        vis[k] = alone >> k & 1     ? shadow_filter(s, &rs[k])
+                 : blocked >> k & 1 ? v3s(0.0f)
+                 : crosses >> k & 1 ? crossed_filter(s, &rs[k])
+                                    : v3s(1.0f);
     }
 }
 
 void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *sp, int lanes,
-                     vec3 out[8])
+                     const uint32_t event[8], vec3 out[8])
 {
     const scene *s = ctx->scene;
     vec3 diffuse[8], specular[8];
@@ -183,7 +197,7 @@ void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *s
             for (int m = lanes; m; m &= m - 1) {
                 int k = __builtin_ctz((unsigned)m);
                 trace_lanes_begin(ctx, tl, k);
-                add_light(ctx, &sp[k], i, 0, &diffuse[k], &specular[k]);
+                add_light(ctx, &sp[k], i, event[k], &diffuse[k], &specular[k]);
             }
             continue;
         }

@@ -17,12 +17,13 @@
 /* ambient * base * (1 - transmit) + lights (diffuse, specular) + emission. */
 vec3 lighting_local(trace_ctx *ctx, const shade_point *sp);
 
-/* lighting_local for the first hits of a packet's camera rays, the points
- * sp[k] of the lanes in `lanes` (tl names their samples), into out[k]:
- * the same colours, with the shadow rays towards each point or spot light
- * traced together (scene_shadow8). Leaves ctx at the last lane's sample. */
+/* lighting_local for the points sp[k] of the lanes in `lanes` of a packet
+ * (tl names their samples), shading event event[k] of lane k's sample,
+ * into out[k]: the same colours, with the shadow rays towards each point
+ * or spot light traced together (scene_shadow8). Leaves ctx at the last
+ * lane's sample; ctx->events is not used. */
 void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *sp, int lanes,
-                     vec3 out[8]);
+                     const uint32_t event[8], vec3 out[8]);
 
 /* Fraction of light reaching p from the light sample lr: 0 behind an
  * opaque object, filtered by transmit * tint at each transmitting surface

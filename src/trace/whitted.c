@@ -106,26 +106,139 @@ vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hi
     return trace_hit(ctx, r, 0, hit);
 }
 
-void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int active,
-                     int found, const scene_hit *hit, vec3 out[8], float coverage[8])
+/* ---- eight samples at once ----------------------------------------------
+ * The lanes of a packet go down their trees together: the rays the lanes
+ * reflect (or transmit) at one level are traced as one packet
+ * (scene_intersect8) and lit together (lighting_local8), reflected
+ * subtrees before transmitted ones as in trace_rest. Each lane keeps its
+ * own shading events and share of the pixel, so it meets its events in
+ * the order whitted_trace would and gets its colour to the bit. */
+
+/* What each lane carries down its tree besides its rays. */
+typedef struct lanes8 {
+    const trace_lanes *tl;
+    uint32_t events[8]; /* trace_ctx.events, lane by lane */
+    float weight[8];    /* trace_ctx.weight, lane by lane */
+} lanes8;
+
+static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int depth,
+                   vec3 out[8]);
+
+/* The reflected (reflect) or transmitted rays of the lanes of `found`
+ * that adc_keep keeps, from lanes of share[k]: returns those lanes, with
+ * the ray in rs[k] and its share in ls->weight[k]. */
+static int secondaries(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found,
+                       const shade_point sp[8], const float share[8], const float kr[8],
+                       const float kt[8], const vec3 tdir[8], bool reflect, ray rs[8])
+{
+    int keep = 0;
+    for (int m = found; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        float gt = kt[k] * v3_max_comp(sp[k].m->tint);
+        if (reflect ? !adc_keep(ctx, share[k], kr[k], kr[k] + gt)
+                    : !(kt[k] > 0.0f && adc_keep(ctx, share[k], gt, kr[k] + gt)))
+            continue;
+        ls->weight[k] = ctx->weight;
+        vec3 d = reflect ? v3_reflect(sp[k].d, sp[k].n) : tdir[k];
+        rs[k] = ray_make(ray_offset(sp[k].p, sp[k].ng, d), d, INFINITY);
+        rs[k].time = r[k].time;
+        ctx->secondary_rays++;
+        keep |= 1 << k;
+    }
+    return keep;
+}
+
+/* trace_rest for the lanes of `found`, with their local light in c[k]. */
+static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int depth,
+                  const scene_hit hit[8], const shade_point sp[8], vec3 c[8], vec3 out[8])
+{
+    if (depth < ctx->max_depth) {
+        float kr[8], kt[8], share[8];
+        vec3 tdir[8], sub[8];
+        ray rs[8];
+        for (int m = found; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            split(&sp[k], &kr[k], &kt[k], &tdir[k]);
+            share[k] = ls->weight[k];
+        }
+        int keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, tdir, true, rs);
+        trace8(ctx, ls, rs, keep, depth + 1, sub);
+        for (int m = keep; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            c[k] = v3_madd(c[k], sub[k], kr[k]);
+        }
+        keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, tdir, false, rs);
+        trace8(ctx, ls, rs, keep, depth + 1, sub);
+        for (int m = keep; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            c[k] = v3_add(c[k], v3_scale(v3_mul(sub[k], sp[k].m->tint), kt[k]));
+        }
+        for (int m = found; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            ls->weight[k] = share[k];
+        }
+    }
+    for (int m = found; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        out[k] = shade_segment(ctx->scene, &r[k], hit[k].h.t, &sp[k], c[k]);
+    }
+}
+
+/* The lanes of active, whose nearest hits are hit[k] for the lanes of
+ * found (the others saw the background), shaded into out[k]. */
+static void shade8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int found,
+                   int depth, const scene_hit hit[8], vec3 out[8])
 {
     shade_point sp[8] = {0};
-    vec3 local[8];
-    found &= active;
+    vec3 c[8];
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         shade_prepare(ctx, &r[k], &hit[k], &sp[k]);
     }
-    lighting_local8(ctx, tl, sp, found, local);
-    for (int m = active; m; m &= m - 1) {
+    lighting_local8(ctx, ls->tl, sp, found, ls->events, c);
+    for (int m = found; m; m &= m - 1)
+        ls->events[__builtin_ctz((unsigned)m)]++;
+    for (int m = active & ~found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        trace_lanes_begin(ctx, tl, k);
-        coverage[k] = found >> k & 1 ? 1.0f : 0.0f;
-        if (!(found >> k & 1)) {
-            out[k] = trace_hit(ctx, &r[k], 0, NULL);
-            continue;
-        }
-        ctx->events = 1; /* lighting_local8 had event 0 */
-        out[k] = trace_rest(ctx, &r[k], 0, &hit[k], &sp[k], local[k]);
+        out[k] = trace_hit(ctx, &r[k], depth, NULL);
     }
+    rest8(ctx, ls, r, found, depth, hit, sp, c, out);
+}
+
+/* whitted_trace for the rays r[k] of the lanes of active: three or more
+ * together, fewer one by one. */
+static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int depth,
+                   vec3 out[8])
+{
+    if (!ray8_three_or_more(active)) {
+        float weight = ctx->weight;
+        for (int m = active; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            trace_lanes_begin(ctx, ls->tl, k);
+            ctx->events = ls->events[k];
+            ctx->weight = ls->weight[k];
+            out[k] = whitted_trace(ctx, &r[k], depth);
+            ls->events[k] = ctx->events;
+        }
+        ctx->weight = weight;
+        return;
+    }
+    ray8 p;
+    ray8_pack(&p, r, active);
+    scene_hit hit[8];
+    int found = scene_intersect8(ctx->scene, &p, active, hit);
+    shade8(ctx, ls, r, active, found, depth, hit, out);
+}
+
+void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int active,
+                     int found, const scene_hit *hit, vec3 out[8], float coverage[8])
+{
+    lanes8 ls = {.tl = tl};
+    for (int k = 0; k < 8; k++) {
+        ls.events[k] = 0;
+        ls.weight[k] = ctx->weight;
+        coverage[k] = found >> k & 1 ? 1.0f : 0.0f;
+    }
+    shade8(ctx, &ls, r, active, found & active, 0, hit, out);
+    ctx->weight = ls.weight[0]; /* adc_keep changed it */
 }
