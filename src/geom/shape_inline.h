@@ -14,7 +14,12 @@
  * "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems,
  * ch. 7, 2019): the discriminant from the distance of the centre to the
  * ray's line, and the near root from the numerically stable q formula. */
-__attribute__((always_inline)) static inline bool sphere_hit(const struct sphere *s, const ray *r, shape_hit *hit)
+/* Both roots of the ray's line with the sphere, *t0 <= *t1; false when
+ * it misses, or when both roots lie behind a ray from tmin >= 0. The roots
+ * do not depend on tmin, so a shadow ray's crossings of a sphere come from
+ * one call (scene_shadow_object). */
+__attribute__((always_inline)) static inline bool sphere_roots(const struct sphere *s, const ray *r,
+                                                               float *t0, float *t1)
 {
     vec3 f = v3_sub(r->o, s->center);
     float b = -v3_dot(f, r->d); /* half of -B */
@@ -31,18 +36,25 @@ __attribute__((always_inline)) static inline bool sphere_hit(const struct sphere
     if (disc < 0.0f)
         return false;
     float q = b + copysignf(sqrtf(disc), b);
-    float t0, t1;
     if (q == 0.0f) {
-        t0 = t1 = 0.0f;
+        *t0 = *t1 = 0.0f;
     } else {
-        t0 = c / q;
-        t1 = q / a;
+        *t0 = c / q;
+        *t1 = q / a;
     }
-    if (t0 > t1) {
-        float t = t0;
-        t0 = t1;
-        t1 = t;
+    if (*t0 > *t1) {
+        float t = *t0;
+        *t0 = *t1;
+        *t1 = t;
     }
+    return true;
+}
+
+__attribute__((always_inline)) static inline bool sphere_hit(const struct sphere *s, const ray *r, shape_hit *hit)
+{
+    float t0, t1;
+    if (!sphere_roots(s, r, &t0, &t1))
+        return false;
     float t = t0;
     if (!ray_in_range(r, t)) {
         t = t1;

@@ -99,6 +99,15 @@ typedef struct scene_shadow_ctx {
     scene_crossings *out;
 } scene_shadow_ctx;
 
+/* Where the search for a shadow ray's next crossing starts after one at
+ * t: ray_epsilon beyond it (core/ray.h). */
+__attribute__((always_inline)) static inline float scene_cross_next(const scene_shadow_ctx *c,
+                                                                    float t)
+{
+    float next = t + ray_epsilon(ray_at(c->r, t)) / c->dlen;
+    return next > t ? next : nextafterf(t, INFINITY);
+}
+
 /* Object i against a shadow ray: true when it blocks it (an opaque object
  * in the way, or more crossings than fit); a transmitting object adds its
  * crossings to c->out. */
@@ -110,12 +119,25 @@ __attribute__((always_inline)) static inline bool scene_shadow_object(scene_shad
         return shape_occluded_inline(&o->shape, &lr);
     scene_crossings *out = c->out;
     shape_hit h;
+    float root[2];
+    if (o->shape.kind == SHAPE_SPHERE) { /* the loop below, with one root finding */
+        if (!sphere_roots(&o->shape.sphere, &lr, &root[0], &root[1]))
+            return false;
+        for (int k = 0; k < 2; k++) {
+            if (!ray_in_range(&lr, root[k]))
+                continue;
+            if (out->n == SCENE_SHADOW_MAX)
+                return true;
+            out->hit[out->n++] = (scene_hit){{.t = root[k]}, i}; /* as sphere_hit's */
+            lr.tmin = scene_cross_next(c, root[k]);
+        }
+        return false;
+    }
     while (shape_intersect_inline(&o->shape, &lr, &h)) {
         if (out->n == SCENE_SHADOW_MAX)
             return true;
         out->hit[out->n++] = (scene_hit){h, i};
-        float next = h.t + ray_epsilon(ray_at(c->r, h.t)) / c->dlen;
-        lr.tmin = next > h.t ? next : nextafterf(h.t, INFINITY);
+        lr.tmin = scene_cross_next(c, h.t);
     }
     return false;
 }
