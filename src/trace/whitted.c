@@ -184,17 +184,26 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
     }
 }
 
+/* shade_prepare for the lanes of found. Out of line: the caller's sp is
+ * then not taken for read before it is set (-Wmaybe-uninitialized), and it
+ * is not cleared for lanes nobody reads. */
+static __attribute__((noinline)) void prepare8(trace_ctx *ctx, const ray r[8], int found, const scene_hit hit[8],
+                     shade_point sp[8])
+{
+    for (int m = found; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        shade_prepare(ctx, &r[k], &hit[k], &sp[k]);
+    }
+}
+
 /* The lanes of active, whose nearest hits are hit[k] for the lanes of
  * found (the others saw the background), shaded into out[k]. */
 static void shade8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int found,
                    int depth, const scene_hit hit[8], vec3 out[8])
 {
-    shade_point sp[8] = {0};
+    shade_point sp[8]; /* set for the lanes of found, the only ones read */
     vec3 c[8];
-    for (int m = found; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        shade_prepare(ctx, &r[k], &hit[k], &sp[k]);
-    }
+    prepare8(ctx, r, found, hit, sp);
     lighting_local8(ctx, ls->tl, sp, found, ls->events, c);
     for (int m = found; m; m &= m - 1)
         ls->events[__builtin_ctz((unsigned)m)]++;
