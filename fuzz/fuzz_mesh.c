@@ -37,7 +37,7 @@ static void use(mesh_data *md, const char *name)
 {
     mesh_file mf = {0};
     glint_error err = {0};
-    if (mesh_file_from_data(md, name, &mf, &err) != GLINT_OK) {
+    if (mesh_file_from_data(md, name, 1, &mf, &err) != GLINT_OK) {
         if (!err.msg[0] || mf.mesh)
             abort();
         return;

@@ -111,7 +111,8 @@ typedef struct glint_settings {
 /* Checks settings for a render: sizes, sample counts, memory limits. */
 GLINT_API glint_rc glint_settings_check(const glint_settings *s, glint_error *err);
 
-/* Render threads used when settings.threads is 0: one per core. */
+/* Threads used when a thread count is 0: one per core this process may
+ * run on (its CPU affinity, which taskset, mpirun and srun set). */
 GLINT_API int glint_default_threads(void);
 
 /* ---- scenes -------------------------------------------------------------- */
@@ -126,6 +127,19 @@ GLINT_API glint_rc glint_scene_builtin(glint_scene **out, glint_error *err);
  * folder is refused before anything is read); "-" and "/dev/stdin" read
  * standard input to its end, with paths relative to the current folder. */
 GLINT_API glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err);
+
+/* How a scene is loaded; all zero (or a NULL pointer) is the default. */
+typedef struct glint_load_options {
+    int threads; /* 0 to 1024 (0: glint_default_threads): the threads that decode
+                    the scene's textures and build its trees, its meshes' and
+                    its own, then and at every later build (glint_scene_set_threads) */
+} glint_load_options;
+
+/* glint_scene_builtin and glint_scene_load with options. */
+GLINT_API glint_rc glint_scene_builtin_with(const glint_load_options *options,
+                                            glint_scene **out, glint_error *err);
+GLINT_API glint_rc glint_scene_load_with(const char *path, const glint_load_options *options,
+                                         glint_scene **out, glint_error *err);
 /* Frees the scene and everything in it; NULL is fine. */
 GLINT_API void glint_scene_free(glint_scene *scene);
 /* What the user should know about a scene that loaded: lines such as
@@ -578,6 +592,11 @@ GLINT_API glint_rc glint_scene_set_fog(glint_scene *scene, const glint_fog *fog,
 /* Prepares the scene for rendering (bounds, the BVH). Call after the last
  * add; a scene with objects added since its last build refuses to render. */
 GLINT_API glint_rc glint_scene_build(glint_scene *scene, glint_error *err);
+/* The threads the scene's later builds (glint_scene_build, the rebuilds of
+ * glint_scene_set_time) and mesh imports (glint_scene_add_mesh) run on: 0
+ * to 1024, 0 for glint_default_threads (a new scene's setting). Renders
+ * take theirs from glint_settings. */
+GLINT_API glint_rc glint_scene_set_threads(glint_scene *scene, int threads, glint_error *err);
 
 /* ---- rendering ----------------------------------------------------------- */
 

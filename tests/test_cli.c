@@ -69,7 +69,7 @@ Test(cli, help_and_version)
         "samples per pixel, a perfect square from 1 to 1024",
         "(default: the scene's, else 1;",
         "recursion limit, 0 to 64",
-        "render threads, 0 to 1024 (default 0: one per core)",
+        "threads, 0 to 1024, for everything: textures, trees,",
         "docs/scene-format.md",
         "the horizontal field of view is kept",
         "'-': the scene from standard input",
@@ -132,7 +132,8 @@ Test(cli, bad_options_exit_2_with_one_line)
         {"-r 100", "glint: -r: expected WIDTHxHEIGHT such as 800x600, got '100' (try 'glint --help')\n"},
         {"-r 0x10", "glint: -r: expected WIDTHxHEIGHT such as 800x600, got '0x10' (try 'glint --help')\n"},
         {"-s two", "glint: -s: expected a positive whole number, got 'two' (try 'glint --help')\n"},
-        {"-t -1", "glint: -t: expected a whole number >= 0 (0: all cores), got '-1' (try 'glint --help')\n"},
+        {"-t -1", "glint: -t: expected a whole number from 0 to 1024 (0: one per core), got '-1' (try 'glint --help')\n"},
+        {"-t 1025", "glint: -t: expected a whole number from 0 to 1024 (0: one per core), got '1025' (try 'glint --help')\n"},
         /* long options were named through a byte that was no character:
          * a raw 0x01 for --transfer, a NUL for --stats=1 */
         {"--transfer", "glint: --transfer needs a value (try 'glint --help')\n"},

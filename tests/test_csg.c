@@ -456,7 +456,7 @@ static mesh *cubes(int n)
     }
     polyhedron_free(&cube);
     glint_error err = {0};
-    cr_assert_eq(mesh_init(m, "cubes", NULL, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(mesh_init(m, "cubes", 0, NULL, &err), GLINT_OK, "%s", err.msg);
     return m;
 }
 

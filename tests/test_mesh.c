@@ -519,7 +519,7 @@ static mesh *triangle_soup(int n, uint64_t seed)
     }
     int dropped = -1;
     glint_error err = {0};
-    cr_assert_eq(mesh_init(m, "soup", &dropped, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(mesh_init(m, "soup", 0, &dropped, &err), GLINT_OK, "%s", err.msg);
     cr_assert_eq(dropped, 0);
     cr_assert_eq(m->ntris, n);
     return m;

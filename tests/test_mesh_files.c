@@ -357,7 +357,7 @@ Test(mesh_files, cube_without_normals_keeps_hard_edges)
                  worst_corner(mf.mesh));
     mesh_file_free(&mf);
 
-    mesh_options smooth = {180};
+    mesh_options smooth = {180, 0};
     cr_assert_eq(mesh_import(path, &smooth, &mf, &err), GLINT_OK, "%s", err.msg);
     cr_expect_eq(mf.mesh->nverts, 8);
     /* each corner's normal is the cube's diagonal, 54.7 degrees off every face */

@@ -27,7 +27,7 @@ static mesh *mesh_take(vec3 *pos, int nverts, uint32_t (*tri)[3], int ntris)
     m->tri = tri;
     m->ntris = ntris;
     glint_error err = {0};
-    cr_assert_eq(mesh_init(m, "packet", NULL, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(mesh_init(m, "packet", 0, NULL, &err), GLINT_OK, "%s", err.msg);
     return m;
 }
 

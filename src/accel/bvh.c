@@ -1,17 +1,15 @@
-#define _GNU_SOURCE /* sched_getaffinity */
 #include "bvh.h"
 
 #include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "core/array.h"
+#include "core/cpus.h"
 #include "core/error.h"
 
 #include "split.h"
@@ -168,14 +166,7 @@ static int build_node(build *b, int lo, int hi, int depth, const cbox *given)
  * none (-1). */
 static int spawn_depth(int cpus)
 {
-    if (cpus <= 0) {
-#if defined(CPU_COUNT)
-        cpu_set_t set;
-        cpus = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 1;
-#else
-        cpus = (int)sysconf(_SC_NPROCESSORS_ONLN);
-#endif
-    }
+    cpus = cpus_threads(cpus, 1024);
     if (cpus <= 1)
         return -1;
     int d = 2;

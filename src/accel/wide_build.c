@@ -1,16 +1,14 @@
-#define _GNU_SOURCE /* sched_getaffinity */
 #include "wide.h"
 
 #include <math.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "accel/split.h"
 #include "core/array.h"
+#include "core/cpus.h"
 #include "core/error.h"
 
 /* ---- The wide hierarchy built directly ----
@@ -323,20 +321,6 @@ static int wnode_on(wbuild *w, const wkid *k, int threads)
 
 static int wnode(wbuild *w, const wkid *k) { return wnode_on(w, k, 1); }
 
-/* CPUs to build on: cpus, or with 0 those of the process's affinity mask. */
-static int cpu_count(int cpus)
-{
-    if (cpus > 0)
-        return cpus;
-#if defined(CPU_COUNT)
-    cpu_set_t set;
-    return sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 1;
-#else
-    long c = sysconf(_SC_NPROCESSORS_ONLN);
-    return c > 0 ? (int)c : 1;
-#endif
-}
-
 /* Trees smaller than this are built on one thread. */
 #define PAR_MIN 16384
 
@@ -411,7 +395,7 @@ glint_rc bvhw_rebuild(bvhw *out, const aabb *boxes, const int32_t *ids, int n, i
     out->isa = isa;
     out->width = accel_isa_width(isa);
     out->bounds = aabb_empty();
-    int threads = n >= PAR_MIN ? cpu_count(cpus) : 1;
+    int threads = n >= PAR_MIN ? cpus_threads(cpus, 1024) : 1;
     /* Room for as many nodes as half the primitives (a tree of bundles
      * makes about 0.29 per primitive, eight wide); pages never written
      * cost nothing, and a larger tree grows it. */

@@ -229,7 +229,7 @@ glint_rc glint_scene_add_mesh_smoothed(glint_scene *s, const char *path, double 
     if (!(smooth_angle >= 0.0 && smooth_angle <= 180.0))
         return api_bad(err, __func__, "smooth_angle must be 0 to 180 degrees (got %g)",
                        smooth_angle);
-    mesh_options mo = {(float)smooth_angle};
+    mesh_options mo = {(float)smooth_angle, s->threads};
     mesh_file mf = {0};
     glint_rc rc = mesh_import(path, &mo, &mf, err);
     int i = -1;

@@ -36,16 +36,53 @@ int glint_exit_code(glint_rc rc)
 
 glint_rc glint_scene_builtin(glint_scene **out, glint_error *err)
 {
-    if (!out)
-        return api_null(err, __func__, "out");
-    return scene_load_builtin(out, err);
+    return glint_scene_builtin_with(NULL, out, err);
 }
 
 glint_rc glint_scene_load(const char *path, glint_scene **out, glint_error *err)
 {
+    return glint_scene_load_with(path, NULL, out, err);
+}
+
+/* The thread count of options (NULL: 0) into *threads, checked. */
+static glint_rc load_threads(const glint_load_options *o, const char *fn, int *threads,
+                             glint_error *err)
+{
+    *threads = o ? o->threads : 0;
+    if (*threads < 0 || *threads > SETTINGS_MAX_THREADS)
+        return api_bad(err, fn, "threads must be 0 to %d (got %d)", SETTINGS_MAX_THREADS,
+                       *threads);
+    return GLINT_OK;
+}
+
+glint_rc glint_scene_builtin_with(const glint_load_options *o, glint_scene **out,
+                                  glint_error *err)
+{
+    int threads;
+    if (!out)
+        return api_null(err, __func__, "out");
+    glint_rc rc = load_threads(o, __func__, &threads, err);
+    return rc != GLINT_OK ? rc : scene_load_builtin(threads, out, err);
+}
+
+glint_rc glint_scene_load_with(const char *path, const glint_load_options *o,
+                               glint_scene **out, glint_error *err)
+{
+    int threads;
     if (!path || !out)
         return api_null(err, __func__, !path ? "path" : "out");
-    return scene_load_file(path, out, err);
+    glint_rc rc = load_threads(o, __func__, &threads, err);
+    return rc != GLINT_OK ? rc : scene_load_file_threads(path, threads, out, err);
+}
+
+glint_rc glint_scene_set_threads(glint_scene *s, int threads, glint_error *err)
+{
+    if (!s)
+        return api_null(err, __func__, "scene");
+    glint_rc rc = load_threads(&(glint_load_options){threads}, __func__, &threads, err);
+    if (rc == GLINT_OK)
+        s->threads = threads;
+    return rc;
 }
 
 void glint_scene_free(glint_scene *s) { scene_free(s); }

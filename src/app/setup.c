@@ -32,8 +32,9 @@ glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
 {
     double t0 = cli_now();
     *scene = NULL;
-    glint_rc rc = c->scene_path ? glint_scene_load(c->scene_path, scene, err)
-                                : glint_scene_builtin(scene, err);
+    glint_load_options lo = {c->threads > 0 ? c->threads : 0}; /* -t bounds every thread */
+    glint_rc rc = c->scene_path ? glint_scene_load_with(c->scene_path, &lo, scene, err)
+                                : glint_scene_builtin_with(&lo, scene, err);
     if (rc == GLINT_OK)
         rc = glint_scene_settings(*scene, s, err);
     if (rc != GLINT_OK) {

@@ -97,8 +97,10 @@ static int opt_depth(struct cli *c, const char *arg)
 
 static int opt_threads(struct cli *c, const char *arg)
 {
-    if (!parse_int(arg, 0, INT_MAX, &c->threads))
-        return cli_usage_error(c->program, "-t: expected a whole number >= 0 (0: all cores), got '%s'", arg);
+    if (!parse_int(arg, 0, 1024, &c->threads))
+        return cli_usage_error(c->program,
+                               "-t: expected a whole number from 0 to 1024 (0: one per core), got '%s'",
+                               arg);
     return -1;
 }
 
@@ -250,10 +252,13 @@ static const option_row options[] = {
     {"depth", 'd', "N", opt_depth,
      "reflection/refraction recursion limit, 0 to 64\n"
      "(default: the scene's, else 5)", SAME},
-    {"threads", 't', "N", opt_threads, "render threads, 0 to 1024 (default 0: one per core)",
+    {"threads", 't', "N", opt_threads,
+     "threads, 0 to 1024, for everything: textures, trees,\n"
+     "the render, the PNG (default 0: one per core)",
      CLI_BOTH,
-     "render threads per process, 0 to 1024 (default 0: one\n"
-     "per core the process may run on)"},
+     "threads per process, 0 to 1024, for everything: textures,\n"
+     "trees, the render, the PNG (default 0: one per core\n"
+     "the process may run on)"},
     {"transfer", 0, "T", opt_transfer,
      "none or srgb: how film values become pixels\n"
      "(default: the scene's, else none)", SAME},

@@ -62,14 +62,15 @@ static glint_rc prepare(dist_job *job, glint_error *err)
 {
     const struct cli *o = job->opt;
     char path[4096];
+    glint_load_options lo = {o->threads > 0 ? o->threads : 0}; /* -t bounds every thread */
     glint_rc rc = GLINT_OK;
     if (o->frames)
         rc = glint_frame_path(o->output, 1, path, sizeof path, err);
     if (rc == GLINT_OK && job->rank == 0)
         rc = glint_output_check(o->frames ? path : o->output, &o->write, err);
     if (rc == GLINT_OK)
-        rc = o->scene_path ? glint_scene_load(o->scene_path, &job->scene, err)
-                           : glint_scene_builtin(&job->scene, err);
+        rc = o->scene_path ? glint_scene_load_with(o->scene_path, &lo, &job->scene, err)
+                           : glint_scene_builtin_with(&lo, &job->scene, err);
     if (rc == GLINT_OK)
         rc = dist_settings(job->scene, o, &job->settings, err);
     if (rc == GLINT_OK)

@@ -1,8 +1,6 @@
-#define _GNU_SOURCE /* sched_getaffinity */
 #include "options.h"
 
 #include <mpi.h>
-#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -67,17 +65,6 @@ int dist_parse_options(int argc, char **argv, int rank, struct cli *c, char ***k
     return code;
 }
 
-/* The cores this process may run on: mpirun and srun bind each process to
- * its share of a node, and its threads should not crowd the others'. */
-static int cpus_allowed(void)
-{
-    cpu_set_t set;
-    if (sched_getaffinity(0, sizeof set, &set) != 0 || CPU_COUNT(&set) < 1)
-        return glint_default_threads();
-    int n = CPU_COUNT(&set);
-    return n > 1024 ? 1024 : n;
-}
-
 glint_rc dist_settings(const glint_scene *scene, const struct cli *o, glint_settings *s,
                        glint_error *err)
 {
@@ -85,7 +72,7 @@ glint_rc dist_settings(const glint_scene *scene, const struct cli *o, glint_sett
     if (rc != GLINT_OK)
         return rc;
     cli_settings(o, s);
-    if (s->threads == 0)
-        s->threads = cpus_allowed();
+    if (s->threads == 0) /* the cores this process may run on: mpirun binds it to its share */
+        s->threads = glint_default_threads();
     return glint_settings_check(s, err);
 }

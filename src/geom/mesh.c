@@ -57,7 +57,7 @@ static glint_rc make_blocks(mesh *m, glint_error *err)
     return GLINT_OK;
 }
 
-glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
+glint_rc mesh_init(mesh *m, const char *name, int threads, int *dropped, glint_error *err)
 {
     int kept = 0;
     for (int i = 0; i < m->ntris; i++) {
@@ -96,7 +96,7 @@ glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err)
         m->bounds = aabb_union(m->bounds, b);
     }
     bvh bin;
-    glint_rc rc = bvh_build_blocked(&bin, boxes, kept, 4, err);
+    glint_rc rc = bvh_build_threads(&bin, boxes, kept, 4, threads, err);
     free(boxes);
     if (rc != GLINT_OK)
         return rc;

@@ -29,10 +29,11 @@ typedef struct mesh {
     aabb bounds;
 } mesh;
 
-/* Takes the arrays (allocated with malloc) and builds the BVH. Triangles
- * with zero area or non-finite corners are dropped first; *dropped (when
- * non-null) tells how many. Fails when none remain. name is for messages. */
-glint_rc mesh_init(mesh *m, const char *name, int *dropped, glint_error *err);
+/* Takes the arrays (allocated with malloc) and builds the BVH on up to
+ * `threads` threads (0: one per CPU, cpus.h). Triangles with zero area or
+ * non-finite corners are dropped first; *dropped (when non-null) tells how
+ * many. Fails when none remain. name is for messages. */
+glint_rc mesh_init(mesh *m, const char *name, int threads, int *dropped, glint_error *err);
 void mesh_free(mesh *m);
 
 bool mesh_intersect(const mesh *m, const ray *r, struct shape_hit *hit);

@@ -26,7 +26,6 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include <libdeflate.h>
 #if defined(__SSE2__)
@@ -34,6 +33,7 @@
 #endif
 
 #include "codec.h"
+#include "core/cpus.h"
 #include "core/error.h"
 #include "deflate_join.h"
 #include "image.h"
@@ -303,10 +303,7 @@ int png_strip_rows(int width, int height, int channels, int bits)
  * threads that cannot be started leave their share to the others. */
 static void run_strips(png_job *j, int threads)
 {
-    if (threads <= 0) {
-        long n = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = n < 1 ? 1 : n > PNG_MAX_THREADS ? PNG_MAX_THREADS : (int)n;
-    }
+    threads = cpus_threads(threads, PNG_MAX_THREADS);
     if (threads > j->nstrips)
         threads = j->nstrips;
     pthread_t th[PNG_MAX_THREADS];

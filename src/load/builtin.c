@@ -6,12 +6,12 @@
 #include "load/assets.h"
 #include "load/load.h"
 
-glint_rc scene_load_builtin(scene **out, glint_error *err)
+glint_rc scene_load_builtin(int threads, scene **out, glint_error *err)
 {
     const unsigned char *text;
     size_t size;
     if (!asset_find(ASSET_SEED_SCENE, &text, &size))
         return err_set(err, GLINT_ERR_IO, "built-in asset %s is missing", ASSET_SEED_SCENE);
-    return scene_load_text((const char *)text, size, ASSET_SEED_SCENE, "", asset_read, NULL, out,
-                           err);
+    return scene_load_text_threads((const char *)text, size, ASSET_SEED_SCENE, "", asset_read, NULL,
+                                   threads, out, err);
 }

@@ -305,7 +305,7 @@ static void loader_free(loader *L)
 }
 
 static glint_rc load(const char *text, size_t len, char *data, const char *name, const char *dir,
-                     scene_reader reader, void *user, scene **out, glint_error *err)
+                     scene_reader reader, void *user, int threads, scene **out, glint_error *err)
 {
     loader L = {.reader = reader ? reader : scene_read_file,
                 .user = user,
@@ -322,6 +322,7 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
         rc = err_nomem(err);
         goto out;
     }
+    L.s->threads = threads;
     if (L.reader == scene_read_file && scene_add_source(L.s, name) < 0) {
         free(data);
         rc = err_nomem(err);
@@ -350,7 +351,14 @@ out:
 glint_rc scene_load_text(const char *text, size_t len, const char *name, const char *base_dir,
                          scene_reader reader, void *user, scene **out, glint_error *err)
 {
-    return load(text, len, NULL, name, base_dir, reader, user, out, err);
+    return scene_load_text_threads(text, len, name, base_dir, reader, user, 0, out, err);
+}
+
+glint_rc scene_load_text_threads(const char *text, size_t len, const char *name,
+                                 const char *base_dir, scene_reader reader, void *user,
+                                 int threads, scene **out, glint_error *err)
+{
+    return load(text, len, NULL, name, base_dir, reader, user, threads, out, err);
 }
 
 /* The scene file named "-" (or "/dev/stdin") is standard input, read to
@@ -362,6 +370,11 @@ static bool is_stdin(const char *path)
 }
 
 glint_rc scene_load_file(const char *path, scene **out, glint_error *err)
+{
+    return scene_load_file_threads(path, 0, out, err);
+}
+
+glint_rc scene_load_file_threads(const char *path, int threads, scene **out, glint_error *err)
 {
     bool in = is_stdin(path);
     const char *name = in ? "<stdin>" : path;
@@ -377,7 +390,7 @@ glint_rc scene_load_file(const char *path, scene **out, glint_error *err)
     else if (rc != GLINT_OK)
         rc = err_set(err, GLINT_ERR_INPUT, "%s: cannot read scene: %s", name, rerr.msg);
     if (rc == GLINT_OK)
-        rc = load(data, size, data, name, dir, scene_read_file, NULL, out, err);
+        rc = load(data, size, data, name, dir, scene_read_file, NULL, threads, out, err);
     free(dir);
     return rc;
 }

@@ -59,7 +59,17 @@ glint_rc scene_load_file(const char *path, scene **out, glint_error *err);
 glint_rc scene_load_text(const char *text, size_t len, const char *name, const char *base_dir,
                          scene_reader reader, void *user, scene **out, glint_error *err);
 
-/* The built-in scene: scenes/seed.yaml and its textures, compiled in. */
-glint_rc scene_load_builtin(scene **out, glint_error *err);
+/* scene_load_file and scene_load_text on up to `threads` threads (0: one
+ * per CPU, core/cpus.h), which the scene keeps (scene.threads): its
+ * textures are decoded, its meshes' trees and its own built on that many,
+ * then and at every later build. */
+glint_rc scene_load_file_threads(const char *path, int threads, scene **out, glint_error *err);
+glint_rc scene_load_text_threads(const char *text, size_t len, const char *name,
+                                 const char *base_dir, scene_reader reader, void *user,
+                                 int threads, scene **out, glint_error *err);
+
+/* The built-in scene: scenes/seed.yaml and its textures, compiled in
+ * (threads as scene_load_file_threads). */
+glint_rc scene_load_builtin(int threads, scene **out, glint_error *err);
 
 #endif

@@ -158,7 +158,8 @@ static glint_rc take_arrays(mesh_data *md, mesh *m, glint_error *err)
     return GLINT_OK;
 }
 
-glint_rc mesh_file_from_data(mesh_data *md, const char *name, mesh_file *out, glint_error *err)
+glint_rc mesh_file_from_data(mesh_data *md, const char *name, int threads, mesh_file *out,
+                             glint_error *err)
 {
     if (md->ntris == 0)
         return err_set(err, GLINT_ERR_INPUT, "%s: mesh has no triangles", name);
@@ -178,7 +179,7 @@ glint_rc mesh_file_from_data(mesh_data *md, const char *name, mesh_file *out, gl
     uint32_t total = md->ntris;
     glint_rc rc = take_arrays(md, m, err);
     if (rc == GLINT_OK)
-        rc = mesh_init(m, name, &out->dropped, err);
+        rc = mesh_init(m, name, threads, &out->dropped, err);
     if (rc != GLINT_OK) {
         mesh_free(m);
         free(m);
@@ -289,7 +290,7 @@ static glint_rc run_import(const char *name, const void *data, size_t size,
                      md.ntris, (unsigned long long)lim.triangles);
     uint64_t got = rc == GLINT_OK ? (uint64_t)md.ntris + md.dropped : 0;
     if (rc == GLINT_OK)
-        rc = mesh_file_from_data(&md, name, out, err);
+        rc = mesh_file_from_data(&md, name, opts ? opts->threads : 0, out, err);
     if (rc == GLINT_OK)
         check_count(out, name, data, size, hdr, got);
     mesh_data_free(&md);

@@ -23,6 +23,7 @@
 
 typedef struct mesh_options {
     float smooth_angle; /* 0 to 180 degrees; edges sharper than this stay hard */
+    int threads;        /* for the mesh's BVH (mesh_init) */
 } mesh_options;
 
 typedef struct mesh_file {
@@ -58,8 +59,10 @@ void mesh_file_warn(mesh_file *f, const char *fmt, ...) GLINT_PRINTF(2, 3);
 /* Frees what mesh_import returned and the caller did not take. */
 void mesh_file_free(mesh_file *f);
 
-/* Builds out from md (which it empties): the parent's checks and the
- * dropped-triangle count. Shared with the fuzz target. */
-glint_rc mesh_file_from_data(mesh_data *md, const char *name, mesh_file *out, glint_error *err);
+/* Builds out from md (which it empties): the parent's checks, the
+ * dropped-triangle count and the BVH (on `threads`, as mesh_init). Shared
+ * with the fuzz target. */
+glint_rc mesh_file_from_data(mesh_data *md, const char *name, int threads, mesh_file *out,
+                             glint_error *err);
 
 #endif

@@ -284,7 +284,7 @@ static glint_rc load_shape(loader *L, uint32_t map, shape_kind kind, shape *out)
     case SHAPE_TRIANGLE:
         return load_triangle(L, map, out);
     case SHAPE_MESH: {
-        mesh_options mo = {MESH_DEFAULT_SMOOTH_ANGLE};
+        mesh_options mo = {MESH_DEFAULT_SMOOTH_ANGLE, L->s->threads};
         if ((v = load_get(L, map, "smooth_angle")) != YDOC_NONE) {
             rc = load_nonneg(L, v, "smooth_angle", &mo.smooth_angle);
             if (rc == GLINT_OK && mo.smooth_angle > 180.0f)

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "core/array.h"
-#include "scene/settings.h"
+#include "core/cpus.h"
 
 /* In texture_kind order. */
 static const char *const texture_types[] = {"image", "checker", "stripes", "rings",
@@ -99,15 +99,14 @@ static void *decode_worker(void *arg)
 /* Threads decoding textures at most. */
 #define DECODE_THREADS 16
 
-/* Every job decoded, on up to one thread per core, the calling one
- * included. */
-static void decode_all(image_job *jobs, int n)
+/* Every job decoded, on up to `threads` threads (0: one per CPU), the
+ * calling one included. */
+static void decode_all(image_job *jobs, int n, int threads)
 {
     decoding d = {.jobs = jobs, .n = n};
     atomic_init(&d.next, 0);
-    int threads = settings_default_threads();
+    threads = cpus_threads(threads, DECODE_THREADS);
     threads = threads < n ? threads : n;
-    threads = threads < DECODE_THREADS ? threads : DECODE_THREADS;
     pthread_t th[DECODE_THREADS];
     int started = 0;
     for (; started < threads - 1; started++)
@@ -123,7 +122,7 @@ glint_rc load_decode_images(loader *L, glint_rc rc)
     image_job *jobs = L->image_jobs;
     int n = L->nimage_jobs;
     if (n > 0 && rc != GLINT_ERR_NOMEM)
-        decode_all(jobs, n);
+        decode_all(jobs, n, L->s->threads);
     glint_rc first = GLINT_OK;
     for (int i = 0; i < n; i++) {
         image_job *j = &jobs[i];

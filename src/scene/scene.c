@@ -299,7 +299,7 @@ static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
     }
     /* The last build's arrays are reused (bvhw_rebuild) */
     glint_rc rc = bvhw_rebuild(&s->bvh, s->bounds, bounded, nb, nb > 4 && 2 * dear > nb ? 1 : 4,
-                               nb >= BUNDLE_MIN ? BUNDLE : 0, accel_isa_active(), 0, err);
+                               nb >= BUNDLE_MIN ? BUNDLE : 0, accel_isa_active(), s->threads, err);
     free(bounded);
     return rc;
 }

@@ -75,6 +75,7 @@ struct glint_scene {
     int ncrossed;
     bool flat;         /* the BVH is one leaf or empty: rays test objects in turn */
     double build_seconds; /* wall time of the last scene_build */
+    int threads; /* for scene_build, mesh imports and texture decoding: 0 one per CPU (cpus.h) */
     char **sources;       /* files the scene was read from, each once (front ends add them) */
     int nsources, cap_sources;
 

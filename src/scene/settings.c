@@ -2,14 +2,13 @@
 
 #include <math.h>
 #include <stdint.h>
-#include <unistd.h>
 
+#include "core/cpus.h"
 #include "core/error.h"
 
 int settings_default_threads(void)
 {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > SETTINGS_MAX_THREADS ? SETTINGS_MAX_THREADS : (int)n;
+    return cpus_threads(0, SETTINGS_MAX_THREADS);
 }
 
 int settings_grid_side(int samples)
