@@ -213,7 +213,7 @@ static double glint_build(const tris *t, size_t *bytes, int *kept)
     m.ntris = t->ntris;
     glint_error err = {0};
     double t0 = now();
-    glint_rc rc = mesh_init(&m, "raybench", NULL, &err);
+    glint_rc rc = mesh_init(&m, "raybench", 0, NULL, &err);
     double dt = now() - t0;
     if (rc != GLINT_OK)
         die(err.msg);
@@ -661,7 +661,7 @@ static bool big_trace_rows(const opts *o, const tris *t, const char *name, RTCDe
     scene *s = scene_new();
     material mat = material_default();
     shape sh = shape_mesh(m);
-    if (mesh_init(m, name, NULL, &err) != GLINT_OK || !s || scene_add_mesh(s, m) < 0 ||
+    if (mesh_init(m, name, 0, NULL, &err) != GLINT_OK || !s || scene_add_mesh(s, m) < 0 ||
         scene_add_object(s, &sh, scene_add_material(s, &mat), -1) < 0 ||
         scene_build(s, &err) != GLINT_OK)
         die(err.msg[0] ? err.msg : "out of memory");
@@ -868,7 +868,7 @@ static int peak_child(const char *backend_name, const char *path)
         m.nverts = t.nverts;
         m.ntris = t.ntris;
         glint_error err = {0};
-        if (mesh_init(&m, "raybench", NULL, &err) != GLINT_OK)
+        if (mesh_init(&m, "raybench", 0, NULL, &err) != GLINT_OK)
             die(err.msg);
         printf("%ld\n", peak_rss_kib());
         mesh_free(&m);
