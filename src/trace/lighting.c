@@ -21,7 +21,7 @@ static vec3 shadow_absorb(const scene *s, const ray *sr, const scene_hit *hit,
 
 /* The shadow ray from p, whose geometric normal is ng, towards light
  * sample lr, at the time of the sample being traced. */
-static ray shadow_ray(const trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
+__attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
 {
     vec3 o = ray_offset(p, ng, lr->dir);
     ray sr = isinf(lr->dist) ? ray_make(o, lr->dir, INFINITY)
@@ -87,7 +87,7 @@ static inline bool lit(const shade_point *sp, const light_ray *lr, float *ndl)
 
 /* The sample's diffuse and specular share, given vis, what reaches the
  * point of it. */
-static inline void add_lit(const shade_point *sp, const light_ray *lr, float ndl, vec3 vis,
+__attribute__((always_inline)) static inline void add_lit(const shade_point *sp, const light_ray *lr, float ndl, vec3 vis,
                            vec3 *diffuse, vec3 *specular)
 {
     const material *m = sp->m;
@@ -131,7 +131,7 @@ static inline void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint3
 }
 
 /* Ambient and lights summed into the point's colour. */
-static vec3 local_sum(const shade_point *sp, vec3 diffuse, vec3 specular)
+__attribute__((always_inline)) static inline vec3 local_sum(const shade_point *sp, vec3 diffuse, vec3 specular)
 {
     const material *m = sp->m;
     float w = maxf(1.0f - m->transmit, 0.0f);

@@ -9,7 +9,7 @@
 
 /* The split between reflection (*kr) and transmission (*kt) at the point,
  * and the transmitted direction (material.h). */
-static void split(const shade_point *sp, float *kr, float *kt, vec3 *tdir)
+__attribute__((always_inline)) static inline void split(const shade_point *sp, float *kr, float *kt, vec3 *tdir)
 {
     const material *m = sp->m;
     *kr = m->reflect;
