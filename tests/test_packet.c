@@ -308,12 +308,74 @@ static ray8 shadow_packet(rng *g, int i, int copies, vec3 l)
     return p;
 }
 
+/* scene_shadow_unblocked8's crossings of the rays of crosses are those
+ * scene_shadow finds for each alone, to the bit and in the same order. */
+static int same_crossings(const scene *s, const ray8 *p, int crosses, int i)
+{
+    scene_crossings got[8];
+    int deep = scene_shadow_unblocked8(s, p, crosses, got), spheres = 0;
+    for (int m = crosses; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray r = ray8_get(p, k);
+        scene_crossings want;
+        cr_assert_eq(deep >> k & 1, scene_shadow(s, &r, &want), "packet %d ray %d", i, k);
+        if (deep >> k & 1)
+            continue;
+        cr_assert_eq(got[k].n, want.n, "packet %d ray %d", i, k);
+        for (int j = 0; j < want.n; j++) {
+            cr_assert_eq(got[k].hit[j].object, want.hit[j].object, "packet %d ray %d", i, k);
+            const shape_hit *a = &got[k].hit[j].h, *b = &want.hit[j].h;
+            cr_assert(memcmp(&a->t, &b->t, sizeof a->t) == 0 && a->part == b->part,
+                      "packet %d ray %d crossing %d: t %a against %a", i, k, j, (double)a->t,
+                      (double)b->t);
+            spheres += s->objects[want.hit[j].object].shape.kind == SHAPE_SPHERE;
+        }
+    }
+    return spheres;
+}
+
+/* Shadow rays that graze a glass sphere (both roots the same float: one
+ * crossing, the second sought beyond it), cross it, start inside it or
+ * stop inside it, eight at a time as one at a time. */
+Test(packet, sphere_crossings_match_at_the_edges)
+{
+    if (accel_isa_force(ACCEL_AVX2) != ACCEL_AVX2)
+        return;
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material glass = material_default();
+    glass.transmit = 0.8f;
+    int mat = scene_add_material(s, &glass);
+    shape ball = shape_sphere(v3s(0.0f), 1.0f);
+    cr_assert_geq(scene_add_object(s, &ball, mat, -1), 0);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    ray8 p;
+    put(&p, 0, v3(-5, 1, 0), v3(1, 0, 0), 0.0f, 1e3f);  /* tangent: roots 5 and 5 */
+    put(&p, 1, v3(-5, 0, 1), v3(10, 0, 0), 0.0f, 1.0f); /* tangent, a segment */
+    put(&p, 2, v3(-5, 0.5f, 0), v3(1, 0, 0), 0.0f, 1e3f);
+    put(&p, 3, v3(0, 0, 0), v3(0, 3, 0), 0.0f, 1.0f);   /* from inside */
+    put(&p, 4, v3(0, -3, 0), v3(0, 3, 0), 0.0f, 1.0f);  /* stops inside */
+    put(&p, 5, v3(0, 1, 0), v3(0, 1, 0), 0.0f, 1e3f);   /* from the surface, outwards */
+    put(&p, 6, v3(0, 1, 0), v3(0, -1, 0), 0.0f, 1e3f);  /* from the surface, through */
+    put(&p, 7, v3(3, 3, 3), v3(1, 1, 1), 0.0f, 1e3f);   /* away */
+    int spheres = same_crossings(s, &p, 0xff, 0);
+    scene_crossings one;
+    ray graze = ray8_get(&p, 0);
+    cr_assert(!scene_shadow(s, &graze, &one));
+    cr_expect_eq(one.n, 1, "a grazing ray crosses once");
+    cr_expect_geq(spheres, 6);
+    scene_free(s);
+    accel_isa_force(ACCEL_AUTO);
+}
+
 /* scene_shadow8 tells each ray what scene_shadow tells it alone: blocked,
  * or not and crossing a transmitting object, or clear; in a flat scene, a
- * tree of one node and a deeper tree, on every path that walks packets. */
+ * tree of one node and a deeper tree, on every path that walks packets.
+ * The crossings of those that cross are found eight at a time. */
 Test(packet, shadow_rays_match_one_ray_at_a_time)
 {
-    int walked = 0, counts[3] = {0, 0, 0};
+    int walked = 0, counts[3] = {0, 0, 0}, spheres = 0;
     for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
@@ -339,6 +401,7 @@ Test(packet, shadow_rays_match_one_ray_at_a_time)
                     cr_assert_eq(got, kind, "%d copies, packet %d ray %d", sizes[z], i, k);
                     counts[kind]++;
                 }
+                spheres += same_crossings(s, &p, crosses, i);
             }
             scene_free(s);
         }
@@ -349,6 +412,7 @@ Test(packet, shadow_rays_match_one_ray_at_a_time)
     cr_assert_gt(walked, 1000);
     for (int kind = 0; kind < 3; kind++) /* blocked, crossing and clear rays all met */
         cr_assert_gt(counts[kind], 500, "kind %d: %d rays", kind, counts[kind]);
+    cr_assert_gt(spheres, 500, "sphere crossings: %d", spheres);
 }
 
 /* A ground plane and a grid of turned tori (bench/tori.awk's row 8 in

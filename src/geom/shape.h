@@ -188,6 +188,14 @@ int shape8_hit_avx2(const shape *sh, const ray8 *r, const float tmax[8], int act
                     shape_hit *hit);
 int shape8_hit_avx512(const shape *sh, const ray8 *r, const float tmax[8], int active,
                       shape_hit *hit);
+/* A shadow ray's crossings of a sphere in the world's space, as the scene's
+ * shadow walk finds them one ray at a time (scene_shadow_object): for the
+ * rays of active, t[j][k] is ray k's crossing j within (tmin, tmax), and
+ * took[j] the rays that have a crossing j. */
+void sphere8_crossings_avx2(const struct sphere *s, const ray8 *r, int active, float t[2][8],
+                            int took[2]);
+void sphere8_crossings_avx512(const struct sphere *s, const ray8 *r, int active, float t[2][8],
+                              int took[2]);
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out);
 aabb shape_bounds(const shape *s);
 /* The box of the shape carried by the affine map m (object to world):

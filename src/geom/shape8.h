@@ -8,6 +8,7 @@
 
 #include <immintrin.h>
 #include "core/ray.h"
+#include "geom/mesh_packet.h"
 #include "geom/shape.h"
 #include "geom/torus8.h"
 
@@ -36,10 +37,10 @@ static inline __m256 in_range8(__m256 t, __m256 tmin, __m256 tmax)
     return _mm256_and_ps(_mm256_cmp_ps(t, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t, tmax, _CMP_LT_OQ));
 }
 
-/* sphere_hit for the rays of active with (tmin, tmax[k]): returns the
- * rays hit, with t per ray. */
-static inline int sphere8_hit(const struct sphere *s, const rays8 *r, __m256 tmax, int active,
-                              __m256 *t)
+/* sphere_roots for the rays of active: returns the rays with roots, near
+ * <= far per ray. */
+static inline int sphere8_roots(const struct sphere *s, const rays8 *r, int active, __m256 *near,
+                                __m256 *far)
 {
     const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
     __m256 fx = _mm256_sub_ps(r->ox, _mm256_set1_ps(s->center.x));
@@ -70,10 +71,63 @@ static inline int sphere8_hit(const struct sphere *s, const rays8 *r, __m256 tma
     __m256 t0 = _mm256_andnot_ps(q0, _mm256_div_ps(c, q));
     __m256 t1 = _mm256_andnot_ps(q0, _mm256_div_ps(q, a));
     __m256 swap = _mm256_cmp_ps(t0, t1, _CMP_GT_OQ);
-    __m256 near = _mm256_blendv_ps(t0, t1, swap), far = _mm256_blendv_ps(t1, t0, swap);
+    *near = _mm256_blendv_ps(t0, t1, swap);
+    *far = _mm256_blendv_ps(t1, t0, swap);
+    return active;
+}
+
+/* sphere_hit for the rays of active with (tmin, tmax[k]): returns the
+ * rays hit, with t per ray. */
+static inline int sphere8_hit(const struct sphere *s, const rays8 *r, __m256 tmax, int active,
+                              __m256 *t)
+{
+    __m256 near = _mm256_setzero_ps(), far = near;
+    active = sphere8_roots(s, r, active, &near, &far);
+    if (!active)
+        return 0;
     __m256 first = in_range8(near, r->tmin, tmax);
     *t = _mm256_blendv_ps(far, near, first);
     return active & _mm256_movemask_ps(_mm256_or_ps(first, in_range8(far, r->tmin, tmax)));
+}
+
+/* Where the search for a shadow ray's next crossing starts after one at
+ * t (scene_cross_next, lane by lane): ray_epsilon at the point over the
+ * direction's length dlen beyond t, or the next float up. */
+static inline __m256 cross_next8(const rays8 *r, __m256 t, __m256 dlen)
+{
+    const __m256 abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    __m256 px = _mm256_add_ps(r->ox, _mm256_mul_ps(r->dx, t));
+    __m256 py = _mm256_add_ps(r->oy, _mm256_mul_ps(r->dy, t));
+    __m256 pz = _mm256_add_ps(r->oz, _mm256_mul_ps(r->dz, t));
+    __m256 m = _mm256_max_ps(_mm256_and_ps(px, abs),
+                             _mm256_max_ps(_mm256_and_ps(py, abs), _mm256_and_ps(pz, abs)));
+    __m256 e = _mm256_mul_ps(_mm256_set1_ps(RAY_EPS_REL), _mm256_add_ps(_mm256_set1_ps(1.0f), m));
+    __m256 next = _mm256_add_ps(t, _mm256_div_ps(e, dlen));
+    return _mm256_blendv_ps(packet_next_up(t), next, _mm256_cmp_ps(next, t, _CMP_GT_OQ));
+}
+
+/* A shadow ray's crossings of a sphere (scene_shadow_object's loop, lane
+ * by lane), for the rays of active: t[j][k] is ray k's crossing j, and
+ * took[j] the rays that cross it a (j + 1)-th time. */
+static inline void sphere8_crossings(const struct sphere *s, const ray8 *r8, int active,
+                                     float t[2][8], int took[2])
+{
+    rays8 r = rays8_load(r8);
+    __m256 near = _mm256_setzero_ps(), far = near, tmax = _mm256_loadu_ps(r8->tmax);
+    took[0] = took[1] = 0;
+    active = sphere8_roots(s, &r, active, &near, &far);
+    if (!active)
+        return;
+    __m256 dlen = _mm256_sqrt_ps(dot8(r.dx, r.dy, r.dz, r.dx, r.dy, r.dz));
+    __m256 in0 = in_range8(near, r.tmin, tmax);
+    __m256 tmin = _mm256_blendv_ps(r.tmin, cross_next8(&r, near, dlen), in0);
+    __m256 in1 = in_range8(far, tmin, tmax);
+    /* the first crossing is the near root where it is in range, else the far */
+    int m0 = active & _mm256_movemask_ps(in0), m1 = active & _mm256_movemask_ps(in1);
+    _mm256_storeu_ps(t[0], _mm256_blendv_ps(far, near, in0));
+    _mm256_storeu_ps(t[1], far);
+    took[0] = m0 | m1;
+    took[1] = m0 & m1;
 }
 
 /* ray_plane (core/ray.h) likewise: the rays of active that meet the plane
@@ -156,12 +210,17 @@ static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8]
     return m;
 }
 
-/* Defines shape8_hit_<isa> and torus8_hit_<isa>. */
+/* Defines shape8_hit_<isa>, sphere8_crossings_<isa> and torus8_hit_<isa>. */
 #define SHAPE8_KERNELS(isa)                                                                    \
     int shape8_hit_##isa(const shape *sh, const ray8 *r, const float tmax[8], int active,      \
                          shape_hit *hit)                                                       \
     {                                                                                          \
         return shape8_hit(sh, r, tmax, active, hit);                                           \
+    }                                                                                          \
+    void sphere8_crossings_##isa(const struct sphere *s, const ray8 *r, int active,           \
+                                 float t[2][8], int took[2])                                   \
+    {                                                                                          \
+        sphere8_crossings(s, r, active, t, took);                                              \
     }                                                                                          \
     int torus8_hit_##isa(const struct torus *s, const ray8 *r, int active, shape_hit *hit)     \
     {                                                                                          \

@@ -426,21 +426,6 @@ bool scene_occluded_opaque(const scene *s, const ray *r)
     return isa == ACCEL_SCALAR ? scene_occluded_scalar(s, r) : scene_occluded_sse(s, r);
 }
 
-/* Crossings by t, ties by object; few, mostly in order already:
- * insertion sort. */
-static void sort_crossings(scene_crossings *out)
-{
-    for (int i = 1; i < out->n; i++) {
-        scene_hit h = out->hit[i];
-        int j = i;
-        for (; j > 0 && (out->hit[j - 1].h.t > h.h.t ||
-                         (out->hit[j - 1].h.t == h.h.t && out->hit[j - 1].object > h.object));
-             j--)
-            out->hit[j] = out->hit[j - 1];
-        out->hit[j] = h;
-    }
-}
-
 bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
 {
     accel_isa isa = s->bvh.isa;
@@ -458,7 +443,7 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
                                       : scene_shadow_walk_sse(s, r, out);
     if (blocked)
         return true;
-    sort_crossings(out);
+    scene_sort_crossings(out);
     return false;
 }
 
@@ -471,7 +456,7 @@ bool scene_shadow_unblocked(const scene *s, const ray *r, scene_crossings *out)
     for (int i = 0; i < s->ncrossed; i++)
         if (scene_shadow_object(&c, s->crossed[i]))
             return true;
-    sort_crossings(out);
+    scene_sort_crossings(out);
     return false;
 }
 

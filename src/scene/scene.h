@@ -212,6 +212,11 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out);
  * scene_shadow8 found it): the same crossings, found by asking only the
  * objects that transmit where they are few. */
 bool scene_shadow_unblocked(const scene *s, const ray *r, scene_crossings *out);
+/* scene_shadow_unblocked for the rays of lanes (bit k: ray k of r) at
+ * once, into out[k]: returns the rays for which it returns true. A
+ * sphere's crossings are found for the eight rays in one test on the
+ * eight-wide paths. */
+int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_crossings out[8]);
 
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may
  * be left 0 where the hit's material does not use them (material_uses_uv). */

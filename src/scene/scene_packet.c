@@ -185,6 +185,74 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
     *(o->transmits ? crosses : blocked) |= met;
 }
 
+/* sphere8_crossings on the scene's path; false where it has none. */
+static bool sphere_crossings8(const scene *s, const struct sphere *sp, const ray8 *r, int active,
+                              float t[2][8], int took[2])
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512) {
+        sphere8_crossings_avx512(sp, r, active, t, took);
+        return true;
+    }
+    if (s->bvh.isa == ACCEL_AVX2) {
+        sphere8_crossings_avx2(sp, r, active, t, took);
+        return true;
+    }
+#endif
+    (void)s, (void)sp, (void)r, (void)active, (void)t, (void)took;
+    return false;
+}
+
+/* Transmitting object i's crossings of the shadow rays of lanes (not yet
+ * blocked: *blocked), added to out[k] as scene_shadow_object adds them;
+ * a ray with more than fit joins *blocked. */
+static void crossings8_object(const scene *s, int i, const ray8 *r, int lanes,
+                              scene_crossings out[8], int *blocked)
+{
+    const object *o = &s->objects[i];
+    float t[2][8];
+    int took[2];
+    if (o->shape.kind == SHAPE_SPHERE && o->xform < 0 &&
+        sphere_crossings8(s, &o->shape.sphere, r, lanes, t, took)) {
+        for (int j = 0; j < 2; j++)
+            for (int m = took[j]; m; m &= m - 1) {
+                int k = __builtin_ctz((unsigned)m);
+                if (out[k].n == SCENE_SHADOW_MAX)
+                    *blocked |= 1 << k;
+                else
+                    out[k].hit[out[k].n++] = (scene_hit){{.t = t[j][k]}, i};
+            }
+        return;
+    }
+    for (int m = lanes; m; m &= m - 1) { /* ray by ray */
+        int k = __builtin_ctz((unsigned)m);
+        ray one = ray8_get(r, k);
+        scene_shadow_ctx c = {s, &one, v3_len(one.d), &out[k]};
+        if (scene_shadow_object(&c, i))
+            *blocked |= 1 << k;
+    }
+}
+
+int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_crossings out[8])
+{
+    int blocked = 0;
+    if (s->ncrossed < 0) {
+        for (int m = lanes; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            ray one = ray8_get(r, k);
+            blocked |= scene_shadow_unblocked(s, &one, &out[k]) << k;
+        }
+        return blocked;
+    }
+    for (int m = lanes; m; m &= m - 1)
+        out[__builtin_ctz((unsigned)m)].n = 0;
+    for (int i = 0; i < s->ncrossed && (lanes & ~blocked); i++)
+        crossings8_object(s, s->crossed[i], r, lanes & ~blocked, out, &blocked);
+    for (int m = lanes & ~blocked; m; m &= m - 1)
+        scene_sort_crossings(&out[__builtin_ctz((unsigned)m)]);
+    return blocked;
+}
+
 /* scene_shadow_walk8 on the scene's path; false where it has none. */
 static bool shadow_walk8(const scene *s, const ray8 *r, int active, int *blocked, int *crosses)
 {

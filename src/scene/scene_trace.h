@@ -142,6 +142,21 @@ __attribute__((always_inline)) static inline bool scene_shadow_object(scene_shad
     return false;
 }
 
+/* Crossings by t, ties by object; few, mostly in order already:
+ * insertion sort. */
+static inline void scene_sort_crossings(scene_crossings *out)
+{
+    for (int i = 1; i < out->n; i++) {
+        scene_hit h = out->hit[i];
+        int j = i;
+        for (; j > 0 && (out->hit[j - 1].h.t > h.h.t ||
+                         (out->hit[j - 1].h.t == h.h.t && out->hit[j - 1].object > h.object));
+             j--)
+            out->hit[j] = out->hit[j - 1];
+        out->hit[j] = h;
+    }
+}
+
 __attribute__((always_inline)) static inline bool scene_leaf_shadow(void *ctx, uint32_t first,
                                                                     uint32_t count, float tmin,
                                                                     float *tmax)

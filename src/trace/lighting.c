@@ -60,14 +60,6 @@ static vec3 shadow_filter(const scene *s, const ray *sr)
     return scene_shadow(s, sr, &cross) ? v3s(0.0f) : crossings_filter(s, sr, &cross);
 }
 
-/* shadow_filter for a shadow ray no opaque object blocks, which crosses
- * a transmitting one (scene_shadow8). */
-static vec3 crossed_filter(const scene *s, const ray *sr)
-{
-    scene_crossings cross;
-    return scene_shadow_unblocked(s, sr, &cross) ? v3s(0.0f) : crossings_filter(s, sr, &cross);
-}
-
 vec3 lighting_shadow(trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
 {
     ray sr = shadow_ray(ctx, p, ng, lr);
@@ -166,17 +158,20 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
         ctx->shadow_rays++;
     }
     int blocked = 0, crosses = 0, alone = need;
+    ray8 p;
+    scene_crossings cross[8];
     if (ray8_three_or_more(need)) {
-        ray8 p;
         ray8_pack(&p, rs, need);
         if (scene_shadow8(s, &p, need, &blocked, &crosses))
             alone = 0;
+        if (crosses) /* their crossings together, which filter each */
+            blocked |= scene_shadow_unblocked8(s, &p, crosses, cross);
     }
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         vis[k] = alone >> k & 1     ? shadow_filter(s, &rs[k])
                  : blocked >> k & 1 ? v3s(0.0f)
-                 : crosses >> k & 1 ? crossed_filter(s, &rs[k])
+                 : crosses >> k & 1 ? crossings_filter(s, &rs[k], &cross[k])
                                     : v3s(1.0f);
     }
 }
