@@ -370,9 +370,11 @@ Test(packet, sphere_crossings_match_at_the_edges)
 }
 
 /* scene_shadow8 tells each ray what scene_shadow tells it alone: blocked,
- * or not and crossing a transmitting object, or clear; in a flat scene, a
- * tree of one node and a deeper tree, on every path that walks packets.
- * The crossings of those that cross are found eight at a time. */
+ * or not and crossing a transmitting object (or perhaps crossing one that
+ * is not tested eight at a time), or clear; in a flat scene, a tree of one
+ * node and a deeper tree, on every path that walks packets. The crossings
+ * of those that may cross are found eight at a time, and are those that
+ * scene_shadow finds. */
 Test(packet, shadow_rays_match_one_ray_at_a_time)
 {
     int walked = 0, counts[3] = {0, 0, 0}, spheres = 0;
@@ -398,7 +400,10 @@ Test(packet, shadow_rays_match_one_ray_at_a_time)
                     bool b = scene_shadow(s, &r, &cross);
                     int kind = b ? 0 : cross.n > 0 ? 1 : 2;
                     int got = blocked >> k & 1 ? 0 : crosses >> k & 1 ? 1 : 2;
-                    cr_assert_eq(got, kind, "%d copies, packet %d ray %d", sizes[z], i, k);
+                    /* a clear ray may be told to look for crossings (of a
+                     * shape not tested eight at a time): it finds none */
+                    cr_assert(got == kind || (got == 1 && kind == 2),
+                              "%d copies, packet %d ray %d: %d for %d", sizes[z], i, k, got, kind);
                     counts[kind]++;
                 }
                 spheres += same_crossings(s, &p, crosses, i);

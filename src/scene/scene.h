@@ -178,6 +178,12 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
  * hit[k] for each. Coherent rays (a camera's through neighbouring pixels)
  * in a flat scene share the walks of its meshes' hierarchies. */
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit);
+/* scene_intersect8 for rays that spread (reflected and refracted ones,
+ * which walks shared by eight cost more than they save): together in a
+ * flat scene or a tree of one node without meshes, where the eight share
+ * one box test and the sphere, quad, plane and torus tests, but each on
+ * its own through a mesh or a deeper tree. The same hits. */
+int scene_intersect8_spread(const scene *s, const ray8 *r, int active, scene_hit *hit);
 /* Whether scene_intersect8 walks the scene's rays together (a flat scene
  * holding a mesh that does not move, on an eight-wide path); otherwise it
  * only takes them one at a time. */
@@ -185,7 +191,10 @@ bool scene_packets_pay(const scene *s);
 /* Shadow rays of active (bit k: ray k of r) at once: sets *blocked to
  * the rays an opaque object blocks, where scene_shadow returns true, and
  * *crosses to those of the others that meet a transmitting object, whose
- * light scene_shadow's crossings then filter; the rest reach their end
+ * light scene_shadow's crossings then filter (scene_shadow_unblocked8),
+ * or may meet one: a sphere, quad or plane says so for eight rays in one
+ * test, any other transmitting shape is left to the crossings' search,
+ * which finds none for a ray that misses it. The rest reach their end
  * unfiltered. Coherent rays (towards one light from neighbouring points)
  * share the walk of the scene's tree. False when the rays cannot go
  * together (the scene's path is not eight-wide, or their directions

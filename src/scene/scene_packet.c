@@ -11,7 +11,9 @@
  *
  * scene_shadow8 walks eight shadow rays the same way, asking each object
  * the question scene_shadow asks it: whether an opaque one blocks a ray,
- * whether a transmitting one is crossed. */
+ * whether a transmitting one is crossed (a shape not tested eight at once
+ * is left to the crossings' search). scene_shadow_unblocked8 then finds
+ * the crossings of the rays nothing blocks, eight at a time. */
 #include <string.h>
 #include "geom/mesh.h"
 #include "scene_trace.h"
@@ -76,15 +78,17 @@ static void object_rays(const scene *s, const object *o, const ray8 *r, int acti
 }
 
 /* Object i against the rays of active, each searched up to best[k]: a
- * mesh against three or more of them in one walk, a torus or (untransformed)
- * a sphere, a quad or a plane in one test, anything else ray by ray. */
+ * mesh against three or more of them in one walk (unless they spread), a
+ * torus or (untransformed) a sphere, a quad or a plane in one test,
+ * anything else ray by ray. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
-                        scene_hit hit[8])
+                        scene_hit hit[8], bool spread)
 {
     const object *o = &s->objects[i];
     int found = 0;
     bool many = ray8_three_or_more(active);
-    if ((o->shape.kind == SHAPE_MESH || o->shape.kind == SHAPE_TORUS) && !o->moving && many) {
+    if (((o->shape.kind == SHAPE_MESH && !spread) || o->shape.kind == SHAPE_TORUS) && !o->moving &&
+        many) {
         ray8 lr;
         shape_hit h[8];
         object_rays(s, o, r, active, best, &lr);
@@ -112,15 +116,16 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
 }
 
 /* scene_walk8 on the scene's path; -1 where it has none. */
-static int walk8(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8])
+static int walk8(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8],
+                 bool spread)
 {
 #if defined(GLINT_WIDE_KERNELS)
     if (s->bvh.isa == ACCEL_AVX512)
-        return scene_walk8_avx512(s, r, active, best, hit);
+        return scene_walk8_avx512(s, r, active, best, hit, spread);
     if (s->bvh.isa == ACCEL_AVX2)
-        return scene_walk8_avx2(s, r, active, best, hit);
+        return scene_walk8_avx2(s, r, active, best, hit, spread);
 #endif
-    (void)s, (void)r, (void)active, (void)best, (void)hit;
+    (void)s, (void)r, (void)active, (void)best, (void)hit, (void)spread;
     return -1;
 }
 
@@ -171,14 +176,16 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
         shape_hit h[8];
         met = shape8_on_path(s, &o->shape, r, r->tmax, active, h);
     }
+    if (met < 0 && o->transmits) { /* crossed or not: the crossings' search will say */
+        *crosses |= active;
+        return;
+    }
     if (met < 0) { /* as scene_shadow_object asks it, ray by ray */
         met = 0;
         for (int m = active; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             ray one = ray8_get(r, k), lr = scene_object_ray(s, o, &one);
-            shape_hit h;
-            if (o->transmits ? shape_intersect_inline(&o->shape, &lr, &h)
-                             : shape_occluded_inline(&o->shape, &lr))
+            if (shape_occluded_inline(&o->shape, &lr))
                 met |= 1 << k;
         }
     }
@@ -227,8 +234,9 @@ static void crossings8_object(const scene *s, int i, const ray8 *r, int lanes,
     for (int m = lanes; m; m &= m - 1) { /* ray by ray */
         int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
+        vec3 inv = v3(1.0f / one.d.x, 1.0f / one.d.y, 1.0f / one.d.z);
         scene_shadow_ctx c = {s, &one, v3_len(one.d), &out[k]};
-        if (scene_shadow_object(&c, i))
+        if (scene_bounds_met(s, i, &one, inv) && scene_shadow_object(&c, i))
             *blocked |= 1 << k;
     }
 }
@@ -285,11 +293,16 @@ bool scene_shadow8(const scene *s, const ray8 *r, int active, int *blocked, int 
     return true;
 }
 
-int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
+/* scene_intersect8 and scene_intersect8_spread. Rays that spread go one
+ * by one through a tree deeper than one node, or one whose leaves hold
+ * meshes: each ray's own near-to-far order then spares it the far leaves'
+ * walks, which a shared order would make it take. */
+static int intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit, bool spread)
 {
     if (!active)
         return 0;
-    if (!s->flat && !eight_wide(s->bvh.isa))
+    if (!s->flat &&
+        (!eight_wide(s->bvh.isa) || (spread && (s->bvh.nnodes > 1 || s->nmeshes > 0))))
         return one_by_one(s, r, active, hit);
     float best[8];
     memcpy(best, r->tmax, sizeof best);
@@ -297,13 +310,23 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
         hit[k].object = -1;
     int found = 0;
     for (int i = 0; i < s->nunbounded; i++)
-        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit);
+        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit, spread);
     if (s->flat) {
         uint32_t first, n = scene_flat_leaf(s, &first);
         for (uint32_t i = 0; i < n; i++)
-            found |= scene_packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
+            found |= scene_packet_object(s, s->bvh.prims[first + i], r, active, best, hit, spread);
         return found;
     }
-    int walked = walk8(s, r, active, best, hit);
+    int walked = walk8(s, r, active, best, hit, spread);
     return walked < 0 ? one_by_one(s, r, active, hit) : found | walked;
+}
+
+int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
+{
+    return intersect8(s, r, active, hit, false);
+}
+
+int scene_intersect8_spread(const scene *s, const ray8 *r, int active, scene_hit *hit)
+{
+    return intersect8(s, r, active, hit, true);
 }

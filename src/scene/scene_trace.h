@@ -99,6 +99,19 @@ typedef struct scene_shadow_ctx {
     scene_crossings *out;
 } scene_shadow_ctx;
 
+/* Whether ray r (whose direction's inverse is inv) meets the world bounds
+ * of object i within its range, as the walks' box tests would let it reach
+ * the object (core/aabb.h: rounding never drops a ray); true for an
+ * unbounded object. */
+__attribute__((always_inline)) static inline bool scene_bounds_met(const scene *s, int i,
+                                                                   const ray *r, vec3 inv)
+{
+    aabb b = s->bounds[i];
+    if (!v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+        return true;
+    return aabb_hit(b, r->o, inv, r->tmin, r->tmax);
+}
+
 /* Where the search for a shadow ray's next crossing starts after one at
  * t: ray_epsilon beyond it (core/ray.h). */
 __attribute__((always_inline)) static inline float scene_cross_next(const scene_shadow_ctx *c,
@@ -249,13 +262,14 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
 }
 
 /* Object i against the rays of active of packet r, each searched up to
- * best[k] (scene_packet.c); returns the rays whose nearest hit it now is. */
+ * best[k] (scene_packet.c); returns the rays whose nearest hit it now is.
+ * Rays that spread (reflected, refracted) meet a mesh one by one. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
-                        scene_hit hit[8]);
+                        scene_hit hit[8], bool spread);
 
 /* Object i against the shadow rays of active, as scene_shadow_object asks
  * it: adds to *blocked the rays an opaque object blocks, to *crosses those
- * a transmitting one meets (scene_packet.c). */
+ * a transmitting one meets, or may meet (scene_shadow8, scene_packet.c). */
 void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int *blocked,
                           int *crosses);
 
@@ -266,6 +280,7 @@ typedef struct scene_packet_ctx {
     float *best;
     scene_hit *hit;
     int found;
+    bool spread;
 } scene_packet_ctx;
 
 __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, uint32_t first,
@@ -275,7 +290,7 @@ __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, u
     scene_packet_ctx *c = ctx;
     for (uint32_t i = 0; i < count; i++)
         c->found |= scene_packet_object(c->s, c->s->bvh.prims[first + i], c->r, rays, c->best,
-                                        c->hit);
+                                        c->hit, c->spread);
     *tmax = _mm256_loadu_ps(c->best);
     return true;
 }
@@ -287,12 +302,12 @@ __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, u
  * differ in their directions' signs. */
 __attribute__((always_inline)) static inline int scene_walk8(const scene *s, const ray8 *r,
                                                              int active, float best[8],
-                                                             scene_hit hit[8])
+                                                             scene_hit hit[8], bool spread)
 {
     packet8 p;
     if (s->bvh.width != 8 || s->bvh.nnodes == 0 || !packet_make(&p, r, active))
         return -1;
-    scene_packet_ctx c = {s, r, best, hit, 0};
+    scene_packet_ctx c = {s, r, best, hit, 0, spread};
     __m256 tmax = _mm256_loadu_ps(best);
     packet_walk(&s->bvh, &p, active, &tmax, scene_packet_leaf, &c);
     return c.found;
@@ -342,9 +357,9 @@ __attribute__((always_inline)) static inline bool scene_shadow_walk8(const scene
 /* Defines scene_walk8_<isa> and scene_shadow_walk8_<isa>. */
 #define SCENE_PACKET_KERNELS(isa)                                                              \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
-                          scene_hit hit[8])                                                    \
+                          scene_hit hit[8], bool spread)                                       \
     {                                                                                          \
-        return scene_walk8(s, r, active, best, hit);                                           \
+        return scene_walk8(s, r, active, best, hit, spread);                                   \
     }                                                                                          \
     bool scene_shadow_walk8_##isa(const scene *s, const ray8 *r, int active, int *blocked,     \
                                   int *crosses)                                                \
@@ -440,9 +455,10 @@ bool scene_shadow_walk_avx2(const scene *s, const ray *r, scene_crossings *out);
 bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx512(const scene *s, const ray *r);
 bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out);
-int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8]);
+int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8],
+                     bool spread);
 int scene_walk8_avx512(const scene *s, const ray8 *r, int active, float best[8],
-                       scene_hit hit[8]);
+                       scene_hit hit[8], bool spread);
 bool scene_shadow_walk8_avx2(const scene *s, const ray8 *r, int active, int *blocked,
                              int *crosses);
 bool scene_shadow_walk8_avx512(const scene *s, const ray8 *r, int active, int *blocked,

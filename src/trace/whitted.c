@@ -235,7 +235,7 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int d
     ray8 p;
     ray8_pack(&p, r, active);
     scene_hit hit[8];
-    int found = scene_intersect8(ctx->scene, &p, active, hit);
+    int found = scene_intersect8_spread(ctx->scene, &p, active, hit);
     shade8(ctx, ls, r, active, found, depth, hit, out);
 }
 
