@@ -109,7 +109,7 @@ vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hi
 /* ---- eight samples at once ----------------------------------------------
  * The lanes of a packet go down their trees together: the rays the lanes
  * reflect (or transmit) at one level are traced as one packet
- * (scene_intersect8) and lit together (lighting_local8), reflected
+ * (scene_intersect8_spread) and lit together (lighting_local8), reflected
  * subtrees before transmitted ones as in trace_rest. Each lane keeps its
  * own shading events and share of the pixel, so it meets its events in
  * the order whitted_trace would and gets its colour to the bit. */
@@ -187,8 +187,8 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
 /* shade_prepare for the lanes of found. Out of line: the caller's sp is
  * then not taken for read before it is set (-Wmaybe-uninitialized), and it
  * is not cleared for lanes nobody reads. */
-static __attribute__((noinline)) void prepare8(trace_ctx *ctx, const ray r[8], int found, const scene_hit hit[8],
-                     shade_point sp[8])
+static __attribute__((noinline)) void prepare8(trace_ctx *ctx, const ray r[8], int found,
+                                               const scene_hit hit[8], shade_point sp[8])
 {
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
