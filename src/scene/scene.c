@@ -447,20 +447,6 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out)
     return false;
 }
 
-bool scene_shadow_unblocked(const scene *s, const ray *r, scene_crossings *out)
-{
-    if (s->ncrossed < 0)
-        return scene_shadow(s, r, out);
-    scene_shadow_ctx c = {s, r, v3_len(r->d), out};
-    vec3 inv = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
-    out->n = 0;
-    for (int i = 0; i < s->ncrossed; i++)
-        if (scene_bounds_met(s, s->crossed[i], r, inv) && scene_shadow_object(&c, s->crossed[i]))
-            return true;
-    scene_sort_crossings(out);
-    return false;
-}
-
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out)
 {
     const object *o = &s->objects[hit->object];

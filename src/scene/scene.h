@@ -179,10 +179,10 @@ bool scene_intersect(const scene *s, const ray *r, scene_hit *hit);
  * in a flat scene share the walks of its meshes' hierarchies. */
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit);
 /* scene_intersect8 for rays that spread (reflected and refracted ones,
- * which walks shared by eight cost more than they save): together in a
- * flat scene or a tree of one node without meshes, where the eight share
- * one box test and the sphere, quad, plane and torus tests, but each on
- * its own through a mesh or a deeper tree. The same hits. */
+ * for which walks shared by eight cost more than they save): together in
+ * a flat scene or a tree of one node, where the eight share one box test
+ * and the sphere, quad, plane and torus tests, but one by one in a scene
+ * with meshes or a deeper tree. The same hits. */
 int scene_intersect8_spread(const scene *s, const ray8 *r, int active, scene_hit *hit);
 /* Whether scene_intersect8 walks the scene's rays together (a flat scene
  * holding a mesh that does not move, on an eight-wide path); otherwise it
@@ -217,14 +217,11 @@ typedef struct scene_crossings {
  * object). After each crossing of an object the next is sought
  * ray_epsilon beyond it (core/ray.h). */
 bool scene_shadow(const scene *s, const ray *r, scene_crossings *out);
-/* scene_shadow for a shadow ray that no opaque object blocks (as
- * scene_shadow8 found it): the same crossings, found by asking only the
- * objects that transmit where they are few. */
-bool scene_shadow_unblocked(const scene *s, const ray *r, scene_crossings *out);
-/* scene_shadow_unblocked for the rays of lanes (bit k: ray k of r) at
- * once, into out[k]: returns the rays for which it returns true. A
- * sphere's crossings are found for the eight rays in one test on the
- * eight-wide paths. */
+/* scene_shadow for the shadow rays of lanes (bit k: ray k of r), which no
+ * opaque object blocks (as scene_shadow8 found them), at once: the same
+ * crossings into out[k], and the rays for which it returns true. Where the
+ * scene's transmitting objects are few only they are asked, a sphere for
+ * the eight rays in one test on the eight-wide paths. */
 int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_crossings out[8]);
 
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may

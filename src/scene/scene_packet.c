@@ -78,17 +78,15 @@ static void object_rays(const scene *s, const object *o, const ray8 *r, int acti
 }
 
 /* Object i against the rays of active, each searched up to best[k]: a
- * mesh against three or more of them in one walk (unless they spread), a
- * torus or (untransformed) a sphere, a quad or a plane in one test,
- * anything else ray by ray. */
+ * mesh against three or more of them in one walk, a torus or (untransformed)
+ * a sphere, a quad or a plane in one test, anything else ray by ray. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
-                        scene_hit hit[8], bool spread)
+                        scene_hit hit[8])
 {
     const object *o = &s->objects[i];
     int found = 0;
     bool many = ray8_three_or_more(active);
-    if (((o->shape.kind == SHAPE_MESH && !spread) || o->shape.kind == SHAPE_TORUS) && !o->moving &&
-        many) {
+    if ((o->shape.kind == SHAPE_MESH || o->shape.kind == SHAPE_TORUS) && !o->moving && many) {
         ray8 lr;
         shape_hit h[8];
         object_rays(s, o, r, active, best, &lr);
@@ -116,16 +114,15 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
 }
 
 /* scene_walk8 on the scene's path; -1 where it has none. */
-static int walk8(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8],
-                 bool spread)
+static int walk8(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8])
 {
 #if defined(GLINT_WIDE_KERNELS)
     if (s->bvh.isa == ACCEL_AVX512)
-        return scene_walk8_avx512(s, r, active, best, hit, spread);
+        return scene_walk8_avx512(s, r, active, best, hit);
     if (s->bvh.isa == ACCEL_AVX2)
-        return scene_walk8_avx2(s, r, active, best, hit, spread);
+        return scene_walk8_avx2(s, r, active, best, hit);
 #endif
-    (void)s, (void)r, (void)active, (void)best, (void)hit, (void)spread;
+    (void)s, (void)r, (void)active, (void)best, (void)hit;
     return -1;
 }
 
@@ -248,7 +245,7 @@ int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_cros
         for (int m = lanes; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             ray one = ray8_get(r, k);
-            blocked |= scene_shadow_unblocked(s, &one, &out[k]) << k;
+            blocked |= scene_shadow(s, &one, &out[k]) << k;
         }
         return blocked;
     }
@@ -293,16 +290,11 @@ bool scene_shadow8(const scene *s, const ray8 *r, int active, int *blocked, int 
     return true;
 }
 
-/* scene_intersect8 and scene_intersect8_spread. Rays that spread go one
- * by one through a tree deeper than one node, or one whose leaves hold
- * meshes: each ray's own near-to-far order then spares it the far leaves'
- * walks, which a shared order would make it take. */
-static int intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit, bool spread)
+int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
 {
     if (!active)
         return 0;
-    if (!s->flat &&
-        (!eight_wide(s->bvh.isa) || (spread && (s->bvh.nnodes > 1 || s->nmeshes > 0))))
+    if (!s->flat && !eight_wide(s->bvh.isa))
         return one_by_one(s, r, active, hit);
     float best[8];
     memcpy(best, r->tmax, sizeof best);
@@ -310,23 +302,23 @@ static int intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit,
         hit[k].object = -1;
     int found = 0;
     for (int i = 0; i < s->nunbounded; i++)
-        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit, spread);
+        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit);
     if (s->flat) {
         uint32_t first, n = scene_flat_leaf(s, &first);
         for (uint32_t i = 0; i < n; i++)
-            found |= scene_packet_object(s, s->bvh.prims[first + i], r, active, best, hit, spread);
+            found |= scene_packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
         return found;
     }
-    int walked = walk8(s, r, active, best, hit, spread);
+    int walked = walk8(s, r, active, best, hit);
     return walked < 0 ? one_by_one(s, r, active, hit) : found | walked;
 }
 
-int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
-{
-    return intersect8(s, r, active, hit, false);
-}
-
+/* Rays that spread go one by one through a mesh or a tree deeper than one
+ * node: a walk shared by eight of them visits the union of their nodes,
+ * and each ray's own near-to-far order spares it the far leaves. */
 int scene_intersect8_spread(const scene *s, const ray8 *r, int active, scene_hit *hit)
 {
-    return intersect8(s, r, active, hit, true);
+    if (s->nmeshes > 0 || (!s->flat && s->bvh.nnodes > 1))
+        return one_by_one(s, r, active, hit);
+    return scene_intersect8(s, r, active, hit);
 }

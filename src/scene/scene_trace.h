@@ -262,10 +262,9 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
 }
 
 /* Object i against the rays of active of packet r, each searched up to
- * best[k] (scene_packet.c); returns the rays whose nearest hit it now is.
- * Rays that spread (reflected, refracted) meet a mesh one by one. */
+ * best[k] (scene_packet.c); returns the rays whose nearest hit it now is. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
-                        scene_hit hit[8], bool spread);
+                        scene_hit hit[8]);
 
 /* Object i against the shadow rays of active, as scene_shadow_object asks
  * it: adds to *blocked the rays an opaque object blocks, to *crosses those
@@ -280,7 +279,6 @@ typedef struct scene_packet_ctx {
     float *best;
     scene_hit *hit;
     int found;
-    bool spread;
 } scene_packet_ctx;
 
 __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, uint32_t first,
@@ -290,7 +288,7 @@ __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, u
     scene_packet_ctx *c = ctx;
     for (uint32_t i = 0; i < count; i++)
         c->found |= scene_packet_object(c->s, c->s->bvh.prims[first + i], c->r, rays, c->best,
-                                        c->hit, c->spread);
+                                        c->hit);
     *tmax = _mm256_loadu_ps(c->best);
     return true;
 }
@@ -302,12 +300,12 @@ __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, u
  * differ in their directions' signs. */
 __attribute__((always_inline)) static inline int scene_walk8(const scene *s, const ray8 *r,
                                                              int active, float best[8],
-                                                             scene_hit hit[8], bool spread)
+                                                             scene_hit hit[8])
 {
     packet8 p;
     if (s->bvh.width != 8 || s->bvh.nnodes == 0 || !packet_make(&p, r, active))
         return -1;
-    scene_packet_ctx c = {s, r, best, hit, 0, spread};
+    scene_packet_ctx c = {s, r, best, hit, 0};
     __m256 tmax = _mm256_loadu_ps(best);
     packet_walk(&s->bvh, &p, active, &tmax, scene_packet_leaf, &c);
     return c.found;
@@ -357,9 +355,9 @@ __attribute__((always_inline)) static inline bool scene_shadow_walk8(const scene
 /* Defines scene_walk8_<isa> and scene_shadow_walk8_<isa>. */
 #define SCENE_PACKET_KERNELS(isa)                                                              \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
-                          scene_hit hit[8], bool spread)                                       \
+                          scene_hit hit[8])                                                    \
     {                                                                                          \
-        return scene_walk8(s, r, active, best, hit, spread);                                   \
+        return scene_walk8(s, r, active, best, hit);                                           \
     }                                                                                          \
     bool scene_shadow_walk8_##isa(const scene *s, const ray8 *r, int active, int *blocked,     \
                                   int *crosses)                                                \
@@ -455,10 +453,9 @@ bool scene_shadow_walk_avx2(const scene *s, const ray *r, scene_crossings *out);
 bool scene_intersect_avx512(const scene *s, const ray *r, scene_hit *hit);
 bool scene_occluded_avx512(const scene *s, const ray *r);
 bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out);
-int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8],
-                     bool spread);
+int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8]);
 int scene_walk8_avx512(const scene *s, const ray8 *r, int active, float best[8],
-                       scene_hit hit[8], bool spread);
+                       scene_hit hit[8]);
 bool scene_shadow_walk8_avx2(const scene *s, const ray8 *r, int active, int *blocked,
                              int *crosses);
 bool scene_shadow_walk8_avx512(const scene *s, const ray8 *r, int active, int *blocked,

@@ -147,7 +147,8 @@ static inline light_ray light_toward(vec3 p, vec3 pos, vec3 color, vec3 att)
  * (u1, u2) in [0, 1)^2 place an area light's sample within its cell k
  * (row k / N, column k % N); other lights ignore them. The one switch over
  * the kinds that shading uses. */
-__attribute__((always_inline)) static inline light_ray light_sample(const light *l, vec3 p, int k, float u1, float u2)
+__attribute__((always_inline)) static inline light_ray light_sample(const light *l, vec3 p, int k,
+                                                                    float u1, float u2)
 {
     switch (l->kind) {
     case LIGHT_POINT:

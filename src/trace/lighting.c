@@ -21,7 +21,8 @@ static vec3 shadow_absorb(const scene *s, const ray *sr, const scene_hit *hit,
 
 /* The shadow ray from p, whose geometric normal is ng, towards light
  * sample lr, at the time of the sample being traced. */
-__attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx, vec3 p, vec3 ng, const light_ray *lr)
+__attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx, vec3 p, vec3 ng,
+                                                            const light_ray *lr)
 {
     vec3 o = ray_offset(p, ng, lr->dir);
     ray sr = isinf(lr->dist) ? ray_make(o, lr->dir, INFINITY)
@@ -79,8 +80,9 @@ static inline bool lit(const shade_point *sp, const light_ray *lr, float *ndl)
 
 /* The sample's diffuse and specular share, given vis, what reaches the
  * point of it. */
-__attribute__((always_inline)) static inline void add_lit(const shade_point *sp, const light_ray *lr, float ndl, vec3 vis,
-                           vec3 *diffuse, vec3 *specular)
+__attribute__((always_inline)) static inline void add_lit(const shade_point *sp,
+                                                          const light_ray *lr, float ndl, vec3 vis,
+                                                          vec3 *diffuse, vec3 *specular)
 {
     const material *m = sp->m;
     if (v3_is_zero(vis))
@@ -123,7 +125,8 @@ static inline void add_light(trace_ctx *ctx, const shade_point *sp, int i, uint3
 }
 
 /* Ambient and lights summed into the point's colour. */
-__attribute__((always_inline)) static inline vec3 local_sum(const shade_point *sp, vec3 diffuse, vec3 specular)
+__attribute__((always_inline)) static inline vec3 local_sum(const shade_point *sp, vec3 diffuse,
+                                                            vec3 specular)
 {
     const material *m = sp->m;
     float w = maxf(1.0f - m->transmit, 0.0f);
@@ -162,10 +165,11 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
     scene_crossings cross[8];
     if (ray8_three_or_more(need)) {
         ray8_pack(&p, rs, need);
-        if (scene_shadow8(s, &p, need, &blocked, &crosses))
+        if (scene_shadow8(s, &p, need, &blocked, &crosses)) {
             alone = 0;
-        if (crosses) /* their crossings together, which filter each */
-            blocked |= scene_shadow_unblocked8(s, &p, crosses, cross);
+            if (crosses) /* their crossings together, which filter each */
+                blocked |= scene_shadow_unblocked8(s, &p, crosses, cross);
+        }
     }
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);

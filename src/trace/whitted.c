@@ -9,7 +9,8 @@
 
 /* The split between reflection (*kr) and transmission (*kt) at the point,
  * and the transmitted direction (material.h). */
-__attribute__((always_inline)) static inline void split(const shade_point *sp, float *kr, float *kt, vec3 *tdir)
+__attribute__((always_inline)) static inline void split(const shade_point *sp, float *kr,
+                                                        float *kt, vec3 *tdir)
 {
     const material *m = sp->m;
     *kr = m->reflect;
@@ -242,12 +243,13 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int d
 void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int active,
                      int found, const scene_hit *hit, vec3 out[8], float coverage[8])
 {
+    float weight = ctx->weight; /* adc_keep changes it */
     lanes8 ls = {.tl = tl};
     for (int k = 0; k < 8; k++) {
         ls.events[k] = 0;
-        ls.weight[k] = ctx->weight;
+        ls.weight[k] = weight;
         coverage[k] = found >> k & 1 ? 1.0f : 0.0f;
     }
     shade8(ctx, &ls, r, active, found & active, 0, hit, out);
-    ctx->weight = ls.weight[0]; /* adc_keep changed it */
+    ctx->weight = weight;
 }
