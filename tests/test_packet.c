@@ -369,6 +369,55 @@ Test(packet, sphere_crossings_match_at_the_edges)
     accel_isa_force(ACCEL_AUTO);
 }
 
+/* A box's hits eight at a time, on every path that tests them so: rays
+ * parallel to two slabs (inside one, outside another, on a boundary),
+ * through a corner and along an edge (the entry distances of two or three
+ * slabs tie; the earlier axis names the face), from inside, and past
+ * their entry (tmin beyond it): the distance and face box_intersect
+ * finds, to the bit. */
+Test(packet, box_hits_match_at_the_edges)
+{
+    const vec3 lo = v3(-1.0f, -2.0f, -3.0f), hi = v3(2.0f, 1.0f, 0.5f);
+    ray8 p;
+    put(&p, 0, v3(0.5f, 0.0f, -9.0f), v3(0, 0, 1), 0.0f, INFINITY);     /* enters face 4 */
+    put(&p, 1, v3(2.5f, 0.0f, -9.0f), v3(0, 0, 1), 0.0f, INFINITY);     /* outside x: misses */
+    put(&p, 2, v3(0.0f, 0.0f, 0.0f), v3(1.0f, 0.5f, 0.25f), 0.0f, 1e3f); /* from inside */
+    put(&p, 3, v3(-2.0f, -3.0f, -4.0f), v3(1, 1, 1), 0.0f, 1e3f);      /* a corner: face 0 */
+    put(&p, 4, v3(-2.0f, -3.0f, -1.0f), v3(1, 1, 0), 0.0f, 1e3f);      /* an edge: face 0 */
+    put(&p, 5, v3(-1.0f, 1.0f, 9.0f), v3(-0.0f, 0, -1), 0.0f, INFINITY); /* on x = lo, y = hi */
+    put(&p, 6, v3(5.0f, 4.0f, 4.0f), v3(-1.0f, -1.25f, -1.5f), 0.0f, 1e3f);
+    put(&p, 7, v3(0.5f, 0.0f, -9.0f), v3(0, 0, 1), 7.0f, INFINITY);     /* past the entry */
+    const int want[8] = {4, -1, 1, 0, 0, 5, -2, 5}; /* -2: whichever box_intersect says */
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    shape box = shape_box(lo, hi);
+    cr_assert_geq(scene_add_object(s, &box, scene_add_material(s, &mt), -1), 0);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene_hit h8[8];
+        int found = scene_intersect8(s, &p, 0xff, h8);
+        for (int k = 0; k < 8; k++) {
+            ray r = ray8_get(&p, k);
+            shape_hit one = {0};
+            bool hit = box_intersect(&box.box, &r, &one);
+            cr_assert_eq(hit, want[k] != -1, "ray %d", k);
+            cr_assert_eq(found >> k & 1, hit, "path %d ray %d", path, k);
+            if (!hit)
+                continue;
+            cr_assert(h8[k].h.t == one.t && h8[k].h.part == one.part,
+                      "path %d ray %d: t %.9g face %d, want t %.9g face %d", path, k,
+                      (double)h8[k].h.t, h8[k].h.part, (double)one.t, one.part);
+            cr_assert(want[k] < 0 || one.part == want[k], "ray %d: face %d", k, one.part);
+        }
+    }
+    accel_isa_force(ACCEL_AUTO);
+    scene_free(s);
+}
+
 /* scene_shadow8 tells each ray what scene_shadow tells it alone: blocked,
  * or not and crossing a transmitting object (or perhaps crossing one that
  * is not tested eight at a time), or clear; in a flat scene, a tree of one

@@ -1,4 +1,4 @@
-/* shape8: the sphere, quad and plane tests against eight rays
+/* shape8: the sphere, quad, plane and box tests against eight rays
  * at once, one ray per AVX lane, for packets of camera rays
  * (scene_intersect8). Each lane does the one-ray test's operations in the
  * same order, so it finds the same hit to the bit; branches become masks.
@@ -182,31 +182,74 @@ static inline int quad8_hit(const struct quad *s, const rays8 *r, __m256 tmax, i
     return active & _mm256_movemask_ps(in);
 }
 
-/* A sphere, quad or plane against the rays of active, each up to tmax[k]:
- * returns the rays hit, with hit[k] as sphere_hit, quad_hit and
- * plane_intersect set it; -1 for any other shape. */
+/* box_intersect likewise: the slabs in the same order, each lane keeping
+ * the face that bounds its interval (ties to the earlier axis), with the
+ * face per ray in part. */
+static inline int box8_hit(const struct box *s, const rays8 *r, __m256 tmax, int active,
+                           __m256 *t, __m256 *part)
+{
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const __m256 o[3] = {r->ox, r->oy, r->oz}, d[3] = {r->dx, r->dy, r->dz};
+    const float lo[3] = {s->lo.x, s->lo.y, s->lo.z}, hi[3] = {s->hi.x, s->hi.y, s->hi.z};
+    __m256 tnear = _mm256_set1_ps(-INFINITY), tfar = _mm256_set1_ps(INFINITY);
+    __m256 nf = _mm256_set1_ps(-1.0f), ff = nf, miss = zero;
+    for (int a = 0; a < 3; a++) {
+        __m256 l = _mm256_set1_ps(lo[a]), h = _mm256_set1_ps(hi[a]);
+        __m256 flat = _mm256_cmp_ps(d[a], zero, _CMP_EQ_OQ); /* parallel to the slab */
+        miss = _mm256_or_ps(miss, _mm256_and_ps(flat, _mm256_or_ps(_mm256_cmp_ps(o[a], l, _CMP_LT_OQ),
+                                                                   _mm256_cmp_ps(o[a], h, _CMP_GT_OQ))));
+        __m256 inv = _mm256_div_ps(one, d[a]);
+        __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(l, o[a]), inv);
+        __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(h, o[a]), inv);
+        __m256 f0 = _mm256_set1_ps((float)(2 * a)), f1 = _mm256_set1_ps((float)(2 * a + 1));
+        __m256 swap = _mm256_cmp_ps(t0, t1, _CMP_GT_OQ);
+        __m256 tn = _mm256_blendv_ps(t0, t1, swap), tf = _mm256_blendv_ps(t1, t0, swap);
+        __m256 fn = _mm256_blendv_ps(f0, f1, swap), fb = _mm256_blendv_ps(f1, f0, swap);
+        __m256 up = _mm256_andnot_ps(flat, _mm256_cmp_ps(tn, tnear, _CMP_GT_OQ));
+        tnear = _mm256_blendv_ps(tnear, tn, up);
+        nf = _mm256_blendv_ps(nf, fn, up);
+        __m256 down = _mm256_andnot_ps(flat, _mm256_cmp_ps(tf, tfar, _CMP_LT_OQ));
+        tfar = _mm256_blendv_ps(tfar, tf, down);
+        ff = _mm256_blendv_ps(ff, fb, down);
+        miss = _mm256_or_ps(miss, _mm256_cmp_ps(tnear, tfar, _CMP_GT_OQ));
+    }
+    active &= ~_mm256_movemask_ps(miss);
+    if (!active)
+        return 0;
+    __m256 first = in_range8(tnear, r->tmin, tmax);
+    *t = _mm256_blendv_ps(tfar, tnear, first);
+    *part = _mm256_blendv_ps(ff, nf, first);
+    return active & _mm256_movemask_ps(_mm256_or_ps(first, in_range8(tfar, r->tmin, tmax)));
+}
+
+/* A sphere, quad, plane or box against the rays of active, each up to
+ * tmax[k]: returns the rays hit, with hit[k] as sphere_hit, quad_hit,
+ * plane_intersect and box_intersect set it; -1 for any other shape. */
 static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8], int active,
                              shape_hit *hit)
 {
-    if (sh->kind != SHAPE_SPHERE && sh->kind != SHAPE_QUAD && sh->kind != SHAPE_PLANE)
+    if (sh->kind != SHAPE_SPHERE && sh->kind != SHAPE_QUAD && sh->kind != SHAPE_PLANE &&
+        sh->kind != SHAPE_BOX)
         return -1;
     rays8 rs = rays8_load(r);
-    __m256 lim = _mm256_loadu_ps(tmax), t = _mm256_setzero_ps(), b1 = t, b2 = t;
+    __m256 lim = _mm256_loadu_ps(tmax), t = _mm256_setzero_ps(), b1 = t, b2 = t, part = t;
     int m = sh->kind == SHAPE_SPHERE ? sphere8_hit(&sh->sphere, &rs, lim, active, &t)
             : sh->kind == SHAPE_QUAD
                 ? quad8_hit(&sh->quad, &rs, lim, active, &t, &b1, &b2)
+            : sh->kind == SHAPE_BOX
+                ? box8_hit(&sh->box, &rs, lim, active, &t, &part)
                 : plane8_hit(sh->plane.point, sh->plane.normal, &rs, lim, active, &t);
     float tv[8], b1v[8], b2v[8];
+    int pv[8];
     _mm256_storeu_ps(tv, t);
     _mm256_storeu_ps(b1v, b1);
     _mm256_storeu_ps(b2v, b2);
-    for (int k = 0; k < 8; k++)
-        if (m >> k & 1) {
-            hit[k].t = tv[k];
-            hit[k].part = 0;
-            hit[k].b1 = b1v[k]; /* 0 but for a quad, as scene_hit_object leaves them */
-            hit[k].b2 = b2v[k];
-        }
+    _mm256_storeu_si256((__m256i *)pv, _mm256_cvttps_epi32(part));
+    for (int left = m; left; left &= left - 1) {
+        int k = __builtin_ctz((unsigned)left);
+        /* b1, b2 and leaf 0 but for a quad, as scene_hit_object leaves them */
+        hit[k] = (shape_hit){.t = tv[k], .part = pv[k], .b1 = b1v[k], .b2 = b2v[k]};
+    }
     return m;
 }
 
