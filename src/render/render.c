@@ -189,16 +189,23 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         ray8 p;
         ray rs[8];
         int active = 0;
-        pixel_sample same = alike ? sampler_get(&j->smp, x0, y, k) : (pixel_sample){0};
-        for (int i = 0; i < n; i++) {
-            pixel_sample s = alike ? same : sampler_get(&j->smp, x0 + i, y, k);
-            if (camera_ray(&j->frame, (float)(x0 + i) + s.fx, (float)y + s.fy, s.lu, s.lv, &rs[i]))
-                active |= 1 << i;
-            rs[i].time = sc->time + s.time * sc->shutter_seconds;
+        if (alike) {
+            pixel_sample s = sampler_get(&j->smp, x0, y, k);
+            active = camera_row8(&j->frame, x0, n, s.fx, (float)y + s.fy, s.lu, s.lv,
+                                 sc->time + s.time * sc->shutter_seconds, rs, &p);
+        } else {
+            for (int i = 0; i < n; i++) {
+                pixel_sample s = sampler_get(&j->smp, x0 + i, y, k);
+                if (camera_ray(&j->frame, (float)(x0 + i) + s.fx, (float)y + s.fy, s.lu, s.lv,
+                               &rs[i]))
+                    active |= 1 << i;
+                rs[i].time = sc->time + s.time * sc->shutter_seconds;
+            }
+            if (active)
+                ray8_pack(&p, rs, active);
         }
         if (!active)
             continue;
-        ray8_pack(&p, rs, active);
         scene_hit h[8];
         int found = scene_intersect8(sc, &p, active, h);
         trace_lanes tl = {(uint32_t)x0, (uint32_t)y, (uint32_t)k, {0}};

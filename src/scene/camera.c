@@ -127,3 +127,32 @@ bool camera_ray(const camera_frame *f, float x, float y, float lu, float lv, ray
     *out = ray_make(o, d, INFINITY);
     return true;
 }
+
+int camera_row8(const camera_frame *f, int x0, int n, float fx, float y, float lu, float lv,
+                float time, ray out[8], ray8 *p)
+{
+    if (f->projection != CAMERA_PERSPECTIVE || f->lens_radius > 0.0f) {
+        int active = 0;
+        for (int i = 0; i < n; i++) {
+            if (camera_ray(f, (float)(x0 + i) + fx, y, lu, lv, &out[i]))
+                active |= 1 << i;
+            out[i].time = time;
+        }
+        if (active)
+            ray8_pack(p, out, active);
+        return active;
+    }
+    /* a pinhole's rays share their origin; each direction is camera_ray's,
+     * lane by lane */
+    for (int k = 0; k < 8; k++) {
+        float x = (float)(x0 + (k < n ? k : 0)) + fx;
+        p->dx[k] = f->corner.x + f->dx.x * x + f->dy.x * y;
+        p->dy[k] = f->corner.y + f->dx.y * x + f->dy.y * y;
+        p->dz[k] = f->corner.z + f->dx.z * x + f->dy.z * y;
+        p->ox[k] = f->eye.x, p->oy[k] = f->eye.y, p->oz[k] = f->eye.z;
+        p->tmin[k] = 0.0f, p->tmax[k] = INFINITY, p->time[k] = time;
+    }
+    for (int i = 0; i < n; i++)
+        out[i] = (ray){f->eye, {p->dx[i], p->dy[i], p->dz[i]}, 0.0f, INFINITY, time};
+    return (1 << n) - 1;
+}

@@ -57,7 +57,8 @@ void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_poi
         out->n = out->ng;
 }
 
-vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp, vec3 c)
+vec3 shade_segment_crossed(const scene *s, const ray *r, float t, const shade_point *sp,
+                           vec3 c)
 {
     if (sp && sp->inside && sp->m->transmit > 0.0f) {
         if (!material_absorbs(sp->m))

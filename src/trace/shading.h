@@ -24,6 +24,17 @@ void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_poi
 /* What is seen through the segment of r from its origin to t (INFINITY
  * for a ray that hit nothing, sp NULL) of colour c at its end: fogged in
  * the open, absorbed when the segment ran inside a transmitting object. */
-vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp, vec3 c);
+vec3 shade_segment_crossed(const scene *s, const ray *r, float t, const shade_point *sp,
+                           vec3 c);
+
+/* shade_segment_crossed, or c at once where the segment crosses neither
+ * fog nor a transmitting object's inside. */
+static inline vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp,
+                                 vec3 c)
+{
+    if (s->fog.kind == FOG_NONE && !(sp && sp->inside && sp->m->transmit > 0.0f))
+        return c;
+    return shade_segment_crossed(s, r, t, sp, c);
+}
 
 #endif

@@ -126,18 +126,19 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int d
                    vec3 out[8]);
 
 /* The reflected (reflect) or transmitted rays of the lanes of `found`
- * that adc_keep keeps, from lanes of share[k]: returns those lanes, with
- * the ray in rs[k] and its share in ls->weight[k]. */
+ * that adc_keep keeps, from lanes of share[k] whose transmission carries
+ * gt[k] of the light: returns those lanes, with the ray in rs[k] and its
+ * share in ls->weight[k]. */
 static int secondaries(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found,
                        const shade_point sp[8], const float share[8], const float kr[8],
-                       const float kt[8], const vec3 tdir[8], bool reflect, ray rs[8])
+                       const float kt[8], const float gt[8], const vec3 tdir[8], bool reflect,
+                       ray rs[8])
 {
     int keep = 0;
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        float gt = kt[k] * v3_max_comp(sp[k].m->tint);
-        if (reflect ? !adc_keep(ctx, share[k], kr[k], kr[k] + gt)
-                    : !(kt[k] > 0.0f && adc_keep(ctx, share[k], gt, kr[k] + gt)))
+        if (reflect ? !adc_keep(ctx, share[k], kr[k], kr[k] + gt[k])
+                    : !(kt[k] > 0.0f && adc_keep(ctx, share[k], gt[k], kr[k] + gt[k])))
             continue;
         ls->weight[k] = ctx->weight;
         vec3 d = reflect ? v3_reflect(sp[k].d, sp[k].n) : tdir[k];
@@ -154,21 +155,22 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
                   const scene_hit hit[8], const shade_point sp[8], vec3 c[8], vec3 out[8])
 {
     if (depth < ctx->max_depth) {
-        float kr[8], kt[8], share[8];
+        float kr[8], kt[8], gt[8], share[8];
         vec3 tdir[8], sub[8];
         ray rs[8];
         for (int m = found; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             split(&sp[k], &kr[k], &kt[k], &tdir[k]);
+            gt[k] = kt[k] * v3_max_comp(sp[k].m->tint);
             share[k] = ls->weight[k];
         }
-        int keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, tdir, true, rs);
+        int keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, gt, tdir, true, rs);
         trace8(ctx, ls, rs, keep, depth + 1, sub);
         for (int m = keep; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             c[k] = v3_madd(c[k], sub[k], kr[k]);
         }
-        keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, tdir, false, rs);
+        keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, gt, tdir, false, rs);
         trace8(ctx, ls, rs, keep, depth + 1, sub);
         for (int m = keep; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
