@@ -502,6 +502,36 @@ static scene *torus_scene(void)
     return s;
 }
 
+/* Packets of camera rays from eye (half of them narrowed, so that many
+ * rays meet each object), partly idle, against scene s: each ray's hit
+ * is scene_intersect's to the bit. Returns how many hits were of kind. */
+static int same_hits(scene *s, vec3 eye, int packets, shape_kind kind)
+{
+    int of_kind = 0;
+    rng g = rng_seed(5, 8);
+    for (int i = 0; i < packets; i++) {
+        ray8 p = packet_of(&g, i, eye);
+        for (int k = 0; k < 8 && i % 4 < 2; k++) {
+            p.dx[k] = 0.1f * p.dx[k];
+            p.dy[k] = 0.1f * p.dy[k];
+        }
+        int active = i % 7 == 0 ? 0x5b : 0xff;
+        scene_hit h8[8], h1;
+        int found = scene_intersect8(s, &p, active, h8);
+        for (int k = 0; k < 8; k++) {
+            ray r = ray8_get(&p, k);
+            bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
+            cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
+            if (!hit)
+                continue;
+            cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+            expect_same_hit(&h8[k].h, &h1.h, i, k);
+            of_kind += s->objects[h1.object].shape.kind == kind;
+        }
+    }
+    return of_kind;
+}
+
 Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
 {
     int many = 0;
@@ -509,31 +539,64 @@ Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
         scene *s = torus_scene();
-        rng g = rng_seed(5, 8);
-        for (int i = 0; i < 6000; i++) {
-            ray8 p = packet_of(&g, i, v3(0.3f, -0.2f, 9.0f));
-            for (int k = 0; k < 8 && i % 4 < 2; k++) { /* narrower: many rays per torus */
-                p.dx[k] = 0.1f * p.dx[k];
-                p.dy[k] = 0.1f * p.dy[k];
-            }
-            int active = i % 7 == 0 ? 0x5b : 0xff;
-            scene_hit h8[8], h1;
-            int found = scene_intersect8(s, &p, active, h8);
-            for (int k = 0; k < 8; k++) {
-                ray r = ray8_get(&p, k);
-                bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
-                cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
-                if (!hit)
-                    continue;
-                cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
-                expect_same_hit(&h8[k].h, &h1.h, i, k);
-                many += s->objects[h1.object].shape.kind == SHAPE_TORUS;
-            }
-        }
+        many += same_hits(s, v3(0.3f, -0.2f, 9.0f), 6000, SHAPE_TORUS);
         scene_free(s);
     }
     accel_isa_force(ACCEL_AUTO);
     cr_assert_gt(many, 10000);
+}
+
+/* Spheres, boxes and quads, turned, stretched and sheared (tested eight
+ * at a time in their own space) and some as they are, over a plane. */
+static scene *turned_scene(void)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    int mat = scene_add_material(s, &mt);
+    shape ground = shape_plane(v3(0, -2, 0), v3(0, 1, 0));
+    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    rng g = rng_seed(7, 3);
+    for (int i = 0; i < 10; i++)
+        for (int j = 0; j < 10; j++) {
+            vec3 at = v3(-5.0f + (float)i, -5.0f + (float)j, -2.0f * (float)((i + j) % 3));
+            int kind = (i + 2 * j) % 3;
+            shape sh = kind == 0   ? shape_sphere(v3s(0.0f), 0.35f)
+                       : kind == 1 ? shape_box(v3(-0.3f, -0.2f, -0.25f), v3(0.3f, 0.2f, 0.25f))
+                                   : shape_quad(v3(-0.4f, -0.4f, 0), v3(0.8f, 0, 0), v3(0, 0.8f, 0));
+            if ((i + j) % 4 == 0) { /* as it is, moved by its coordinates */
+                sh = kind == 0   ? shape_sphere(at, 0.35f)
+                     : kind == 1 ? shape_box(v3_add(at, v3(-0.3f, -0.2f, -0.25f)),
+                                             v3_add(at, v3(0.3f, 0.2f, 0.25f)))
+                                 : shape_quad(v3_add(at, v3(-0.4f, -0.4f, 0)), v3(0.8f, 0, 0),
+                                              v3(0, 0.8f, 0));
+                cr_assert_geq(scene_add_object(s, &sh, mat, -1), 0);
+                continue;
+            }
+            xform sc = xform_scale(v3(uniform(&g, 0.6f, 1.4f), 1.0f, uniform(&g, 0.6f, 1.4f)));
+            xform sk = xform_shear(uniform(&g, -0.4f, 0.4f), 0, 0, uniform(&g, -0.4f, 0.4f), 0, 0);
+            xform ry = xform_rotate(v3(0.3f, 1, 0.2f), uniform(&g, 0, 360));
+            xform tr = xform_translate(at);
+            xform a = xform_then(&sc, &sk), b = xform_then(&a, &ry), c = xform_then(&b, &tr);
+            cr_assert_geq(scene_add_object(s, &sh, mat, scene_add_xform(s, &c)), 0);
+        }
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+Test(packet, turned_shapes_match_one_ray_at_a_time_on_every_path)
+{
+    int boxes = 0;
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = turned_scene();
+        boxes += same_hits(s, v3(0.3f, -0.2f, 9.0f), 4000, SHAPE_BOX);
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    cr_assert_gt(boxes, 2000, "box hits: %d", boxes);
 }
 
 /* packet_scene with its casters, lights of every kind and a camera

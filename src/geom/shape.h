@@ -47,6 +47,12 @@ typedef enum shape_kind {
     SHAPE_COUNT /* not a shape: the number of kinds, for tables indexed by kind */
 } shape_kind;
 
+/* Whether shape8_hit (shape8.h) tests the kind against eight rays at once. */
+static inline bool shape_tests_eight(shape_kind k)
+{
+    return k == SHAPE_SPHERE || k == SHAPE_QUAD || k == SHAPE_PLANE || k == SHAPE_BOX;
+}
+
 struct mesh;
 struct polyhedron;
 struct csg;

@@ -228,8 +228,7 @@ static inline int box8_hit(const struct box *s, const rays8 *r, __m256 tmax, int
 static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8], int active,
                              shape_hit *hit)
 {
-    if (sh->kind != SHAPE_SPHERE && sh->kind != SHAPE_QUAD && sh->kind != SHAPE_PLANE &&
-        sh->kind != SHAPE_BOX)
+    if (!shape_tests_eight(sh->kind))
         return -1;
     rays8 rs = rays8_load(r);
     __m256 lim = _mm256_loadu_ps(tmax), t = _mm256_setzero_ps(), b1 = t, b2 = t, part = t;

@@ -63,44 +63,55 @@ static int torus8_on_path(const scene *s, const struct torus *t, const ray8 *r, 
 }
 
 /* The rays of active in object o's space, each searched up to best[k] (as
- * scene_hit_object searches them); idle lanes repeat an active ray. */
+ * scene_hit_object searches them; best NULL: as far as it goes already);
+ * idle lanes repeat an active ray. */
 static void object_rays(const scene *s, const object *o, const ray8 *r, int active,
-                        const float best[8], ray8 *lr)
+                        const float *best, ray8 *lr)
 {
     ray in[8];
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
-        one.tmax = next_up(best[k]);
+        if (best)
+            one.tmax = next_up(best[k]);
         in[k] = scene_object_ray(s, o, &one);
     }
     ray8_pack(lr, in, active);
 }
 
-/* Object i against the rays of active, each searched up to best[k]: a
- * mesh against three or more of them in one walk, a torus or (untransformed)
- * a sphere, a quad or a plane in one test, anything else ray by ray. */
+/* Whether object o is tested against three or more of a packet's rays at
+ * once (in its own space when it is turned): a mesh in one walk of its
+ * tree, a torus's setup in one test, the shapes of shape_tests_eight in
+ * one test. A moving one is not: its rays differ in their transforms. */
+static bool tests_eight(const object *o)
+{
+    shape_kind k = o->shape.kind;
+    return !o->moving && (k == SHAPE_MESH || k == SHAPE_TORUS || shape_tests_eight(k));
+}
+
+/* Object i against the rays of active, each searched up to best[k]: three
+ * or more at once where tests_eight says so, else ray by ray. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                         scene_hit hit[8])
 {
     const object *o = &s->objects[i];
     int found = 0;
-    bool many = ray8_three_or_more(active);
-    if ((o->shape.kind == SHAPE_MESH || o->shape.kind == SHAPE_TORUS) && !o->moving && many) {
-        ray8 lr;
+    if (ray8_three_or_more(active) && tests_eight(o)) {
+        shape_kind kind = o->shape.kind;
         shape_hit h[8];
-        object_rays(s, o, r, active, best, &lr);
-        int any = o->shape.kind == SHAPE_MESH ? mesh_intersect8(o->shape.mesh, &lr, active, h)
-                                              : torus8_on_path(s, &o->shape.torus, &lr, active, h);
-        if (any >= 0)
-            return keep8(i, any, h, best, hit);
-    }
-    if (o->xform < 0 && many) {
-        float lim[8];
-        for (int k = 0; k < 8; k++)
-            lim[k] = next_up(best[k]); /* as scene_hit_object */
-        shape_hit h[8];
-        int any = shape8_on_path(s, &o->shape, r, lim, active, h);
+        int any;
+        if (kind == SHAPE_MESH || kind == SHAPE_TORUS || o->xform >= 0) {
+            ray8 lr;
+            object_rays(s, o, r, active, best, &lr);
+            any = kind == SHAPE_MESH    ? mesh_intersect8(o->shape.mesh, &lr, active, h)
+                  : kind == SHAPE_TORUS ? torus8_on_path(s, &o->shape.torus, &lr, active, h)
+                                        : shape8_on_path(s, &o->shape, &lr, lr.tmax, active, h);
+        } else {
+            float lim[8];
+            for (int k = 0; k < 8; k++)
+                lim[k] = next_up(best[k]); /* as scene_hit_object */
+            any = shape8_on_path(s, &o->shape, r, lim, active, h);
+        }
         if (any >= 0)
             return keep8(i, any, h, best, hit);
     }
@@ -131,11 +142,9 @@ static bool eight_wide(accel_isa isa) { return isa == ACCEL_AVX2 || isa == ACCEL
 /* Whether object o can be tested against a packet's rays at once. */
 static bool packs(const scene *s, const object *o)
 {
-    shape_kind k = o->shape.kind;
-    if (k == SHAPE_MESH)
+    if (o->shape.kind == SHAPE_MESH)
         return !o->moving && eight_wide(o->shape.mesh->bvh.isa);
-    return (k == SHAPE_SPHERE || k == SHAPE_QUAD || k == SHAPE_PLANE) && o->xform < 0 &&
-           eight_wide(s->bvh.isa);
+    return o->shape.kind != SHAPE_TORUS && tests_eight(o) && eight_wide(s->bvh.isa);
 }
 
 bool scene_packets_pay(const scene *s)
@@ -169,9 +178,15 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
         return;
     const object *o = &s->objects[i];
     int met = -1;
-    if (o->xform < 0 && ray8_three_or_more(active)) {
+    if (ray8_three_or_more(active) && !o->moving && shape_tests_eight(o->shape.kind)) {
         shape_hit h[8];
-        met = shape8_on_path(s, &o->shape, r, r->tmax, active, h);
+        ray8 lr;
+        const ray8 *q = r;
+        if (o->xform >= 0) {
+            object_rays(s, o, r, active, NULL, &lr);
+            q = &lr;
+        }
+        met = shape8_on_path(s, &o->shape, q, q->tmax, active, h);
     }
     if (met < 0 && o->transmits) { /* crossed or not: the crossings' search will say */
         *crosses |= active;
