@@ -86,8 +86,19 @@ check: $(BUILD)/glint $(MPI_BIN) $(BUILD)/tests scenes/textures/flag.png scenes/
 		LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp \
 		UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/tests --jobs 2
 ifeq ($(SAN),0)
-	@$(MAKE) --no-print-directory check-lib
+	@$(MAKE) --no-print-directory check-lib check-bench
 endif
+
+# The benchmark programs compile against today's library (make bench
+# builds them; this catches a changed signature without running them).
+# Those of output.c and raybench.c need libpng's and Embree's headers,
+# which `install-deps bench` brings: compiled when they are there.
+BENCH_CHECK := spheres interactive $(if $(wildcard /usr/include/png.h),output) \
+               $(if $(wildcard /usr/include/embree3/rtcore.h),raybench)
+$(BUILD)/obj/bench/%.o: CFLAGS += -Werror
+.PHONY: check-bench
+check-bench: $(BENCH_CHECK:%=$(BUILD)/obj/bench/%.o)
+	@echo "check-bench: compiled bench/ ($(BENCH_CHECK))"
 
 # The library as users get it: only glint_* exported, and a program built
 # against the installed header and glint.pc (shared and static) that runs.

@@ -27,7 +27,7 @@ static int run(int n, int threads)
         return 1;
     s->camera = (camera){.eye = v3(0, 0, 0), .target = v3(0, 0, -1), .up = v3(0, 1, 0),
                          .hfov = 60.0f};
-    light l = {LIGHT_POINT, v3(30, 60, 20), v3s(1.0f)};
+    light l = light_point(v3(30, 60, 20), v3s(1.0f), v3(1, 0, 0)); /* white, unattenuated */
     scene_add_light(s, &l);
     material m = material_default();
     m.specular = 0.5f;
