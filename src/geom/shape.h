@@ -186,14 +186,24 @@ triangle_fit triangle_check(vec3 p0, vec3 p1, vec3 p2);
 
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);
-/* A sphere's or a quad's test against the rays of active (bit k: ray k of
- * r), each up to tmax[k], as shape_intersect finds them: returns the rays
- * hit, with hit[k] for each; -1 for other shapes. On the eight-wide paths
- * (geom/shape8.h), where the CPU has them. */
-int shape8_hit_avx2(const shape *sh, const ray8 *r, const float tmax[8], int active,
-                    shape_hit *hit);
-int shape8_hit_avx512(const shape *sh, const ray8 *r, const float tmax[8], int active,
-                      shape_hit *hit);
+/* Eight rays' hits on a shape, lane by lane: shape_hit's t, part, b1 and
+ * b2 (b1, b2 0 but for a quad, part 0 but for a box). */
+typedef struct shape_hits8 {
+    float t[8], b1[8], b2[8];
+    int part[8];
+} shape_hits8;
+
+/* The test of a shape of shape_tests_eight's kinds against the rays of
+ * active (bit k: ray k of r), as shape_intersect finds each: returns the
+ * rays hit, -1 for other shapes. With best NULL, up to each ray's tmax.
+ * Otherwise up to best[k] inclusive (as far as the nearest hit so far),
+ * with the hits in *out and those nearer than best[k] in *nearer (the
+ * others are as near). On the eight-wide paths (geom/shape8.h), where the
+ * CPU has them. */
+int shape8_hit_avx2(const shape *sh, const ray8 *r, const float *best, int active,
+                    shape_hits8 *out, int *nearer);
+int shape8_hit_avx512(const shape *sh, const ray8 *r, const float *best, int active,
+                      shape_hits8 *out, int *nearer);
 /* A shadow ray's crossings of a sphere in the world's space, as the scene's
  * shadow walk finds them one ray at a time (scene_shadow_object): for the
  * rays of active, t[j][k] is ray k's crossing j within (tmin, tmax), and

@@ -222,42 +222,38 @@ static inline int box8_hit(const struct box *s, const rays8 *r, __m256 tmax, int
     return active & _mm256_movemask_ps(_mm256_or_ps(first, in_range8(tfar, r->tmin, tmax)));
 }
 
-/* A sphere, quad, plane or box against the rays of active, each up to
- * tmax[k]: returns the rays hit, with hit[k] as sphere_hit, quad_hit,
- * plane_intersect and box_intersect set it; -1 for any other shape. */
-static inline int shape8_hit(const shape *sh, const ray8 *r, const float tmax[8], int active,
-                             shape_hit *hit)
+/* shape8_hit (shape.h): the test of shape_tests_eight's kinds, each lane's
+ * results stored at once when there is a best to beat. */
+static inline int shape8_hit(const shape *sh, const ray8 *r, const float *best, int active,
+                             shape_hits8 *out, int *nearer)
 {
     if (!shape_tests_eight(sh->kind))
         return -1;
     rays8 rs = rays8_load(r);
-    __m256 lim = _mm256_loadu_ps(tmax), t = _mm256_setzero_ps(), b1 = t, b2 = t, part = t;
+    __m256 lim = best ? packet_next_up(_mm256_loadu_ps(best)) : _mm256_loadu_ps(r->tmax);
+    __m256 t = _mm256_setzero_ps(), b1 = t, b2 = t, part = t;
     int m = sh->kind == SHAPE_SPHERE ? sphere8_hit(&sh->sphere, &rs, lim, active, &t)
             : sh->kind == SHAPE_QUAD
                 ? quad8_hit(&sh->quad, &rs, lim, active, &t, &b1, &b2)
             : sh->kind == SHAPE_BOX
                 ? box8_hit(&sh->box, &rs, lim, active, &t, &part)
                 : plane8_hit(sh->plane.point, sh->plane.normal, &rs, lim, active, &t);
-    float tv[8], b1v[8], b2v[8];
-    int pv[8];
-    _mm256_storeu_ps(tv, t);
-    _mm256_storeu_ps(b1v, b1);
-    _mm256_storeu_ps(b2v, b2);
-    _mm256_storeu_si256((__m256i *)pv, _mm256_cvttps_epi32(part));
-    for (int left = m; left; left &= left - 1) {
-        int k = __builtin_ctz((unsigned)left);
-        /* b1, b2 and leaf 0 but for a quad, as scene_hit_object leaves them */
-        hit[k] = (shape_hit){.t = tv[k], .part = pv[k], .b1 = b1v[k], .b2 = b2v[k]};
+    if (best && m) {
+        *nearer = m & _mm256_movemask_ps(_mm256_cmp_ps(t, _mm256_loadu_ps(best), _CMP_LT_OQ));
+        _mm256_storeu_ps(out->t, t);
+        _mm256_storeu_ps(out->b1, b1);
+        _mm256_storeu_ps(out->b2, b2);
+        _mm256_storeu_si256((__m256i *)out->part, _mm256_cvttps_epi32(part));
     }
     return m;
 }
 
 /* Defines shape8_hit_<isa>, sphere8_crossings_<isa> and torus8_hit_<isa>. */
 #define SHAPE8_KERNELS(isa)                                                                    \
-    int shape8_hit_##isa(const shape *sh, const ray8 *r, const float tmax[8], int active,      \
-                         shape_hit *hit)                                                       \
+    int shape8_hit_##isa(const shape *sh, const ray8 *r, const float *best, int active,       \
+                         shape_hits8 *out, int *nearer)                                        \
     {                                                                                          \
-        return shape8_hit(sh, r, tmax, active, hit);                                           \
+        return shape8_hit(sh, r, best, active, out, nearer);                                   \
     }                                                                                          \
     void sphere8_crossings_##isa(const struct sphere *s, const ray8 *r, int active,           \
                                  float t[2][8], int took[2])                                   \

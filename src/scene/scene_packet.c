@@ -35,17 +35,35 @@ static int keep8(int i, int any, const shape_hit h[8], float best[8], scene_hit 
 }
 
 /* shape8_hit on the scene's path; -1 where it has none. */
-static int shape8_on_path(const scene *s, const shape *sh, const ray8 *r, const float lim[8],
-                      int active, shape_hit h[8])
+static int shape8_on_path(const scene *s, const shape *sh, const ray8 *r, const float *best,
+                          int active, shape_hits8 *out, int *nearer)
 {
 #if defined(GLINT_WIDE_KERNELS)
     if (s->bvh.isa == ACCEL_AVX512)
-        return shape8_hit_avx512(sh, r, lim, active, h);
+        return shape8_hit_avx512(sh, r, best, active, out, nearer);
     if (s->bvh.isa == ACCEL_AVX2)
-        return shape8_hit_avx2(sh, r, lim, active, h);
+        return shape8_hit_avx2(sh, r, best, active, out, nearer);
 #endif
-    (void)s, (void)sh, (void)r, (void)lim, (void)active, (void)h;
+    (void)s, (void)sh, (void)r, (void)best, (void)active, (void)out, (void)nearer;
     return -1;
+}
+
+/* keep8 for shape8_hit's hits h of the rays of `any`, of which those of
+ * `nearer` beat best[k] and the others tie with it. */
+static int keep_hits8(int i, int any, int nearer, const shape_hits8 *h, float best[8],
+                      scene_hit hit[8])
+{
+    int kept = nearer;
+    for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
+        int k = __builtin_ctz((unsigned)m);
+        kept |= (i < hit[k].object) << k;
+    }
+    for (int m = kept; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        best[k] = h->t[k];
+        hit[k] = (scene_hit){{.t = h->t[k], .part = h->part[k], .b1 = h->b1[k], .b2 = h->b2[k]}, i};
+    }
+    return kept;
 }
 
 /* torus8_hit on the scene's path; -1 where it has none. */
@@ -98,22 +116,24 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
     int found = 0;
     if (ray8_three_or_more(active) && tests_eight(o)) {
         shape_kind kind = o->shape.kind;
-        shape_hit h[8];
-        int any;
+        ray8 lr;
+        const ray8 *q = r;
         if (kind == SHAPE_MESH || kind == SHAPE_TORUS || o->xform >= 0) {
-            ray8 lr;
             object_rays(s, o, r, active, best, &lr);
-            any = kind == SHAPE_MESH    ? mesh_intersect8(o->shape.mesh, &lr, active, h)
-                  : kind == SHAPE_TORUS ? torus8_on_path(s, &o->shape.torus, &lr, active, h)
-                                        : shape8_on_path(s, &o->shape, &lr, lr.tmax, active, h);
-        } else {
-            float lim[8];
-            for (int k = 0; k < 8; k++)
-                lim[k] = next_up(best[k]); /* as scene_hit_object */
-            any = shape8_on_path(s, &o->shape, r, lim, active, h);
+            q = &lr;
         }
-        if (any >= 0)
-            return keep8(i, any, h, best, hit);
+        if (shape_tests_eight(kind)) {
+            shape_hits8 h;
+            int nearer = 0, any = shape8_on_path(s, &o->shape, q, best, active, &h, &nearer);
+            if (any >= 0)
+                return keep_hits8(i, any, nearer, &h, best, hit);
+        } else {
+            shape_hit h[8];
+            int any = kind == SHAPE_MESH ? mesh_intersect8(o->shape.mesh, q, active, h)
+                                         : torus8_on_path(s, &o->shape.torus, q, active, h);
+            if (any >= 0)
+                return keep8(i, any, h, best, hit);
+        }
     }
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -179,14 +199,13 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
     const object *o = &s->objects[i];
     int met = -1;
     if (ray8_three_or_more(active) && !o->moving && shape_tests_eight(o->shape.kind)) {
-        shape_hit h[8];
         ray8 lr;
         const ray8 *q = r;
         if (o->xform >= 0) {
             object_rays(s, o, r, active, NULL, &lr);
             q = &lr;
         }
-        met = shape8_on_path(s, &o->shape, q, q->tmax, active, h);
+        met = shape8_on_path(s, &o->shape, q, NULL, active, NULL, NULL);
     }
     if (met < 0 && o->transmits) { /* crossed or not: the crossings' search will say */
         *crosses |= active;
