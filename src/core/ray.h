@@ -44,13 +44,27 @@ static inline void ray8_put(ray8 *p, int k, const ray *r)
     p->tmin[k] = r->tmin, p->tmax[k] = r->tmax, p->time[k] = r->time;
 }
 
-/* The rays r[k] of the lanes of active (not 0) as a packet; idle lanes
- * repeat an active ray, so that every lane holds numbers. */
-static inline void ray8_pack(ray8 *p, const ray r[8], int active)
+/* The idle lanes of a packet whose lanes of active (not 0) are set: each
+ * repeats an active ray, so that every lane holds numbers. */
+static inline void ray8_fill(ray8 *p, int active)
 {
     int first = __builtin_ctz((unsigned)active);
-    for (int k = 0; k < 8; k++)
-        ray8_put(p, k, &r[active >> k & 1 ? k : first]);
+    for (int m = ~active & 0xff; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray r = ray8_get(p, first);
+        ray8_put(p, k, &r);
+    }
+}
+
+/* The rays r[k] of the lanes of active (not 0) as a packet, the idle
+ * lanes filled (ray8_fill). */
+static inline void ray8_pack(ray8 *p, const ray r[8], int active)
+{
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray8_put(p, k, &r[k]);
+    }
+    ray8_fill(p, active);
 }
 
 /* Whether mask has three lanes or more: enough for a packet to pay

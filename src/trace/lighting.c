@@ -153,18 +153,18 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
                     const light_ray lr[8], int need, vec3 vis[8])
 {
     const scene *s = ctx->scene;
-    ray rs[8];
+    ray8 p; /* the rays go straight into their lanes */
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ctx->time = tl->time[k];
-        rs[k] = shadow_ray(ctx, sp[k].p, sp[k].ng, &lr[k]);
+        ray sr = shadow_ray(ctx, sp[k].p, sp[k].ng, &lr[k]);
+        ray8_put(&p, k, &sr);
         ctx->shadow_rays++;
     }
     int blocked = 0, crosses = 0, alone = need;
-    ray8 p;
     scene_crossings cross[8];
     if (ray8_three_or_more(need)) {
-        ray8_pack(&p, rs, need);
+        ray8_fill(&p, need);
         if (scene_shadow8(s, &p, need, &blocked, &crosses)) {
             alone = 0;
             if (crosses) /* their crossings together, which filter each */
@@ -173,9 +173,10 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
     }
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        vis[k] = alone >> k & 1     ? shadow_filter(s, &rs[k])
+        ray sr = ray8_get(&p, k);
+        vis[k] = alone >> k & 1     ? shadow_filter(s, &sr)
                  : blocked >> k & 1 ? v3s(0.0f)
-                 : crosses >> k & 1 ? crossings_filter(s, &rs[k], &cross[k])
+                 : crosses >> k & 1 ? crossings_filter(s, &sr, &cross[k])
                                     : v3s(1.0f);
     }
 }
