@@ -324,6 +324,34 @@ bool scene_shadow8(const scene *s, const ray8 *r, int active, int *blocked, int 
     return true;
 }
 
+/* The rays of active, whose directions' signs differ, after the objects
+ * outside the tree (found): those of each octant that has three or more
+ * walk the tree together, the others go one by one. */
+static int walk8_by_octant(const scene *s, const ray8 *r, int active, int found, float best[8],
+                           scene_hit hit[8])
+{
+    int octant[8], alone = active, result = 0;
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m); /* the signs packet_make compares */
+        octant[k] = (1.0f / r->dx[k] < 0.0f) | (1.0f / r->dy[k] < 0.0f) << 1 |
+                    (1.0f / r->dz[k] < 0.0f) << 2;
+    }
+    for (int m = active; m;) {
+        int first = octant[__builtin_ctz((unsigned)m)], group = 0;
+        for (int g = m; g; g &= g - 1) {
+            int k = __builtin_ctz((unsigned)g);
+            group |= (octant[k] == first) << k;
+        }
+        m &= ~group;
+        int walked = ray8_three_or_more(group) ? walk8(s, r, group, best, hit) : -1;
+        if (walked >= 0) {
+            alone &= ~group;
+            result |= (found & group) | walked;
+        }
+    }
+    return result | one_by_one(s, r, alone, hit);
+}
+
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
 {
     if (!active)
@@ -344,6 +372,8 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
         return found;
     }
     int walked = walk8(s, r, active, best, hit);
+    if (walked < 0 && eight_wide(s->bvh.isa) && s->bvh.width == 8 && s->bvh.nnodes > 0)
+        return walk8_by_octant(s, r, active, found, best, hit);
     return walked < 0 ? one_by_one(s, r, active, hit) : found | walked;
 }
 
