@@ -225,7 +225,8 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out);
 int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_crossings out[8]);
 
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may
- * be left 0 where the hit's material does not use them (material_uses_uv). */
+ * be left 0 where the hit's material does not use them (material_uses_uv).
+ * scene_surface.h has it inline for the shading of every hit. */
 void scene_surface(const scene *s, const ray *r, const scene_hit *hit, surface *out);
 
 /* World point p and normal n of a surface of object i in the object's

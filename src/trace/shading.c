@@ -2,6 +2,7 @@
 
 #include <math.h>
 
+#include "scene/scene_surface.h"
 #include "shade/texture.h"
 
 /* The point where a texture of this space is looked up. */
@@ -36,7 +37,7 @@ void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_poi
 {
     const scene *s = ctx->scene;
     surface sf;
-    scene_surface(s, r, hit, &sf);
+    scene_surface_inline(s, r, hit, &sf);
     const material *m = scene_hit_material(s, hit);
     out->m = m;
     out->p = sf.p;

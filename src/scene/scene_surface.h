@@ -1,0 +1,52 @@
+/* scene_surface inline, for the shading of every hit (trace/shading.c);
+ * scene.c's scene_surface is the same, out of line, for everyone else. */
+#ifndef GLINT_SCENE_SCENE_SURFACE_H
+#define GLINT_SCENE_SCENE_SURFACE_H
+
+#include "scene/scene_trace.h"
+
+__attribute__((always_inline)) static inline void scene_surface_inline(const scene *s,
+                                                                       const ray *r,
+                                                                       const scene_hit *hit,
+                                                                       surface *out)
+{
+    const object *o = &s->objects[hit->object];
+    out->color = v3s(1.0f);
+    if (o->xform < 0) {
+        /* An untextured sphere or torus needs no (u, v): its normal
+         * alone, as shape_surface would compute it. */
+        if (o->shape.kind == SHAPE_SPHERE && !material_uses_uv(scene_hit_material(s, hit))) {
+            sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), out);
+            return;
+        }
+        if (o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit))) {
+            torus_surface_no_uv(&o->shape.torus, ray_at(r, hit->h.t), out);
+            out->ng = out->n;
+            return;
+        }
+        shape_surface(&o->shape, r, &hit->h, out);
+        if (o->material >= 0) /* a material given in the scene replaces the file's colours */
+            out->color = v3s(1.0f);
+        return;
+    }
+    xform moved;
+    const xform *x = &s->xforms[o->xform];
+    if (o->moving) {
+        moved = scene_object_xform_at(s, o, r->time);
+        x = &moved;
+    }
+    ray lr = scene_object_ray(s, o, r);
+    /* A turned torus without texture, likewise; its two normals are one. */
+    bool one_normal = o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit));
+    if (one_normal)
+        torus_surface_no_uv(&o->shape.torus, ray_at(&lr, hit->h.t), out);
+    else
+        shape_surface(&o->shape, &lr, &hit->h, out);
+    if (o->material >= 0)
+        out->color = v3s(1.0f);
+    out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
+    out->n = v3_norm(xform_normal(x, out->n));
+    out->ng = one_normal ? out->n : v3_norm(xform_normal(x, out->ng));
+}
+
+#endif
