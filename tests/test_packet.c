@@ -418,6 +418,58 @@ Test(packet, box_hits_match_at_the_edges)
     scene_free(s);
 }
 
+/* A cylinder's hits eight at a time, capped and open, as
+ * cylinder_intersect finds them: rays along its axis (no side), across
+ * it (no caps), grazing its side, through a cap's rim, from inside, past
+ * the first of their hits, and up into the lower cap. */
+Test(packet, cylinder_hits_match_at_the_edges)
+{
+    const vec3 base = v3(1.0f, -2.0f, 0.5f);
+    ray8 p;
+    put(&p, 0, v3(1.5f, 9.0f, 0.5f), v3(0, -1, 0), 0.0f, INFINITY);   /* down the axis: cap 2 */
+    put(&p, 1, v3(-9.0f, -2.0f, 0.5f), v3(1, 0, 0), 0.0f, INFINITY);  /* across its foot */
+    put(&p, 2, v3(-9.0f, 0.0f, 2.5f), v3(1, 0, 0), 0.0f, INFINITY);   /* grazing: one root */
+    put(&p, 3, v3(3.0f, 5.0f, 0.5f), v3(0, -1, 0), 0.0f, INFINITY);   /* the rim of cap 2 */
+    put(&p, 4, v3(1.0f, -1.0f, 0.5f), v3(0.3f, 1.0f, -0.2f), 0.0f, 1e3f); /* from inside */
+    put(&p, 5, v3(1.0f, -9.0f, 0.5f), v3(0.01f, 1, 0), 8.0f, INFINITY); /* past cap 1 */
+    put(&p, 6, v3(9.0f, 9.0f, 9.0f), v3(1, 1, 1), 0.0f, 1e3f);        /* away */
+    put(&p, 7, v3(2.0f, -9.0f, 0.0f), v3(-0.1f, 1.0f, 0.2f), 0.0f, 1e3f); /* up: cap 1 */
+    for (int capped = 0; capped < 2; capped++) {
+        scene *s = scene_new();
+        cr_assert_not_null(s);
+        material mt = material_default();
+        shape cyl = shape_cylinder(base, 2.0f, 3.0f, capped);
+        cr_assert_geq(scene_add_object(s, &cyl, scene_add_material(s, &mt), -1), 0);
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        int parts[3] = {0, 0, 0};
+        for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+            if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+                continue;
+            scene_hit h8[8];
+            int found = scene_intersect8(s, &p, 0xff, h8);
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                shape_hit one = {0};
+                bool hit = cylinder_intersect(&cyl.cylinder, &r, &one);
+                cr_assert_eq(found >> k & 1, hit, "capped %d path %d ray %d", capped, path, k);
+                if (!hit)
+                    continue;
+                cr_assert(h8[k].h.t == one.t && h8[k].h.part == one.part,
+                          "capped %d path %d ray %d: t %.9g part %d, want t %.9g part %d",
+                          capped, path, k, (double)h8[k].h.t, h8[k].h.part, (double)one.t,
+                          one.part);
+                parts[one.part]++;
+            }
+        }
+        accel_isa_force(ACCEL_AUTO);
+        if (accel_isa_best() >= ACCEL_AVX2) /* the side, and both caps when there are caps */
+            cr_assert(parts[0] > 0 && (parts[1] > 0) == capped && (parts[2] > 0) == capped,
+                      "capped %d: parts %d %d %d", capped, parts[0], parts[1], parts[2]);
+        scene_free(s);
+    }
+}
+
 /* scene_shadow8 tells each ray what scene_shadow tells it alone: blocked,
  * or not and crossing a transmitting object (or perhaps crossing one that
  * is not tested eight at a time), or clear; in a flat scene, a tree of one
@@ -546,8 +598,9 @@ Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
     cr_assert_gt(many, 10000);
 }
 
-/* Spheres, boxes and quads, turned, stretched and sheared (tested eight
- * at a time in their own space) and some as they are, over a plane. */
+/* Spheres, boxes, quads and cylinders (open and capped), turned,
+ * stretched and sheared (tested eight at a time in their own space) and
+ * some as they are, over a plane. */
 static scene *turned_scene(void)
 {
     scene *s = scene_new();
@@ -560,16 +613,15 @@ static scene *turned_scene(void)
     for (int i = 0; i < 10; i++)
         for (int j = 0; j < 10; j++) {
             vec3 at = v3(-5.0f + (float)i, -5.0f + (float)j, -2.0f * (float)((i + j) % 3));
-            int kind = (i + 2 * j) % 3;
-            shape sh = kind == 0   ? shape_sphere(v3s(0.0f), 0.35f)
-                       : kind == 1 ? shape_box(v3(-0.3f, -0.2f, -0.25f), v3(0.3f, 0.2f, 0.25f))
-                                   : shape_quad(v3(-0.4f, -0.4f, 0), v3(0.8f, 0, 0), v3(0, 0.8f, 0));
-            if ((i + j) % 4 == 0) { /* as it is, moved by its coordinates */
-                sh = kind == 0   ? shape_sphere(at, 0.35f)
-                     : kind == 1 ? shape_box(v3_add(at, v3(-0.3f, -0.2f, -0.25f)),
-                                             v3_add(at, v3(0.3f, 0.2f, 0.25f)))
-                                 : shape_quad(v3_add(at, v3(-0.4f, -0.4f, 0)), v3(0.8f, 0, 0),
-                                              v3(0, 0.8f, 0));
+            int kind = (i + 2 * j) % 4;
+            vec3 c = (i + j) % 4 == 0 ? at : v3s(0.0f); /* as it is, moved by its coordinates */
+            shape sh = kind == 0   ? shape_sphere(c, 0.35f)
+                       : kind == 1 ? shape_box(v3_add(c, v3(-0.3f, -0.2f, -0.25f)),
+                                               v3_add(c, v3(0.3f, 0.2f, 0.25f)))
+                       : kind == 2 ? shape_quad(v3_add(c, v3(-0.4f, -0.4f, 0)), v3(0.8f, 0, 0),
+                                                v3(0, 0.8f, 0))
+                                   : shape_cylinder(v3_add(c, v3(0, -0.3f, 0)), 0.3f, 0.6f, j % 2);
+            if ((i + j) % 4 == 0) {
                 cr_assert_geq(scene_add_object(s, &sh, mat, -1), 0);
                 continue;
             }
@@ -577,8 +629,8 @@ static scene *turned_scene(void)
             xform sk = xform_shear(uniform(&g, -0.4f, 0.4f), 0, 0, uniform(&g, -0.4f, 0.4f), 0, 0);
             xform ry = xform_rotate(v3(0.3f, 1, 0.2f), uniform(&g, 0, 360));
             xform tr = xform_translate(at);
-            xform a = xform_then(&sc, &sk), b = xform_then(&a, &ry), c = xform_then(&b, &tr);
-            cr_assert_geq(scene_add_object(s, &sh, mat, scene_add_xform(s, &c)), 0);
+            xform a = xform_then(&sc, &sk), b = xform_then(&a, &ry), all = xform_then(&b, &tr);
+            cr_assert_geq(scene_add_object(s, &sh, mat, scene_add_xform(s, &all)), 0);
         }
     glint_error err = {0};
     cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
@@ -587,16 +639,18 @@ static scene *turned_scene(void)
 
 Test(packet, turned_shapes_match_one_ray_at_a_time_on_every_path)
 {
-    int boxes = 0;
+    int boxes = 0, cylinders = 0;
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
         scene *s = turned_scene();
         boxes += same_hits(s, v3(0.3f, -0.2f, 9.0f), 4000, SHAPE_BOX);
+        cylinders += same_hits(s, v3(-0.4f, 0.3f, 9.0f), 4000, SHAPE_CYLINDER);
         scene_free(s);
     }
     accel_isa_force(ACCEL_AUTO);
-    cr_assert_gt(boxes, 2000, "box hits: %d", boxes);
+    cr_assert(boxes > 200 && cylinders > 2000, "hits: %d on boxes, %d on cylinders", boxes,
+              cylinders);
 }
 
 /* packet_scene with its casters, lights of every kind and a camera

@@ -50,7 +50,8 @@ typedef enum shape_kind {
 /* Whether shape8_hit (shape8.h) tests the kind against eight rays at once. */
 static inline bool shape_tests_eight(shape_kind k)
 {
-    return k == SHAPE_SPHERE || k == SHAPE_QUAD || k == SHAPE_PLANE || k == SHAPE_BOX;
+    return k == SHAPE_SPHERE || k == SHAPE_QUAD || k == SHAPE_PLANE || k == SHAPE_BOX ||
+           k == SHAPE_CYLINDER;
 }
 
 struct mesh;
@@ -187,7 +188,7 @@ triangle_fit triangle_check(vec3 p0, vec3 p1, vec3 p2);
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit);
 bool shape_occluded(const shape *s, const ray *r);
 /* Eight rays' hits on a shape, lane by lane: shape_hit's t, part, b1 and
- * b2 (b1, b2 0 but for a quad, part 0 but for a box). */
+ * b2 (b1, b2 0 but for a quad, part 0 but for a box or a cylinder). */
 typedef struct shape_hits8 {
     float t[8], b1[8], b2[8];
     int part[8];

@@ -1,4 +1,4 @@
-/* shape8: the sphere, quad, plane and box tests against eight rays
+/* shape8: the sphere, quad, plane, box and cylinder tests against eight rays
  * at once, one ray per AVX lane, for packets of camera rays
  * (scene_intersect8). Each lane does the one-ray test's operations in the
  * same order, so it finds the same hit to the bit; branches become masks.
@@ -222,6 +222,70 @@ static inline int box8_hit(const struct box *s, const rays8 *r, __m256 tmax, int
     return active & _mm256_movemask_ps(_mm256_or_ps(first, in_range8(tfar, r->tmin, tmax)));
 }
 
+/* a.x * b.x + a.y * b.y of two-component vectors, lane by lane. */
+static inline __m256 dot2_8(__m256 ax, __m256 ay, __m256 bx, __m256 by)
+{
+    return _mm256_add_ps(_mm256_mul_ps(ax, bx), _mm256_mul_ps(ay, by));
+}
+
+/* cylinder_intersect's consider(), lane by lane: candidate t with part p
+ * where valid, in range and nearer than *best. */
+static inline void cylinder8_consider(__m256 valid, __m256 t, float p, __m256 tmin,
+                                      __m256 *best, __m256 *part)
+{
+    __m256 take = _mm256_and_ps(_mm256_and_ps(valid, _mm256_cmp_ps(t, tmin, _CMP_GT_OQ)),
+                                _mm256_cmp_ps(t, *best, _CMP_LT_OQ));
+    *best = _mm256_blendv_ps(*best, t, take);
+    *part = _mm256_blendv_ps(*part, _mm256_set1_ps(p), take);
+}
+
+/* cylinder_intersect likewise: the candidates in the same order (the
+ * side's two roots, then the caps), with the part of the one kept. */
+static inline int cylinder8_hit(const struct cylinder *s, const rays8 *r, __m256 tmax,
+                                int active, __m256 *t, __m256 *part)
+{
+    const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
+    __m256 ox = _mm256_sub_ps(r->ox, _mm256_set1_ps(s->base.x));
+    __m256 oy = _mm256_sub_ps(r->oy, _mm256_set1_ps(s->base.y));
+    __m256 oz = _mm256_sub_ps(r->oz, _mm256_set1_ps(s->base.z));
+    __m256 rr = _mm256_set1_ps(s->radius * s->radius), height = _mm256_set1_ps(s->height);
+    *t = tmax;
+    *part = _mm256_set1_ps(-1.0f);
+    __m256 a = dot2_8(r->dx, r->dz, r->dx, r->dz);
+    __m256 side = _mm256_cmp_ps(a, zero, _CMP_GT_OQ);
+    if (_mm256_movemask_ps(side) & active) {
+        __m256 b = _mm256_xor_ps(dot2_8(ox, oz, r->dx, r->dz), sign);
+        __m256 ba = _mm256_div_ps(b, a);
+        __m256 lx = _mm256_add_ps(ox, _mm256_mul_ps(r->dx, ba));
+        __m256 lz = _mm256_add_ps(oz, _mm256_mul_ps(r->dz, ba));
+        __m256 disc = _mm256_mul_ps(a, _mm256_sub_ps(rr, dot2_8(lx, lz, lx, lz)));
+        side = _mm256_and_ps(side, _mm256_cmp_ps(disc, zero, _CMP_GE_OQ));
+        __m256 c = _mm256_sub_ps(dot2_8(ox, oz, ox, oz), rr);
+        __m256 root = _mm256_sqrt_ps(disc); /* copysignf(root, b): */
+        __m256 q = _mm256_add_ps(b, _mm256_or_ps(_mm256_andnot_ps(sign, root), _mm256_and_ps(sign, b)));
+        __m256 ts[2] = {_mm256_andnot_ps(_mm256_cmp_ps(q, zero, _CMP_EQ_OQ), _mm256_div_ps(c, q)),
+                        _mm256_div_ps(q, a)};
+        for (int i = 0; i < 2; i++) {
+            __m256 y = _mm256_add_ps(oy, _mm256_mul_ps(r->dy, ts[i]));
+            __m256 on = _mm256_and_ps(_mm256_cmp_ps(y, zero, _CMP_GE_OQ),
+                                      _mm256_cmp_ps(y, height, _CMP_LE_OQ));
+            cylinder8_consider(_mm256_and_ps(side, on), ts[i], 0.0f, r->tmin, t, part);
+        }
+    }
+    __m256 ends = _mm256_cmp_ps(r->dy, zero, _CMP_NEQ_UQ);
+    if (s->capped && (_mm256_movemask_ps(ends) & active)) {
+        const float caps[2] = {0.0f, s->height};
+        for (int i = 0; i < 2; i++) {
+            __m256 tc = _mm256_div_ps(_mm256_sub_ps(_mm256_set1_ps(caps[i]), oy), r->dy);
+            __m256 x = _mm256_add_ps(ox, _mm256_mul_ps(r->dx, tc));
+            __m256 z = _mm256_add_ps(oz, _mm256_mul_ps(r->dz, tc));
+            __m256 in = _mm256_cmp_ps(dot2_8(x, z, x, z), rr, _CMP_LE_OQ);
+            cylinder8_consider(_mm256_and_ps(ends, in), tc, (float)(1 + i), r->tmin, t, part);
+        }
+    }
+    return active & ~_mm256_movemask_ps(_mm256_cmp_ps(*part, zero, _CMP_LT_OQ));
+}
+
 /* shape8_hit (shape.h): the test of shape_tests_eight's kinds, each lane's
  * results stored at once when there is a best to beat. */
 static inline int shape8_hit(const shape *sh, const ray8 *r, const float *best, int active,
@@ -237,6 +301,8 @@ static inline int shape8_hit(const shape *sh, const ray8 *r, const float *best, 
                 ? quad8_hit(&sh->quad, &rs, lim, active, &t, &b1, &b2)
             : sh->kind == SHAPE_BOX
                 ? box8_hit(&sh->box, &rs, lim, active, &t, &part)
+            : sh->kind == SHAPE_CYLINDER
+                ? cylinder8_hit(&sh->cylinder, &rs, lim, active, &t, &part)
                 : plane8_hit(sh->plane.point, sh->plane.normal, &rs, lim, active, &t);
     if (best && m) {
         *nearer = m & _mm256_movemask_ps(_mm256_cmp_ps(t, _mm256_loadu_ps(best), _CMP_LT_OQ));
