@@ -660,10 +660,12 @@ static scene *lit_packet_scene(int copies)
     scene *s = packet_scene(copies);
     add_casters(s, copies);
     light l = light_point(v3(10, 30, 40), v3s(0.9f), v3(1, 0, 0));
+    light near = light_point(v3(-15, 10, 30), v3s(0.5f), v3(0.5f, 0.02f, 0.001f)); /* fading */
     light spot = light_spot(v3(-10, 25, 30), v3s(0.0f), 10.0f, 25.0f, v3s(0.6f), v3(1, 0, 0));
     light sun = light_directional(v3(0.3f, -1.0f, -0.4f), v3s(0.3f));
     light area = light_area(v3(5, 20, 20), v3(4, 0, 0), v3(0, 0, 4), 2, v3s(0.4f), v3(1, 0, 0));
     cr_assert_geq(scene_add_light(s, &l), 0);
+    cr_assert_geq(scene_add_light(s, &near), 0);
     cr_assert_geq(scene_add_light(s, &spot), 0);
     cr_assert_geq(scene_add_light(s, &sun), 0);
     cr_assert_geq(scene_add_light(s, &area), 0);

@@ -2,7 +2,9 @@
 
 #include <math.h>
 
+#include "accel/isa.h"
 #include "core/hash.h"
+#include "trace/light8_api.h"
 
 /* Beer-Lambert over the part of the shadow ray inside the object whose
  * surface it crosses at hit, if it leaves the object there: the segment
@@ -78,19 +80,20 @@ static inline bool lit(const shade_point *sp, const light_ray *lr, float *ndl)
     return !(*ndl <= 0.0f);
 }
 
-/* The sample's diffuse and specular share, given vis, what reaches the
+/* The share of a light sample of colour `color` seen in unit direction
+ * dir, at cosine ndl, in diffuse and specular, given vis, what reaches the
  * point of it. */
-__attribute__((always_inline)) static inline void add_lit(const shade_point *sp,
-                                                          const light_ray *lr, float ndl, vec3 vis,
+__attribute__((always_inline)) static inline void add_lit(const shade_point *sp, vec3 dir,
+                                                          vec3 color, float ndl, vec3 vis,
                                                           vec3 *diffuse, vec3 *specular)
 {
     const material *m = sp->m;
     if (v3_is_zero(vis))
         return;
-    vec3 lc = v3_mul(lr->color, vis);
+    vec3 lc = v3_mul(color, vis);
     *diffuse = v3_madd(*diffuse, lc, m->diffuse * ndl);
     if (m->specular > 0.0f) {
-        float rv = -v3_dot(v3_reflect(v3_neg(lr->dir), sp->n), sp->d);
+        float rv = -v3_dot(v3_reflect(v3_neg(dir), sp->n), sp->d);
         if (rv > 0.0f)
             *specular = v3_madd(*specular, lc, m->specular * material_highlight(rv, m->shininess));
     }
@@ -102,7 +105,8 @@ static inline void add_sample(trace_ctx *ctx, const shade_point *sp, const light
 {
     float ndl;
     if (lit(sp, lr, &ndl))
-        add_lit(sp, lr, ndl, lighting_shadow(ctx, sp->p, sp->ng, lr), diffuse, specular);
+        add_lit(sp, lr->dir, lr->color, ndl, lighting_shadow(ctx, sp->p, sp->ng, lr), diffuse,
+                specular);
 }
 
 /* Every sample of light i (lighting.h: the jitter). */
@@ -145,39 +149,98 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
     return local_sum(sp, diffuse, specular);
 }
 
-/* The shadow rays of lanes `need` towards their light samples lr[k]:
- * what reaches each point into vis[k], as lighting_shadow finds it. Three
- * or more go through the scene together (scene_shadow8), and only those
- * that cross a transmitting object, or cannot go together, one by one. */
+/* The shadow rays of lanes `need` in the lanes of *p (the others hold
+ * numbers): what reaches each ray's end into vis[k], as shadow_filter
+ * finds it. Three or more go through the scene together
+ * (scene_shadow8), and only those that cross a transmitting object, or
+ * cannot go together, one by one. */
+static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vec3 vis[8])
+{
+    const scene *s = ctx->scene;
+    int blocked = 0, crosses = 0, alone = need;
+    scene_crossings cross[8];
+    if (ray8_three_or_more(need) && scene_shadow8(s, p, need, &blocked, &crosses)) {
+        alone = 0;
+        if (crosses) /* their crossings together, which filter each */
+            blocked |= scene_shadow_unblocked8(s, p, crosses, cross);
+    }
+    for (int m = need; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray sr = ray8_get(p, k);
+        vis[k] = alone >> k & 1     ? shadow_filter(s, &sr)
+                 : blocked >> k & 1 ? v3s(0.0f)
+                 : crosses >> k & 1 ? crossings_filter(s, &sr, &cross[k])
+                                    : v3s(1.0f);
+        ctx->shadow_rays++;
+    }
+}
+
+/* The shadow rays of lanes `need` towards their light samples lr[k]
+ * (shadow_ray, at each lane's time), through shadow8_rays. */
 static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[8],
                     const light_ray lr[8], int need, vec3 vis[8])
 {
-    const scene *s = ctx->scene;
     ray8 p; /* the rays go straight into their lanes */
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ctx->time = tl->time[k];
         ray sr = shadow_ray(ctx, sp[k].p, sp[k].ng, &lr[k]);
         ray8_put(&p, k, &sr);
-        ctx->shadow_rays++;
     }
-    int blocked = 0, crosses = 0, alone = need;
-    scene_crossings cross[8];
-    if (ray8_three_or_more(need)) {
+    if (need)
         ray8_fill(&p, need);
-        if (scene_shadow8(s, &p, need, &blocked, &crosses)) {
-            alone = 0;
-            if (crosses) /* their crossings together, which filter each */
-                blocked |= scene_shadow_unblocked8(s, &p, crosses, cross);
+    shadow8_rays(ctx, &p, need, vis);
+}
+
+/* light8_point on the scene's path; -1 where it has none. */
+static int point8(const trace_ctx *ctx, const light *l, const shade_point *sp, int lanes,
+                  const trace_lanes *tl, ray8 *p, light8_seen *seen)
+{
+#if defined(GLINT_WIDE_KERNELS)
+    accel_isa isa = ctx->scene->bvh.isa;
+    if (isa == ACCEL_AVX512)
+        return light8_point_avx512(l, sp, lanes, tl->time, p, seen);
+    if (isa == ACCEL_AVX2)
+        return light8_point_avx2(l, sp, lanes, tl->time, p, seen);
+#endif
+    (void)ctx, (void)l, (void)sp, (void)lanes, (void)tl, (void)p, (void)seen;
+    return -1;
+}
+
+/* The one-sample light l at the points of lanes, added to diffuse[k] and
+ * specular[k]: a point light's terms eight at a time where the path has
+ * them (light8_point), any other lane by lane; the shadow rays together. */
+static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l,
+                       const shade_point *sp, int lanes, vec3 diffuse[8], vec3 specular[8])
+{
+    ray8 p;
+    light8_seen seen;
+    vec3 vis[8];
+    int need = l->kind == LIGHT_POINT ? point8(ctx, l, sp, lanes, tl, &p, &seen) : -1;
+    if (need >= 0) {
+        if (need)
+            ray8_fill(&p, need);
+        shadow8_rays(ctx, &p, need, vis);
+        for (int m = need; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            vec3 dir = v3(seen.dir[0][k], seen.dir[1][k], seen.dir[2][k]);
+            vec3 color = v3(seen.color[0][k], seen.color[1][k], seen.color[2][k]);
+            add_lit(&sp[k], dir, color, seen.ndl[k], vis[k], &diffuse[k], &specular[k]);
         }
+        return;
     }
+    light_ray lr[8];
+    float ndl[8];
+    need = 0;
+    for (int m = lanes; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        lr[k] = light_sample(l, sp[k].p, 0, 0.5f, 0.5f);
+        need |= lit(&sp[k], &lr[k], &ndl[k]) << k;
+    }
+    shadow8(ctx, tl, sp, lr, need, vis);
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        ray sr = ray8_get(&p, k);
-        vis[k] = alone >> k & 1     ? shadow_filter(s, &sr)
-                 : blocked >> k & 1 ? v3s(0.0f)
-                 : crosses >> k & 1 ? crossings_filter(s, &sr, &cross[k])
-                                    : v3s(1.0f);
+        add_lit(&sp[k], lr[k].dir, lr[k].color, ndl[k], vis[k], &diffuse[k], &specular[k]);
     }
 }
 
@@ -201,20 +264,7 @@ void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *s
             }
             continue;
         }
-        light_ray lr[8];
-        float ndl[8];
-        int need = 0;
-        for (int m = lanes; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            lr[k] = light_sample(l, sp[k].p, 0, 0.5f, 0.5f);
-            need |= lit(&sp[k], &lr[k], &ndl[k]) << k;
-        }
-        vec3 vis[8];
-        shadow8(ctx, tl, sp, lr, need, vis);
-        for (int m = need; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            add_lit(&sp[k], &lr[k], ndl[k], vis[k], &diffuse[k], &specular[k]);
-        }
+        add_light8(ctx, tl, l, sp, lanes, diffuse, specular);
     }
     for (int m = lanes; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);

@@ -19,9 +19,11 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp);
 
 /* lighting_local for the points sp[k] of the lanes in `lanes` of a packet
  * (tl names their samples), shading event event[k] of lane k's sample,
- * into out[k]: the same colours, with the shadow rays towards each point
- * or spot light traced together (scene_shadow8). Leaves ctx at the last
- * lane's sample; ctx->events is not used. */
+ * into out[k]: the same colours, with the shadow rays towards each point,
+ * spot or directional light traced together (scene_shadow8), and a point
+ * light's terms worked out for the eight points at once on the eight-wide
+ * paths (light8.h). May leave ctx at any lane's sample; ctx->events is
+ * not used. */
 void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *sp, int lanes,
                      const uint32_t event[8], vec3 out[8]);
 
