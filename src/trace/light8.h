@@ -7,16 +7,19 @@
 
 #include <immintrin.h>
 #include <stddef.h>
+#include <string.h>
 #include "trace/light8_api.h"
 
-_Static_assert(sizeof(shade_point) % sizeof(float) == 0, "shade points gathered as floats");
-
-/* Field `off` (bytes into a shade point) of the eight points sp[k]. */
+/* Field `off` (bytes into a shade point) of the eight points sp[k], by
+ * eight loads (faster here than a gather instruction). */
 static inline __m256 light8_gather(const shade_point *sp, size_t off)
 {
-    const int step = (int)(sizeof(shade_point) / sizeof(float));
-    __m256i at = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(step));
-    return _mm256_i32gather_ps((const float *)((const char *)sp + off), at, 4);
+    const char *f = (const char *)sp + off;
+    const size_t n = sizeof *sp;
+    float v[8];
+    for (int k = 0; k < 8; k++)
+        memcpy(&v[k], f + (size_t)k * n, sizeof v[k]);
+    return _mm256_setr_ps(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
 }
 
 /* (a.x * b.x + a.y * b.y) + a.z * b.z, as v3_dot. */
