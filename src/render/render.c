@@ -139,24 +139,30 @@ static vec3 trace_sample(const job *j, worker_state *w, float x, float y, pixel_
     return whitted_trace(&w->ctx, &r, 0);
 }
 
-static void put_pixel(const job *j, int x, int y, vec3 c, float cover)
+/* The n pixels (x + i, y) of a row: sum[i] times scale, coverage
+ * cover[i] times scale. */
+static void put_pixels(const job *j, int x, int y, int n, const vec3 *sum, const float *cover,
+                       float scale)
 {
     const render_work *wk = j->work;
+    float *rgb, *alpha;
     if (wk->accum) { /* the adaptive sampler's final progressive pass */
         size_t i = (size_t)y * (size_t)wk->accum->width + (size_t)x;
-        wk->accum->sum[i * 3] = c.x;
-        wk->accum->sum[i * 3 + 1] = c.y;
-        wk->accum->sum[i * 3 + 2] = c.z;
-        wk->accum->cover[i] = cover;
-        return;
+        rgb = wk->accum->sum + i * 3;
+        alpha = wk->accum->cover + i;
+    } else {
+        size_t at = (size_t)(y - wk->film_y0) * (size_t)j->film->width + (size_t)(x - wk->film_x0);
+        rgb = j->film->rgb + at * 3;
+        alpha = j->film->alpha ? j->film->alpha + at : NULL;
     }
-    size_t at = (size_t)(y - wk->film_y0) * (size_t)j->film->width + (size_t)(x - wk->film_x0);
-    float *px = j->film->rgb + at * 3;
-    px[0] = c.x;
-    px[1] = c.y;
-    px[2] = c.z;
-    if (j->film->alpha)
-        j->film->alpha[at] = cover;
+    for (int i = 0; i < n; i++) {
+        vec3 c = v3_scale(sum[i], scale);
+        rgb[3 * i] = c.x;
+        rgb[3 * i + 1] = c.y;
+        rgb[3 * i + 2] = c.z;
+        if (alpha)
+            alpha[i] = cover[i] * scale;
+    }
 }
 
 /* Adds samples k0 <= k < k1 of pixel (x, y) (grid or jitter) to *sum and
@@ -242,8 +248,7 @@ static void render_tile_fixed(job *j, worker_state *w, glint_rect r)
                 sample_packet(j, w, x, y, n, 0, count, sum, cover);
             else
                 sample_range(j, w, x, y, 0, count, &sum[0], &cover[0]);
-            for (int i = 0; i < n; i++)
-                put_pixel(j, x + i, y, v3_scale(sum[i], inv_count), cover[i] * inv_count);
+            put_pixels(j, x, y, n, sum, cover, inv_count);
         }
 }
 
@@ -355,7 +360,7 @@ static void render_tile_adaptive(job *j, worker_state *w, glint_rect r)
             vec3 col;
             float cover;
             adaptive_cell(j, w, x, y, 0, 0, n, &col, &cover);
-            put_pixel(j, x, y, col, cover);
+            put_pixels(j, x, y, 1, &col, &cover, 1.0f);
         }
 }
 
@@ -407,7 +412,7 @@ static uint64_t render_tile_pass(job *j, worker_state *w, int item, glint_rect r
     uint64_t area = (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
     bool adaptive = j->smp.kind == GLINT_SAMPLER_ADAPTIVE;
     if (adaptive && upto >= j->settings->samples) {
-        render_tile_adaptive(j, w, r); /* put_pixel writes into the accumulator */
+        render_tile_adaptive(j, w, r); /* put_pixels writes into the accumulator */
         a->tile_samples[item] = upto;
         a->tile_div[item] = 1;
         return area;
