@@ -2,8 +2,10 @@
 
 #include <math.h>
 
+#include "accel/isa.h"
 #include "scene/scene.h"
 #include "shade/optics.h"
+#include "trace/bounce8_api.h"
 #include "trace/lighting.h"
 #include "trace/shading.h"
 
@@ -122,31 +124,52 @@ typedef struct lanes8 {
     float weight[8];    /* trace_ctx.weight, lane by lane */
 } lanes8;
 
-static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int depth,
-                   vec3 out[8]);
+static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
+                   int depth, vec3 out[8]);
+
+/* bounce8 on the scene's path; -1 where it has none. */
+static int bounce8_on_path(const trace_ctx *ctx, const bounce8_from *f, int found, bool reflect,
+                           ray rs[8], ray8 *p, float weight[8])
+{
+#if defined(GLINT_WIDE_KERNELS)
+    accel_isa isa = ctx->scene->bvh.isa;
+    if (isa == ACCEL_AVX512)
+        return bounce8_avx512(f, found, reflect, rs, p, weight);
+    if (isa == ACCEL_AVX2)
+        return bounce8_avx2(f, found, reflect, rs, p, weight);
+#endif
+    (void)ctx, (void)f, (void)found, (void)reflect, (void)rs, (void)p, (void)weight;
+    return -1;
+}
 
 /* The reflected (reflect) or transmitted rays of the lanes of `found`
- * that adc_keep keeps, from lanes of share[k] whose transmission carries
- * gt[k] of the light: returns those lanes, with the ray in rs[k] and its
- * share in ls->weight[k]. */
-static int secondaries(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found,
-                       const shade_point sp[8], const float share[8], const float kr[8],
-                       const float kt[8], const float gt[8], const vec3 tdir[8], bool reflect,
-                       ray rs[8])
+ * that adc_keep keeps, from f: returns those lanes, with the ray in rs[k]
+ * and lane k of *p, and its share in ls->weight[k]. Eight at a time where
+ * the path has the kernels (bounce8.h), the same floats either way. */
+static int secondaries(trace_ctx *ctx, lanes8 *ls, const bounce8_from *f, int found,
+                       bool reflect, ray rs[8], ray8 *p)
 {
-    int keep = 0;
-    for (int m = found; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        if (reflect ? !adc_keep(ctx, share[k], kr[k], kr[k] + gt[k])
-                    : !(kt[k] > 0.0f && adc_keep(ctx, share[k], gt[k], kr[k] + gt[k])))
-            continue;
-        ls->weight[k] = ctx->weight;
-        vec3 d = reflect ? v3_reflect(sp[k].d, sp[k].n) : tdir[k];
-        rs[k] = ray_make(ray_offset(sp[k].p, sp[k].ng, d), d, INFINITY);
-        rs[k].time = r[k].time;
-        ctx->secondary_rays++;
-        keep |= 1 << k;
+    int keep = bounce8_on_path(ctx, f, found, reflect, rs, p, ls->weight);
+    if (keep < 0) {
+        keep = 0;
+        for (int m = found; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            const shade_point *sp = &f->sp[k];
+            float kr = f->kr[k], gt = f->gt[k];
+            if (reflect ? !adc_keep(ctx, f->share[k], kr, kr + gt)
+                        : !(f->kt[k] > 0.0f && adc_keep(ctx, f->share[k], gt, kr + gt)))
+                continue;
+            ls->weight[k] = ctx->weight;
+            vec3 d = reflect ? v3_reflect(sp->d, sp->n) : f->tdir[k];
+            rs[k] = ray_make(ray_offset(sp->p, sp->ng, d), d, INFINITY);
+            rs[k].time = f->time[k];
+            keep |= 1 << k;
+        }
+        if (keep)
+            ray8_pack(p, rs, keep);
     }
+    for (int m = keep; m; m &= m - 1)
+        ctx->secondary_rays++;
     return keep;
 }
 
@@ -155,23 +178,26 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
                   const scene_hit hit[8], const shade_point sp[8], vec3 c[8], vec3 out[8])
 {
     if (depth < ctx->max_depth) {
-        float kr[8], kt[8], gt[8], share[8];
+        float kr[8], kt[8], gt[8], share[8], time[8];
         vec3 tdir[8], sub[8];
         ray rs[8];
+        ray8 p;
         for (int m = found; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             split(&sp[k], &kr[k], &kt[k], &tdir[k]);
             gt[k] = kt[k] * v3_max_comp(sp[k].m->tint);
             share[k] = ls->weight[k];
+            time[k] = r[k].time;
         }
-        int keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, gt, tdir, true, rs);
-        trace8(ctx, ls, rs, keep, depth + 1, sub);
+        bounce8_from f = {sp, share, kr, kt, gt, time, tdir, ctx->bailout};
+        int keep = secondaries(ctx, ls, &f, found, true, rs, &p);
+        trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
         for (int m = keep; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             c[k] = v3_madd(c[k], sub[k], kr[k]);
         }
-        keep = secondaries(ctx, ls, r, found, sp, share, kr, kt, gt, tdir, false, rs);
-        trace8(ctx, ls, rs, keep, depth + 1, sub);
+        keep = secondaries(ctx, ls, &f, found, false, rs, &p);
+        trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
         for (int m = keep; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             c[k] = v3_add(c[k], v3_scale(v3_mul(sub[k], sp[k].m->tint), kt[k]));
@@ -217,10 +243,10 @@ static void shade8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int f
     rest8(ctx, ls, r, found, depth, hit, sp, c, out);
 }
 
-/* whitted_trace for the rays r[k] of the lanes of active: three or more
- * together, fewer one by one. */
-static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int depth,
-                   vec3 out[8])
+/* whitted_trace for the rays r[k] of the lanes of active, which are also
+ * the lanes of packet *p: three or more together, fewer one by one. */
+static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
+                   int depth, vec3 out[8])
 {
     if (!ray8_three_or_more(active)) {
         float weight = ctx->weight;
@@ -235,10 +261,8 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int d
         ctx->weight = weight;
         return;
     }
-    ray8 p;
-    ray8_pack(&p, r, active);
     scene_hit hit[8];
-    int found = scene_intersect8_spread(ctx->scene, &p, active, hit);
+    int found = scene_intersect8_spread(ctx->scene, p, active, hit);
     shade8(ctx, ls, r, active, found, depth, hit, out);
 }
 
