@@ -33,29 +33,50 @@ static vec3 bump(const trace_ctx *ctx, const scene_hit *hit, const surface *sf,
     return v3_is_finite(n) ? n : sf->n;
 }
 
-void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_point *out)
+/* The shading point of material m at point p with shading normal n and
+ * geometric normal ng, for a ray of unit direction d: both normals turned
+ * to face the ray; the geometric one decides the side, the shading one
+ * the lighting. */
+__attribute__((always_inline)) static inline void facing(shade_point *out, const material *m,
+                                                         vec3 d, vec3 p, vec3 n, vec3 ng,
+                                                         vec3 base)
 {
-    const scene *s = ctx->scene;
-    surface sf;
-    scene_surface_inline(s, r, hit, &sf);
-    const material *m = scene_hit_material(s, hit);
     out->m = m;
-    out->p = sf.p;
-    out->d = v3_norm(r->d);
-    out->base = v3_mul(m->color, sf.color); /* a mesh's vertex colours, else 1 */
-    if (m->texture >= 0) {
-        const texture *t = &s->textures[m->texture];
-        texture_point tp = texture_at(s, hit, &sf, t->space);
-        out->base = v3_mul(out->base, texture_eval(t, s->images, ctx->decode, &tp));
-    }
-    vec3 n = m->bump >= 0 ? bump(ctx, hit, &sf, m) : sf.n;
-    /* Both normals turned to face the incoming ray; the geometric one
-     * decides the side, the shading one the lighting. */
-    out->inside = v3_dot(out->d, sf.ng) > 0.0f;
-    out->ng = out->inside ? v3_neg(sf.ng) : sf.ng;
+    out->p = p;
+    out->d = d;
+    out->base = base;
+    out->inside = v3_dot(d, ng) > 0.0f;
+    out->ng = out->inside ? v3_neg(ng) : ng;
     out->n = out->inside ? v3_neg(n) : n;
     if (v3_dot(out->n, out->ng) < 0.0f)
         out->n = out->ng;
+}
+
+void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_point *out)
+{
+    const scene *s = ctx->scene;
+    const material *m = scene_hit_material(s, hit);
+    const object *o = &s->objects[hit->object];
+    vec3 d = v3_norm(r->d);
+    surface sf;
+    if (o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(m)) {
+        /* the commonest hit, as scene_surface finds it, kept apart so that
+         * its surface stays in registers: written to memory and read back
+         * in other widths, it stalled the loads */
+        surface plain;
+        sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), &plain);
+        facing(out, m, d, plain.p, plain.n, plain.ng, v3_mul(m->color, v3s(1.0f)));
+        return;
+    }
+    scene_surface_inline(s, r, hit, &sf);
+    vec3 base = v3_mul(m->color, sf.color); /* a mesh's vertex colours, else 1 */
+    if (m->texture >= 0) {
+        const texture *t = &s->textures[m->texture];
+        texture_point tp = texture_at(s, hit, &sf, t->space);
+        base = v3_mul(base, texture_eval(t, s->images, ctx->decode, &tp));
+    }
+    vec3 n = m->bump >= 0 ? bump(ctx, hit, &sf, m) : sf.n;
+    facing(out, m, d, sf.p, n, sf.ng, base);
 }
 
 vec3 shade_segment_crossed(const scene *s, const ray *r, float t, const shade_point *sp,
