@@ -36,14 +36,17 @@ static inline int bounce8(const bounce8_from *f, int found, bool reflect, ray rs
     const shade_point *sp = f->sp;
     const size_t n = sizeof *sp;
     /* adc_keep: share * k / max(total, 1), kept where k > 0 and not below the bailout */
-    __m256 kr = _mm256_loadu_ps(f->kr), gt = _mm256_loadu_ps(f->gt);
+    /* the lanes' factors were just stored one by one: loaded the same way,
+     * as a wide load of narrow stores waits for them to reach the cache */
+    __m256 kr = bounce8_load(f->kr, sizeof *f->kr, 0), gt = bounce8_load(f->gt, sizeof *f->gt, 0);
     __m256 k = reflect ? kr : gt;
-    __m256 w = _mm256_div_ps(_mm256_mul_ps(_mm256_loadu_ps(f->share), k),
+    __m256 w = _mm256_div_ps(_mm256_mul_ps(bounce8_load(f->share, sizeof *f->share, 0), k),
                              _mm256_max_ps(_mm256_add_ps(kr, gt), one));
     __m256 keep = _mm256_and_ps(_mm256_cmp_ps(k, zero, _CMP_GT_OQ),
                                 _mm256_cmp_ps(w, _mm256_set1_ps(f->bailout), _CMP_NLT_UQ));
     if (!reflect)
-        keep = _mm256_and_ps(keep, _mm256_cmp_ps(_mm256_loadu_ps(f->kt), zero, _CMP_GT_OQ));
+        keep = _mm256_and_ps(keep, _mm256_cmp_ps(bounce8_load(f->kt, sizeof *f->kt, 0), zero,
+                                                  _CMP_GT_OQ));
     found &= _mm256_movemask_ps(keep);
     if (!found)
         return 0;
@@ -81,7 +84,7 @@ static inline int bounce8(const bounce8_from *f, int found, bool reflect, ray rs
     _mm256_storeu_ps(p->oz, _mm256_add_ps(pz, _mm256_mul_ps(gz, s)));
     _mm256_storeu_ps(p->dx, dx), _mm256_storeu_ps(p->dy, dy), _mm256_storeu_ps(p->dz, dz);
     _mm256_storeu_ps(p->tmin, zero), _mm256_storeu_ps(p->tmax, _mm256_set1_ps(INFINITY));
-    _mm256_storeu_ps(p->time, _mm256_loadu_ps(f->time));
+    _mm256_storeu_ps(p->time, bounce8_load(f->time, sizeof *f->time, 0));
     float ws[8];
     _mm256_storeu_ps(ws, w);
     for (int b = found; b; b &= b - 1) {
