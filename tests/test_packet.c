@@ -199,6 +199,27 @@ Test(packet, equal_distances_go_to_the_lower_triangle)
     mesh_drop(m);
 }
 
+/* Packet i, p, of which the rays of active ask, against scene s: each
+ * ray's hit is scene_intersect's to the bit. Returns how many hits were
+ * of kind. */
+static int same_packet_hits(scene *s, const ray8 *p, int active, int i, shape_kind kind)
+{
+    int of_kind = 0;
+    scene_hit h8[8], h1;
+    int found = scene_intersect8(s, p, active, h8);
+    for (int k = 0; k < 8; k++) {
+        ray r = ray8_get(p, k);
+        bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
+        cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
+        if (!hit)
+            continue;
+        cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+        expect_same_hit(&h8[k].h, &h1.h, i, k);
+        of_kind += s->objects[h1.object].shape.kind == kind;
+    }
+    return of_kind;
+}
+
 /* A ground plane and copies of a turned mesh with a sphere beside each:
  * one copy makes a flat scene, three a tree of one node, twelve a deeper
  * tree. */
@@ -241,21 +262,7 @@ Test(packet, scene_hits_match_one_ray_at_a_time_on_every_path)
             rng g = rng_seed(9, 4);
             for (int i = 0; i < 3000; i++) {
                 ray8 p = packet_of(&g, i, v3(0.3f, -0.2f, 25.0f));
-                int active = i % 7 == 0 ? 0xe6 : 0xff;
-                scene_hit h8[8], h1;
-                int found = scene_intersect8(s, &p, active, h8);
-                for (int k = 0; k < 8; k++) {
-                    ray r = ray8_get(&p, k);
-                    bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
-                    cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
-                    if (!hit)
-                        continue;
-                    cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
-                    if (s->objects[h1.object].shape.kind == SHAPE_MESH)
-                        expect_same_hit(&h8[k].h, &h1.h, i, k);
-                    else /* other shapes leave b1, b2 unset */
-                        cr_assert(h8[k].h.t == h1.h.t && h8[k].h.part == h1.h.part);
-                }
+                same_packet_hits(s, &p, i % 7 == 0 ? 0xe6 : 0xff, i, SHAPE_MESH);
             }
             scene_free(s);
         }
@@ -369,6 +376,41 @@ Test(packet, sphere_crossings_match_at_the_edges)
     accel_isa_force(ACCEL_AUTO);
 }
 
+/* Shape sh alone in a scene, met by the rays of packet p together on
+ * every path that tests it eight at a time: each hit must be the one
+ * shape_intersect finds, distance and part to the bit. Returns the rays
+ * that hit it, with shape_intersect's hits in one[k]. */
+static int alone_in_packets(const shape *sh, const ray8 *p, shape_hit one[8])
+{
+    int hits = 0;
+    for (int k = 0; k < 8; k++) {
+        ray r = ray8_get(p, k);
+        one[k] = (shape_hit){0};
+        hits |= shape_intersect(sh, &r, &one[k]) << k;
+    }
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    cr_assert_geq(scene_add_object(s, sh, scene_add_material(s, &mt), -1), 0);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene_hit h8[8];
+        cr_assert_eq(scene_intersect8(s, p, 0xff, h8), hits, "path %d", path);
+        for (int m = hits; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            cr_assert(h8[k].h.t == one[k].t && h8[k].h.part == one[k].part,
+                      "path %d ray %d: t %.9g part %d, want t %.9g part %d", path, k,
+                      (double)h8[k].h.t, h8[k].h.part, (double)one[k].t, one[k].part);
+        }
+    }
+    accel_isa_force(ACCEL_AUTO);
+    scene_free(s);
+    return hits;
+}
+
 /* A box's hits eight at a time, on every path that tests them so: rays
  * parallel to two slabs (inside one, outside another, on a boundary),
  * through a corner and along an edge (the entry distances of two or three
@@ -388,34 +430,13 @@ Test(packet, box_hits_match_at_the_edges)
     put(&p, 6, v3(5.0f, 4.0f, 4.0f), v3(-1.0f, -1.25f, -1.5f), 0.0f, 1e3f);
     put(&p, 7, v3(0.5f, 0.0f, -9.0f), v3(0, 0, 1), 7.0f, INFINITY);     /* past the entry */
     const int want[8] = {4, -1, 1, 0, 0, 5, -2, 5}; /* -2: whichever box_intersect says */
-    scene *s = scene_new();
-    cr_assert_not_null(s);
-    material mt = material_default();
     shape box = shape_box(lo, hi);
-    cr_assert_geq(scene_add_object(s, &box, scene_add_material(s, &mt), -1), 0);
-    glint_error err = {0};
-    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
-    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
-        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
-            continue;
-        scene_hit h8[8];
-        int found = scene_intersect8(s, &p, 0xff, h8);
-        for (int k = 0; k < 8; k++) {
-            ray r = ray8_get(&p, k);
-            shape_hit one = {0};
-            bool hit = box_intersect(&box.box, &r, &one);
-            cr_assert_eq(hit, want[k] != -1, "ray %d", k);
-            cr_assert_eq(found >> k & 1, hit, "path %d ray %d", path, k);
-            if (!hit)
-                continue;
-            cr_assert(h8[k].h.t == one.t && h8[k].h.part == one.part,
-                      "path %d ray %d: t %.9g face %d, want t %.9g face %d", path, k,
-                      (double)h8[k].h.t, h8[k].h.part, (double)one.t, one.part);
-            cr_assert(want[k] < 0 || one.part == want[k], "ray %d: face %d", k, one.part);
-        }
+    shape_hit one[8];
+    int hits = alone_in_packets(&box, &p, one);
+    for (int k = 0; k < 8; k++) {
+        cr_assert_eq(hits >> k & 1, want[k] != -1, "ray %d", k);
+        cr_assert(want[k] < 0 || one[k].part == want[k], "ray %d: face %d", k, one[k].part);
     }
-    accel_isa_force(ACCEL_AUTO);
-    scene_free(s);
 }
 
 /* A cylinder's hits eight at a time, capped and open, as
@@ -435,38 +456,14 @@ Test(packet, cylinder_hits_match_at_the_edges)
     put(&p, 6, v3(9.0f, 9.0f, 9.0f), v3(1, 1, 1), 0.0f, 1e3f);        /* away */
     put(&p, 7, v3(2.0f, -9.0f, 0.0f), v3(-0.1f, 1.0f, 0.2f), 0.0f, 1e3f); /* up: cap 1 */
     for (int capped = 0; capped < 2; capped++) {
-        scene *s = scene_new();
-        cr_assert_not_null(s);
-        material mt = material_default();
         shape cyl = shape_cylinder(base, 2.0f, 3.0f, capped);
-        cr_assert_geq(scene_add_object(s, &cyl, scene_add_material(s, &mt), -1), 0);
-        glint_error err = {0};
-        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
-        int parts[3] = {0, 0, 0};
-        for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
-            if (accel_isa_force((accel_isa)path) != (accel_isa)path)
-                continue;
-            scene_hit h8[8];
-            int found = scene_intersect8(s, &p, 0xff, h8);
-            for (int k = 0; k < 8; k++) {
-                ray r = ray8_get(&p, k);
-                shape_hit one = {0};
-                bool hit = cylinder_intersect(&cyl.cylinder, &r, &one);
-                cr_assert_eq(found >> k & 1, hit, "capped %d path %d ray %d", capped, path, k);
-                if (!hit)
-                    continue;
-                cr_assert(h8[k].h.t == one.t && h8[k].h.part == one.part,
-                          "capped %d path %d ray %d: t %.9g part %d, want t %.9g part %d",
-                          capped, path, k, (double)h8[k].h.t, h8[k].h.part, (double)one.t,
-                          one.part);
-                parts[one.part]++;
-            }
-        }
-        accel_isa_force(ACCEL_AUTO);
-        if (accel_isa_best() >= ACCEL_AVX2) /* the side, and both caps when there are caps */
-            cr_assert(parts[0] > 0 && (parts[1] > 0) == capped && (parts[2] > 0) == capped,
-                      "capped %d: parts %d %d %d", capped, parts[0], parts[1], parts[2]);
-        scene_free(s);
+        shape_hit one[8];
+        int hits = alone_in_packets(&cyl, &p, one), parts[3] = {0, 0, 0};
+        for (int m = hits; m; m &= m - 1)
+            parts[one[__builtin_ctz((unsigned)m)].part]++;
+        /* the side, and both caps when there are caps */
+        cr_assert(parts[0] > 0 && (parts[1] > 0) == capped && (parts[2] > 0) == capped,
+                  "capped %d: parts %d %d %d", capped, parts[0], parts[1], parts[2]);
     }
 }
 
@@ -521,17 +518,25 @@ Test(packet, shadow_rays_match_one_ray_at_a_time)
     cr_assert_gt(spheres, 500, "sphere crossings: %d", spheres);
 }
 
+/* A scene of a ground plane at y = -2, of material *mat (the default). */
+static scene *grounded(int *mat)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    *mat = scene_add_material(s, &mt);
+    shape ground = shape_plane(v3(0, -2, 0), v3(0, 1, 0));
+    cr_assert_geq(scene_add_object(s, &ground, *mat, -1), 0);
+    return s;
+}
+
 /* A ground plane and a grid of turned tori (bench/tori.awk's row 8 in
  * small), some untransformed and one far larger, that camera packets meet
  * in many tori each, tested eight at a time by torus8_hit. */
 static scene *torus_scene(void)
 {
-    scene *s = scene_new();
-    cr_assert_not_null(s);
-    material mt = material_default();
-    int mat = scene_add_material(s, &mt);
-    shape ground = shape_plane(v3(0, -2, 0), v3(0, 1, 0));
-    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    int mat;
+    scene *s = grounded(&mat);
     rng g = rng_seed(31, 2);
     for (int i = 0; i < 12; i++)
         for (int j = 0; j < 12; j++) {
@@ -567,19 +572,7 @@ static int same_hits(scene *s, vec3 eye, int packets, shape_kind kind)
             p.dx[k] = 0.1f * p.dx[k];
             p.dy[k] = 0.1f * p.dy[k];
         }
-        int active = i % 7 == 0 ? 0x5b : 0xff;
-        scene_hit h8[8], h1;
-        int found = scene_intersect8(s, &p, active, h8);
-        for (int k = 0; k < 8; k++) {
-            ray r = ray8_get(&p, k);
-            bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
-            cr_assert_eq(found >> k & 1, hit, "packet %d ray %d", i, k);
-            if (!hit)
-                continue;
-            cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
-            expect_same_hit(&h8[k].h, &h1.h, i, k);
-            of_kind += s->objects[h1.object].shape.kind == kind;
-        }
+        of_kind += same_packet_hits(s, &p, i % 7 == 0 ? 0x5b : 0xff, i, kind);
     }
     return of_kind;
 }
@@ -603,12 +596,8 @@ Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
  * some as they are, over a plane. */
 static scene *turned_scene(void)
 {
-    scene *s = scene_new();
-    cr_assert_not_null(s);
-    material mt = material_default();
-    int mat = scene_add_material(s, &mt);
-    shape ground = shape_plane(v3(0, -2, 0), v3(0, 1, 0));
-    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    int mat;
+    scene *s = grounded(&mat);
     rng g = rng_seed(7, 3);
     for (int i = 0; i < 10; i++)
         for (int j = 0; j < 10; j++) {

@@ -5,86 +5,47 @@
 #ifndef GLINT_TRACE_BOUNCE8_H
 #define GLINT_TRACE_BOUNCE8_H
 
-#include <immintrin.h>
-#include <math.h>
-#include <stddef.h>
-#include <string.h>
 #include "trace/bounce8_api.h"
-
-/* Field `off` (bytes into an element of `size` bytes) of the eight
- * elements from `base`, by eight loads. */
-static inline __m256 bounce8_load(const void *base, size_t size, size_t off)
-{
-    const char *f = (const char *)base + off;
-    float v[8];
-    for (int k = 0; k < 8; k++)
-        memcpy(&v[k], f + (size_t)k * size, sizeof v[k]);
-    return _mm256_setr_ps(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
-}
-
-static inline __m256 bounce8_dot(__m256 ax, __m256 ay, __m256 az, __m256 bx, __m256 by, __m256 bz)
-{
-    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ax, bx), _mm256_mul_ps(ay, by)),
-                         _mm256_mul_ps(az, bz));
-}
+#include "trace/simd8.h"
 
 static inline int bounce8(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,
                           float weight[8])
 {
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    const __m256 abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
     const shade_point *sp = f->sp;
-    const size_t n = sizeof *sp;
-    /* adc_keep: share * k / max(total, 1), kept where k > 0 and not below the bailout */
-    /* the lanes' factors were just stored one by one: loaded the same way,
-     * as a wide load of narrow stores waits for them to reach the cache */
-    __m256 kr = bounce8_load(f->kr, sizeof *f->kr, 0), gt = bounce8_load(f->gt, sizeof *f->gt, 0);
+    const size_t size = sizeof *sp;
+    /* adc_keep: share * k / max(total, 1), kept where k > 0 and not below
+     * the bailout; the factors were just stored one by one */
+    __m256 kr = simd8_field(f->kr, sizeof(float), 0), gt = simd8_field(f->gt, sizeof(float), 0);
     __m256 k = reflect ? kr : gt;
-    __m256 w = _mm256_div_ps(_mm256_mul_ps(bounce8_load(f->share, sizeof *f->share, 0), k),
+    __m256 w = _mm256_div_ps(_mm256_mul_ps(simd8_field(f->share, sizeof(float), 0), k),
                              _mm256_max_ps(_mm256_add_ps(kr, gt), one));
     __m256 keep = _mm256_and_ps(_mm256_cmp_ps(k, zero, _CMP_GT_OQ),
                                 _mm256_cmp_ps(w, _mm256_set1_ps(f->bailout), _CMP_NLT_UQ));
     if (!reflect)
-        keep = _mm256_and_ps(keep, _mm256_cmp_ps(bounce8_load(f->kt, sizeof *f->kt, 0), zero,
+        keep = _mm256_and_ps(keep, _mm256_cmp_ps(simd8_field(f->kt, sizeof(float), 0), zero,
                                                   _CMP_GT_OQ));
     found &= _mm256_movemask_ps(keep);
     if (!found)
         return 0;
-    __m256 dx, dy, dz;
+    __m256 d[3], at[3], ng[3], o[3];
     if (reflect) { /* v3_reflect(d, n) = d + n (-2 d.n) */
-        __m256 ix = bounce8_load(sp, n, offsetof(shade_point, d.x));
-        __m256 iy = bounce8_load(sp, n, offsetof(shade_point, d.y));
-        __m256 iz = bounce8_load(sp, n, offsetof(shade_point, d.z));
-        __m256 nx = bounce8_load(sp, n, offsetof(shade_point, n.x));
-        __m256 ny = bounce8_load(sp, n, offsetof(shade_point, n.y));
-        __m256 nz = bounce8_load(sp, n, offsetof(shade_point, n.z));
-        __m256 s = _mm256_mul_ps(_mm256_set1_ps(-2.0f), bounce8_dot(ix, iy, iz, nx, ny, nz));
-        dx = _mm256_add_ps(ix, _mm256_mul_ps(nx, s));
-        dy = _mm256_add_ps(iy, _mm256_mul_ps(ny, s));
-        dz = _mm256_add_ps(iz, _mm256_mul_ps(nz, s));
+        __m256 in[3], n[3];
+        simd8_vec3(sp, size, offsetof(shade_point, d), in);
+        simd8_vec3(sp, size, offsetof(shade_point, n), n);
+        __m256 s = _mm256_mul_ps(_mm256_set1_ps(-2.0f), simd8_dot(in, n));
+        for (int c = 0; c < 3; c++)
+            d[c] = _mm256_add_ps(in[c], _mm256_mul_ps(n[c], s));
     } else {
-        dx = bounce8_load(f->tdir, sizeof *f->tdir, offsetof(vec3, x));
-        dy = bounce8_load(f->tdir, sizeof *f->tdir, offsetof(vec3, y));
-        dz = bounce8_load(f->tdir, sizeof *f->tdir, offsetof(vec3, z));
+        simd8_vec3(f->tdir, sizeof *f->tdir, 0, d);
     }
-    /* ray_offset(p, ng, d) */
-    __m256 px = bounce8_load(sp, n, offsetof(shade_point, p.x));
-    __m256 py = bounce8_load(sp, n, offsetof(shade_point, p.y));
-    __m256 pz = bounce8_load(sp, n, offsetof(shade_point, p.z));
-    __m256 gx = bounce8_load(sp, n, offsetof(shade_point, ng.x));
-    __m256 gy = bounce8_load(sp, n, offsetof(shade_point, ng.y));
-    __m256 gz = bounce8_load(sp, n, offsetof(shade_point, ng.z));
-    __m256 m = _mm256_max_ps(_mm256_and_ps(px, abs),
-                             _mm256_max_ps(_mm256_and_ps(py, abs), _mm256_and_ps(pz, abs)));
-    __m256 e = _mm256_mul_ps(_mm256_set1_ps(RAY_EPS_REL), _mm256_add_ps(one, m));
-    __m256 out = _mm256_cmp_ps(bounce8_dot(gx, gy, gz, dx, dy, dz), zero, _CMP_GE_OQ);
-    __m256 s = _mm256_blendv_ps(_mm256_xor_ps(e, _mm256_set1_ps(-0.0f)), e, out);
-    _mm256_storeu_ps(p->ox, _mm256_add_ps(px, _mm256_mul_ps(gx, s)));
-    _mm256_storeu_ps(p->oy, _mm256_add_ps(py, _mm256_mul_ps(gy, s)));
-    _mm256_storeu_ps(p->oz, _mm256_add_ps(pz, _mm256_mul_ps(gz, s)));
-    _mm256_storeu_ps(p->dx, dx), _mm256_storeu_ps(p->dy, dy), _mm256_storeu_ps(p->dz, dz);
+    simd8_vec3(sp, size, offsetof(shade_point, p), at);
+    simd8_vec3(sp, size, offsetof(shade_point, ng), ng);
+    simd8_offset(at, ng, d, o);
+    _mm256_storeu_ps(p->ox, o[0]), _mm256_storeu_ps(p->oy, o[1]), _mm256_storeu_ps(p->oz, o[2]);
+    _mm256_storeu_ps(p->dx, d[0]), _mm256_storeu_ps(p->dy, d[1]), _mm256_storeu_ps(p->dz, d[2]);
     _mm256_storeu_ps(p->tmin, zero), _mm256_storeu_ps(p->tmax, _mm256_set1_ps(INFINITY));
-    _mm256_storeu_ps(p->time, bounce8_load(f->time, sizeof *f->time, 0));
+    _mm256_storeu_ps(p->time, simd8_field(f->time, sizeof(float), 0));
     float ws[8];
     _mm256_storeu_ps(ws, w);
     for (int b = found; b; b &= b - 1) {
