@@ -9,7 +9,7 @@
 #include "trace/simd8.h"
 
 /* light8_point (light8_api.h). */
-static inline int light8_point(const light *l, const shade_point *sp, int lanes,
+__attribute__((always_inline)) static inline int light8_point(const light *l, const shade_point *sp, int lanes,
                                const float time[8], ray8 *p, light8_seen *out)
 {
     const struct point_light *pl = &l->point;

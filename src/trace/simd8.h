@@ -9,28 +9,40 @@
 #include <string.h>
 #include "core/ray.h"
 
+/* The float at f. */
+__attribute__((always_inline)) static inline float simd8_float(const char *f)
+{
+    float v;
+    memcpy(&v, f, sizeof v);
+    return v;
+}
+
 /* The float at byte `off` of each of the eight records of `size` bytes
  * from base, by eight loads: faster here than a gather instruction, and
  * unlike one wide load it does not wait for fields just stored one by one
  * to reach the cache. */
-static inline __m256 simd8_field(const void *base, size_t size, size_t off)
+__attribute__((always_inline)) static inline __m256 simd8_field(const void *base, size_t size,
+                                                                size_t off)
 {
     const char *f = (const char *)base + off;
-    float v[8];
-    for (int k = 0; k < 8; k++)
-        memcpy(&v[k], f + (size_t)k * size, sizeof v[k]);
-    return _mm256_setr_ps(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
+    return _mm256_setr_ps(simd8_float(f), simd8_float(f + size), simd8_float(f + 2 * size),
+                          simd8_float(f + 3 * size), simd8_float(f + 4 * size),
+                          simd8_float(f + 5 * size), simd8_float(f + 6 * size),
+                          simd8_float(f + 7 * size));
 }
 
 /* The vec3 at byte `off` of each record, as three registers. */
-static inline void simd8_vec3(const void *base, size_t size, size_t off, __m256 v[3])
+__attribute__((always_inline)) static inline void simd8_vec3(const void *base, size_t size,
+                                                              size_t off, __m256 v[3])
 {
-    for (int c = 0; c < 3; c++)
-        v[c] = simd8_field(base, size, off + (size_t)c * sizeof(float));
+    v[0] = simd8_field(base, size, off);
+    v[1] = simd8_field(base, size, off + sizeof(float));
+    v[2] = simd8_field(base, size, off + 2 * sizeof(float));
 }
 
 /* v3_dot's (a.x * b.x + a.y * b.y) + a.z * b.z, lane by lane. */
-static inline __m256 simd8_dot(const __m256 a[3], const __m256 b[3])
+__attribute__((always_inline)) static inline __m256 simd8_dot(const __m256 a[3],
+                                                              const __m256 b[3])
 {
     return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], b[0]), _mm256_mul_ps(a[1], b[1])),
                          _mm256_mul_ps(a[2], b[2]));
@@ -38,8 +50,9 @@ static inline __m256 simd8_dot(const __m256 a[3], const __m256 b[3])
 
 /* ray_offset (core/ray.h) lane by lane: the origin for rays leaving
  * points p (geometric normals ng) in directions d. */
-static inline void simd8_offset(const __m256 p[3], const __m256 ng[3], const __m256 d[3],
-                                __m256 o[3])
+__attribute__((always_inline)) static inline void simd8_offset(const __m256 p[3],
+                                                                const __m256 ng[3],
+                                                                const __m256 d[3], __m256 o[3])
 {
     const __m256 abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
     __m256 m = _mm256_max_ps(_mm256_and_ps(p[0], abs),
