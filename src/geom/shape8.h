@@ -31,6 +31,13 @@ static inline __m256 dot8(__m256 ax, __m256 ay, __m256 az, __m256 bx, __m256 by,
                          _mm256_mul_ps(az, bz));
 }
 
+/* copysignf(mag, sgn), lane by lane. */
+static inline __m256 copysign8(__m256 mag, __m256 sgn)
+{
+    const __m256 sign = _mm256_set1_ps(-0.0f);
+    return _mm256_or_ps(_mm256_andnot_ps(sign, mag), _mm256_and_ps(sign, sgn));
+}
+
 /* ray_in_range: tmin < t < tmax. */
 static inline __m256 in_range8(__m256 t, __m256 tmin, __m256 tmax)
 {
@@ -65,8 +72,7 @@ static inline int sphere8_roots(const struct sphere *s, const rays8 *r, int acti
     active &= ~_mm256_movemask_ps(_mm256_cmp_ps(disc, zero, _CMP_LT_OQ));
     if (!active)
         return 0;
-    __m256 root = _mm256_sqrt_ps(disc); /* copysignf(root, b): */
-    __m256 q = _mm256_add_ps(b, _mm256_or_ps(_mm256_andnot_ps(sign, root), _mm256_and_ps(sign, b)));
+    __m256 q = _mm256_add_ps(b, copysign8(_mm256_sqrt_ps(disc), b));
     __m256 q0 = _mm256_cmp_ps(q, zero, _CMP_EQ_OQ);
     __m256 t0 = _mm256_andnot_ps(q0, _mm256_div_ps(c, q));
     __m256 t1 = _mm256_andnot_ps(q0, _mm256_div_ps(q, a));
@@ -196,8 +202,9 @@ static inline int box8_hit(const struct box *s, const rays8 *r, __m256 tmax, int
     for (int a = 0; a < 3; a++) {
         __m256 l = _mm256_set1_ps(lo[a]), h = _mm256_set1_ps(hi[a]);
         __m256 flat = _mm256_cmp_ps(d[a], zero, _CMP_EQ_OQ); /* parallel to the slab */
-        miss = _mm256_or_ps(miss, _mm256_and_ps(flat, _mm256_or_ps(_mm256_cmp_ps(o[a], l, _CMP_LT_OQ),
-                                                                   _mm256_cmp_ps(o[a], h, _CMP_GT_OQ))));
+        __m256 out = _mm256_or_ps(_mm256_cmp_ps(o[a], l, _CMP_LT_OQ),
+                                  _mm256_cmp_ps(o[a], h, _CMP_GT_OQ));
+        miss = _mm256_or_ps(miss, _mm256_and_ps(flat, out));
         __m256 inv = _mm256_div_ps(one, d[a]);
         __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(l, o[a]), inv);
         __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(h, o[a]), inv);
@@ -261,8 +268,7 @@ static inline int cylinder8_hit(const struct cylinder *s, const rays8 *r, __m256
         __m256 disc = _mm256_mul_ps(a, _mm256_sub_ps(rr, dot2_8(lx, lz, lx, lz)));
         side = _mm256_and_ps(side, _mm256_cmp_ps(disc, zero, _CMP_GE_OQ));
         __m256 c = _mm256_sub_ps(dot2_8(ox, oz, ox, oz), rr);
-        __m256 root = _mm256_sqrt_ps(disc); /* copysignf(root, b): */
-        __m256 q = _mm256_add_ps(b, _mm256_or_ps(_mm256_andnot_ps(sign, root), _mm256_and_ps(sign, b)));
+        __m256 q = _mm256_add_ps(b, copysign8(_mm256_sqrt_ps(disc), b));
         __m256 ts[2] = {_mm256_andnot_ps(_mm256_cmp_ps(q, zero, _CMP_EQ_OQ), _mm256_div_ps(c, q)),
                         _mm256_div_ps(q, a)};
         for (int i = 0; i < 2; i++) {

@@ -164,7 +164,7 @@ static bool packs(const scene *s, const object *o)
 {
     if (o->shape.kind == SHAPE_MESH)
         return !o->moving && eight_wide(o->shape.mesh->bvh.isa);
-    return o->shape.kind != SHAPE_TORUS && tests_eight(o) && eight_wide(s->bvh.isa);
+    return !o->moving && shape_tests_eight(o->shape.kind) && eight_wide(s->bvh.isa);
 }
 
 bool scene_packets_pay(const scene *s)

@@ -8,8 +8,9 @@
 #include "trace/bounce8_api.h"
 #include "trace/simd8.h"
 
-__attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,
-                          float weight[8])
+__attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, int found,
+                                                         bool reflect, ray rs[8], ray8 *p,
+                                                         float weight[8])
 {
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
     const shade_point *sp = f->sp;

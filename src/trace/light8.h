@@ -9,8 +9,10 @@
 #include "trace/simd8.h"
 
 /* light8_point (light8_api.h). */
-__attribute__((always_inline)) static inline int light8_point(const light *l, const shade_point *sp, int lanes,
-                               const float time[8], ray8 *p, light8_seen *out)
+__attribute__((always_inline)) static inline int light8_point(const light *l,
+                                                              const shade_point *sp, int lanes,
+                                                              const float time[8], ray8 *p,
+                                                              light8_seen *out)
 {
     const struct point_light *pl = &l->point;
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
@@ -32,9 +34,8 @@ __attribute__((always_inline)) static inline int light8_point(const light *l, co
                        _mm256_set1_ps(l->color.z)};
     vec3 att = pl->attenuation;
     if (!(att.x == 1.0f && att.y == 0.0f && att.z == 0.0f)) { /* light_attenuation */
-        __m256 k = _mm256_add_ps(_mm256_set1_ps(att.x),
-                                 _mm256_mul_ps(dist, _mm256_add_ps(_mm256_set1_ps(att.y),
-                                                                   _mm256_mul_ps(dist, _mm256_set1_ps(att.z)))));
+        __m256 lq = _mm256_add_ps(_mm256_set1_ps(att.y), _mm256_mul_ps(dist, _mm256_set1_ps(att.z)));
+        __m256 k = _mm256_add_ps(_mm256_set1_ps(att.x), _mm256_mul_ps(dist, lq));
         __m256 f = _mm256_and_ps(_mm256_cmp_ps(k, zero, _CMP_GT_OQ), _mm256_div_ps(one, k));
         for (int c = 0; c < 3; c++)
             color[c] = _mm256_mul_ps(color[c], f);
@@ -56,6 +57,8 @@ __attribute__((always_inline)) static inline int light8_point(const light *l, co
     _mm256_storeu_ps(p->dz, _mm256_sub_ps(pos[2], o[2]));
     _mm256_storeu_ps(p->tmin, zero), _mm256_storeu_ps(p->tmax, one);
     _mm256_storeu_ps(p->time, _mm256_loadu_ps(time));
+    if (need)
+        ray8_fill(p, need);
     _mm256_storeu_ps(out->ndl, ndl);
     for (int c = 0; c < 3; c++) {
         _mm256_storeu_ps(out->dir[c], u[c]);

@@ -14,8 +14,9 @@ typedef struct light8_seen {
 
 /* Point light l (one sample) from the points sp[k] of the lanes of lanes,
  * whose samples are at time[k]: returns the lanes it lights (lit), with
- * their shadow rays in the lanes of *p (the others hold numbers) and what
- * each sees in *out; -1 where a shadow ray would have no end. */
+ * their shadow rays in the lanes of *p (the others repeat one of them,
+ * as ray8_fill leaves them) and what each sees in *out; -1 where a shadow
+ * ray would have no end. */
 int light8_point_avx2(const light *l, const shade_point *sp, int lanes, const float time[8],
                       ray8 *p, light8_seen *out);
 int light8_point_avx512(const light *l, const shade_point *sp, int lanes, const float time[8],

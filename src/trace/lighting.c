@@ -218,8 +218,6 @@ static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l,
     vec3 vis[8];
     int need = l->kind == LIGHT_POINT ? point8(ctx, l, sp, lanes, tl, &p, &seen) : -1;
     if (need >= 0) {
-        if (need)
-            ray8_fill(&p, need);
         shadow8_rays(ctx, &p, need, vis);
         for (int m = need; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);

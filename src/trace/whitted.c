@@ -230,7 +230,7 @@ static __attribute__((noinline)) void prepare8(trace_ctx *ctx, const ray r[8], i
 static void shade8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int found,
                    int depth, const scene_hit hit[8], vec3 out[8])
 {
-    shade_point sp[8]; /* set for the lanes of found, the only ones read */
+    shade_point sp[8]; /* set for the lanes of found, the only ones used */
     vec3 c[8];
     prepare8(ctx, r, found, hit, sp);
     lighting_local8(ctx, ls->tl, sp, found, ls->events, c);
