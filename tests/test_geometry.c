@@ -247,6 +247,49 @@ Test(geometry, torus_hit_known_t)
     cr_assert(shape_is_solid(&s));
 }
 
+/* The surface point of a hit lies on the surface to float precision and
+ * the normal is the field's gradient direction, out of the tube: on a
+ * ring torus, and on a spindle torus (r > R), whose lens round the centre
+ * faces inwards, seen from above and below along the axis. */
+Test(geometry, torus_surface_on_the_tube_and_on_the_lens)
+{
+    struct { float R, r; } tori[] = {{2, 0.5f}, {0.32f, 0.1f}, {0.5f, 0.8f}};
+    for (int k = 0; k < 3; k++) {
+        shape s = shape_torus(v3(0.3f, -0.2f, 0.1f), tori[k].R, tori[k].r);
+        double R = tori[k].R, r = tori[k].r;
+        rng g = rng_seed(77, (uint64_t)k);
+        int n = 0;
+        for (int i = 0; i < 4000; i++) {
+            vec3 o = v3_add(s.torus.center, v3_scale(rng_unit_dir(&g), 4.0f));
+            vec3 d = v3_sub(v3_add(s.torus.center, v3(rng_float(&g) - 0.5f, rng_float(&g) - 0.5f,
+                                                      rng_float(&g) - 0.5f)), o);
+            if (i % 2) { /* from the centre: the lens, or the hole */
+                o = v3_add(s.torus.center, v3_scale(rng_unit_dir(&g), 0.05f));
+                d = rng_unit_dir(&g);
+            }
+            ray ry = ray_make(o, d, INFINITY);
+            shape_hit h;
+            if (!shape_intersect(&s, &ry, &h))
+                continue;
+            surface sf;
+            shape_surface(&s, &ry, &h, &sf);
+            double q[3] = {sf.p.x - s.torus.center.x, sf.p.y - s.torus.center.y,
+                           sf.p.z - s.torus.center.z};
+            double rho = hypot(q[0], q[2]), a = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + R * R;
+            double near = sqrt(a - 2 * R * rho), far = sqrt(a + 2 * R * rho);
+            cr_assert(fabs(near - r) < 2e-6 || fabs(far - r) < 2e-6, "torus %d ray %d", k, i);
+            double gr[3] = {4 * (a - r * r) * q[0] - 8 * R * R * q[0], 4 * (a - r * r) * q[1],
+                            4 * (a - r * r) * q[2] - 8 * R * R * q[2]};
+            double gl = sqrt(gr[0] * gr[0] + gr[1] * gr[1] + gr[2] * gr[2]);
+            if (gl < 1e-3)
+                continue; /* the lens's tips, where the gradient vanishes */
+            ASSERT_V3_NEAR(sf.n, gr[0] / gl, gr[1] / gl, gr[2] / gl, 1e-4);
+            n++;
+        }
+        cr_assert_gt(n, 500, "torus %d: only %d hits", k, n);
+    }
+}
+
 Test(geometry, torus_miss_inside_and_tmax)
 {
     shape s = shape_torus(v3(0, 0, 0), 2, 0.5f);

@@ -266,11 +266,16 @@ typedef struct torus_quartic {
     double py, uy; /* the entry point's and the direction's y */
 } torus_quartic;
 bool torus_solve(const torus_quartic *q, const ray *r, shape_hit *hit);
+/* torus_occluded's answer from the quartic (torus.c). */
+bool torus_blocks(const torus_quartic *q, const ray *r);
 /* torus_intersect against the rays of active, each up to its own tmax:
  * returns the rays hit, with hit[k] as torus_intersect sets it (the rest
  * of it zero). On the eight-wide paths (geom/shape8.h). */
 int torus8_hit_avx2(const struct torus *s, const ray8 *r, int active, shape_hit *hit);
 int torus8_hit_avx512(const struct torus *s, const ray8 *r, int active, shape_hit *hit);
+/* torus_occluded for the rays of active: those blocked. */
+int torus8_occluded_avx2(const struct torus *s, const ray8 *r, int active);
+int torus8_occluded_avx512(const struct torus *s, const ray8 *r, int active);
 void torus_surface(const struct torus *s, vec3 p, surface *out);
 /* The same without (u, v) (left 0), which cost two arc tangents. */
 void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out);

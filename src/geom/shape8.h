@@ -335,6 +335,10 @@ static inline int shape8_hit(const shape *sh, const ray8 *r, const float *best, 
     int torus8_hit_##isa(const struct torus *s, const ray8 *r, int active, shape_hit *hit)     \
     {                                                                                          \
         return torus8_hit(s, r, active, hit);                                                  \
+    }                                                                                          \
+    int torus8_occluded_##isa(const struct torus *s, const ray8 *r, int active)                \
+    {                                                                                          \
+        return torus8_occluded(s, r, active);                                                  \
     }
 
 #endif

@@ -142,18 +142,21 @@ static bool dips_below(const torus_quartic *q, double x)
  * search would find counts, and a ray that is inside the tube where it
  * crosses the torus's plane (most shadow rays that a torus blocks) has
  * one. */
+bool torus_blocks(const torus_quartic *q, const ray *r)
+{
+    double t1 = q->t0 + q->hi / q->len;
+    if ((float)q->t0 > r->tmin && (float)(t1 + 1e-9 * fabs(t1)) < r->tmax && q->uy != 0.0) {
+        double x = -q->py / q->uy;
+        if (x > 0.0 && x < q->hi && dips_below(q, x))
+            return true;
+    }
+    return torus_solve(q, r, NULL);
+}
+
 bool torus_occluded(const struct torus *s, const ray *r)
 {
     torus_quartic q;
-    if (!setup(s, r, r->tmin, r->tmax, &q))
-        return false;
-    double t1 = q.t0 + q.hi / q.len;
-    if ((float)q.t0 > r->tmin && (float)(t1 + 1e-9 * fabs(t1)) < r->tmax && q.uy != 0.0) {
-        double x = -q.py / q.uy;
-        if (x > 0.0 && x < q.hi && dips_below(&q, x))
-            return true;
-    }
-    return torus_solve(&q, r, NULL);
+    return setup(s, r, r->tmin, r->tmax, &q) && torus_blocks(&q, r);
 }
 
 int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max)
@@ -173,38 +176,43 @@ int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max)
     return k;
 }
 
-/* f and its gradient at p. */
-static double field(double R2, double r2, const double p[3], double g[3])
-{
-    double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + R2 - r2;
-    g[0] = 4.0 * s * p[0] - 8.0 * R2 * p[0];
-    g[1] = 4.0 * s * p[1];
-    g[2] = 4.0 * s * p[2] - 8.0 * R2 * p[2];
-    return s * s - 4.0 * R2 * (p[0] * p[0] + p[2] * p[2]);
-}
-
-/* The point is moved onto the surface by two Newton steps along the
- * gradient (shape.h); the normal is the gradient there, which points out
- * of the tube. q is left as the point relative to the centre. */
+/* The point of the surface nearest p, and the outward normal there, in
+ * closed form. f factors as (|q - a|^2 - r^2)(|q - b|^2 - r^2), a and b
+ * the points of the centre circle nearest q and farthest from it (at
+ * distance R from the axis, towards q and away from it); a point near the
+ * surface is near the sphere of radius r round one of them, and its
+ * nearest point there is that centre plus r along the way to q. The
+ * normal is the gradient's direction, which points out of the tube: away
+ * from a, and, on the lens a spindle torus (r > R) holds round its
+ * centre, towards b. Exact, where Newton steps along the gradient would
+ * take three divisions each and land only near it. q is left as the
+ * point relative to the centre. */
 static void torus_point(const struct torus *s, vec3 p, surface *out, double q[3])
 {
-    double R2 = (double)s->major * s->major, r2 = (double)s->minor * s->minor;
+    double R = s->major, rm = s->minor;
     q[0] = (double)p.x - s->center.x, q[1] = (double)p.y - s->center.y;
     q[2] = (double)p.z - s->center.z;
-    double g[3];
-    for (int i = 0; i < 2; i++) {
-        double f = field(R2, r2, q, g);
-        double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-        if (!(gg > 0.0))
-            break;
-        for (int a = 0; a < 3; a++)
-            q[a] -= f * g[a] / gg;
+    double rho = sqrt(q[0] * q[0] + q[2] * q[2]);
+    double ax = R, az = 0.0; /* on the axis every circle point is as near */
+    if (rho > 0.0)
+        ax = R * q[0] / rho, az = R * q[2] / rho;
+    double w[3] = {q[0] - ax, q[1], q[2] - az}, sgn = 1.0;
+    double wa = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    double wb = (q[0] + ax) * (q[0] + ax) + q[1] * q[1] + (q[2] + az) * (q[2] + az);
+    if (fabs(wb - rm * rm) < fabs(wa - rm * rm)) { /* on the lens */
+        ax = -ax, az = -az, sgn = -1.0;
+        w[0] = q[0] - ax, w[2] = q[2] - az;
+        wa = wb;
     }
-    field(R2, r2, q, g);
-    double gl = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    double wl = sqrt(wa);
+    if (wl > 0.0) {
+        double k = rm / wl;
+        q[0] = ax + w[0] * k, q[1] = w[1] * k, q[2] = az + w[2] * k;
+    }
     out->p = v3((float)(q[0] + s->center.x), (float)(q[1] + s->center.y),
                 (float)(q[2] + s->center.z));
-    out->n = gl > 0.0 ? v3((float)(g[0] / gl), (float)(g[1] / gl), (float)(g[2] / gl))
+    out->n = wl > 0.0 ? v3((float)(sgn * w[0] / wl), (float)(sgn * w[1] / wl),
+                           (float)(sgn * w[2] / wl))
                       : v3(0.0f, 1.0f, 0.0f);
 }
 

@@ -126,12 +126,18 @@ static inline int torus4_setup(const struct torus *s, const ray8 *r, int base, i
     return live;
 }
 
+/* torus4_setup for the eight lanes: those whose segment survives. */
+static inline int torus8_setup(const struct torus *s, const ray8 *r, int active, torus_quartic q[8])
+{
+    return torus4_setup(s, r, 0, active & 15, q) |
+           torus4_setup(s, r, 4, active >> 4 & 15, q + 4) << 4;
+}
+
 /* torus_intersect against the rays of active, each within its own range. */
 static inline int torus8_hit(const struct torus *s, const ray8 *r, int active, shape_hit *hit)
 {
     torus_quartic q[8];
-    int live = torus4_setup(s, r, 0, active & 15, q) |
-               torus4_setup(s, r, 4, active >> 4 & 15, q + 4) << 4;
+    int live = torus8_setup(s, r, active, q);
     int found = 0;
     for (int m = live; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -141,6 +147,19 @@ static inline int torus8_hit(const struct torus *s, const ray8 *r, int active, s
             found |= 1 << k;
     }
     return found;
+}
+
+/* torus_occluded for the rays of active: those blocked. */
+static inline int torus8_occluded(const struct torus *s, const ray8 *r, int active)
+{
+    torus_quartic q[8];
+    int blocked = 0;
+    for (int m = torus8_setup(s, r, active, q); m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray one = ray8_get(r, k);
+        blocked |= torus_blocks(&q[k], &one) << k;
+    }
+    return blocked;
 }
 
 #endif

@@ -80,6 +80,20 @@ static int torus8_on_path(const scene *s, const struct torus *t, const ray8 *r, 
     return -1;
 }
 
+/* torus8_occluded on the scene's path; -1 where it has none. */
+static int torus8_occluded_on_path(const scene *s, const struct torus *t, const ray8 *r,
+                                   int active)
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return torus8_occluded_avx512(t, r, active);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return torus8_occluded_avx2(t, r, active);
+#endif
+    (void)s, (void)t, (void)r, (void)active;
+    return -1;
+}
+
 /* The rays of active in object o's space, each searched up to best[k] (as
  * scene_hit_object searches them; best NULL: as far as it goes already);
  * idle lanes repeat an active ray. */
@@ -198,14 +212,17 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
         return;
     const object *o = &s->objects[i];
     int met = -1;
-    if (ray8_three_or_more(active) && !o->moving && shape_tests_eight(o->shape.kind)) {
+    shape_kind kind = o->shape.kind;
+    if (ray8_three_or_more(active) && !o->moving &&
+        (kind == SHAPE_TORUS || shape_tests_eight(kind))) {
         ray8 lr;
         const ray8 *q = r;
         if (o->xform >= 0) {
             object_rays(s, o, r, active, NULL, &lr);
             q = &lr;
         }
-        met = shape8_on_path(s, &o->shape, q, NULL, active, NULL, NULL);
+        met = kind == SHAPE_TORUS ? torus8_occluded_on_path(s, &o->shape.torus, q, active)
+                                  : shape8_on_path(s, &o->shape, q, NULL, active, NULL, NULL);
     }
     if (met < 0 && o->transmits) { /* crossed or not: the crossings' search will say */
         *crosses |= active;
