@@ -100,6 +100,17 @@ static int torus8_occluded_on_path(const scene *s, const struct torus *t, const 
 static void object_rays(const scene *s, const object *o, const ray8 *r, int active,
                         const float *best, ray8 *lr)
 {
+#if defined(GLINT_WIDE_KERNELS)
+    const mat4 *inv = o->xform >= 0 ? &s->xforms[o->xform].inv : NULL;
+    if (s->bvh.isa == ACCEL_AVX512) {
+        scene_object_rays8_avx512(inv, r, active, best, lr);
+        return;
+    }
+    if (s->bvh.isa == ACCEL_AVX2) {
+        scene_object_rays8_avx2(inv, r, active, best, lr);
+        return;
+    }
+#endif
     ray in[8];
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);

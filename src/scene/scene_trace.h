@@ -352,8 +352,52 @@ __attribute__((always_inline)) static inline bool scene_shadow_walk8(const scene
     return true;
 }
 
-/* Defines scene_walk8_<isa> and scene_shadow_walk8_<isa>. */
+/* Row i of a times (x, y, z, w), in mat4_point's order of operations
+ * (w 0: mat4_vector's, which adds nothing). */
+static inline __m256 scene_row8(const float a[4], __m256 x, __m256 y, __m256 z, bool w)
+{
+    __m256 v = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(a[0]), x),
+                                           _mm256_mul_ps(_mm256_set1_ps(a[1]), y)),
+                             _mm256_mul_ps(_mm256_set1_ps(a[2]), z));
+    return w ? _mm256_add_ps(v, _mm256_set1_ps(a[3])) : v;
+}
+
+/* object_rays (scene_packet.c) in vector registers, to the bit the same:
+ * the rays of active through inv (NULL: as they are), each searched up to
+ * next_up(best[k]) (best NULL: its tmax), the idle lanes repeating the
+ * first active one (ray8_fill). */
+__attribute__((always_inline)) static inline void
+scene_object_rays8(const mat4 *inv, const ray8 *r, int active, const float *best, ray8 *out)
+{
+    __m256 v[9] = {_mm256_loadu_ps(r->ox),   _mm256_loadu_ps(r->oy),   _mm256_loadu_ps(r->oz),
+                   _mm256_loadu_ps(r->dx),   _mm256_loadu_ps(r->dy),   _mm256_loadu_ps(r->dz),
+                   _mm256_loadu_ps(r->tmin), _mm256_loadu_ps(r->tmax), _mm256_loadu_ps(r->time)};
+    if (inv) {
+        __m256 o[3] = {v[0], v[1], v[2]}, d[3] = {v[3], v[4], v[5]};
+        for (int i = 0; i < 3; i++) {
+            v[i] = scene_row8(inv->m[i], o[0], o[1], o[2], true);
+            v[3 + i] = scene_row8(inv->m[i], d[0], d[1], d[2], false);
+        }
+    }
+    if (best)
+        v[7] = packet_next_up(_mm256_loadu_ps(best));
+    __m256i first = _mm256_set1_epi32(__builtin_ctz((unsigned)active));
+    __m256 idle = packet_lanes(~active & 0xff);
+    float *field[9] = {out->ox, out->oy, out->oz, out->dx,  out->dy,
+                       out->dz, out->tmin, out->tmax, out->time};
+    for (int i = 0; i < 9; i++)
+        _mm256_storeu_ps(field[i],
+                         _mm256_blendv_ps(v[i], _mm256_permutevar8x32_ps(v[i], first), idle));
+}
+
+/* Defines scene_walk8_<isa>, scene_shadow_walk8_<isa> and
+ * scene_object_rays8_<isa>. */
 #define SCENE_PACKET_KERNELS(isa)                                                              \
+    void scene_object_rays8_##isa(const mat4 *inv, const ray8 *r, int active,                 \
+                                  const float *best, ray8 *out)                                \
+    {                                                                                          \
+        scene_object_rays8(inv, r, active, best, out);                                         \
+    }                                                                                          \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
                           scene_hit hit[8])                                                    \
     {                                                                                          \
@@ -456,6 +500,11 @@ bool scene_shadow_walk_avx512(const scene *s, const ray *r, scene_crossings *out
 int scene_walk8_avx2(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8]);
 int scene_walk8_avx512(const scene *s, const ray8 *r, int active, float best[8],
                        scene_hit hit[8]);
+/* object_rays eight lanes at once (scene_object_rays8). */
+void scene_object_rays8_avx2(const mat4 *inv, const ray8 *r, int active, const float *best,
+                             ray8 *out);
+void scene_object_rays8_avx512(const mat4 *inv, const ray8 *r, int active, const float *best,
+                               ray8 *out);
 bool scene_shadow_walk8_avx2(const scene *s, const ray8 *r, int active, int *blocked,
                              int *crosses);
 bool scene_shadow_walk8_avx512(const scene *s, const ray8 *r, int active, int *blocked,
