@@ -182,22 +182,27 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
         vec3 tdir[8], sub[8];
         ray rs[8];
         ray8 p;
+        int reflects = 0, transmits = 0; /* the lanes adc_keep may keep */
         for (int m = found; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             split(&sp[k], &kr[k], &kt[k], &tdir[k]);
             gt[k] = kt[k] * v3_max_comp(sp[k].m->tint);
             share[k] = ls->weight[k];
             time[k] = r[k].time;
+            reflects |= (kr[k] > 0.0f) << k;
+            transmits |= (kt[k] > 0.0f) << k;
         }
         bounce8_from f = {sp, share, kr, kt, gt, time, tdir, ctx->bailout};
-        int keep = secondaries(ctx, ls, &f, found, true, rs, &p);
-        trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
+        int keep = reflects ? secondaries(ctx, ls, &f, reflects, true, rs, &p) : 0;
+        if (keep)
+            trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
         for (int m = keep; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             c[k] = v3_madd(c[k], sub[k], kr[k]);
         }
-        keep = secondaries(ctx, ls, &f, found, false, rs, &p);
-        trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
+        keep = transmits ? secondaries(ctx, ls, &f, transmits, false, rs, &p) : 0;
+        if (keep)
+            trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
         for (int m = keep; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             c[k] = v3_add(c[k], v3_scale(v3_mul(sub[k], sp[k].m->tint), kt[k]));
