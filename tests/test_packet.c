@@ -15,6 +15,7 @@
 #include "geom/mesh_trace.h"
 #include "geom/shape.h"
 #include "scene/scene.h"
+#include "scene/scene_trace.h"
 
 static float uniform(rng *g, float lo, float hi) { return lo + (hi - lo) * rng_float(g); }
 
@@ -806,6 +807,52 @@ Test(packet, equal_distances_go_to_the_lower_object)
                          k, h1.object);
             cr_assert_eq(h8[k].object, 0);
             cr_assert_eq(h8[k].h.t, 10.0f);
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+}
+
+/* An object that meets rays exactly at their nearest hit so far (best[k],
+ * held by a higher index) takes those hits, as scene_hit_object would:
+ * turned (its rays in its own space, eight lanes at once) or not, a quad
+ * and a torus, on every path. */
+Test(packet, a_tie_at_the_nearest_hit_goes_to_the_lower_index)
+{
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = scene_new();
+        material mt = material_default();
+        int mat = scene_add_material(s, &mt);
+        xform turn = xform_rotate(v3(0.2f, 1, 0.1f), 30.0f);
+        int x = scene_add_xform(s, &turn);
+        shape quad = shape_quad(v3(-2, -2, 0), v3(4, 0, 0), v3(0, 4, 0));
+        shape torus = shape_torus(v3s(0.0f), 1.0f, 0.6f);
+        cr_assert_eq(scene_add_object(s, &quad, mat, x), 0);
+        cr_assert_eq(scene_add_object(s, &quad, mat, -1), 1);
+        cr_assert_eq(scene_add_object(s, &torus, mat, x), 2);
+        cr_assert_eq(scene_add_object(s, &torus, mat, -1), 3);
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        ray8 p;
+        for (int k = 0; k < 8; k++)
+            put(&p, k, v3(-1.2f + 0.3f * (float)k, 0.1f * (float)k, 10.0f), v3(0.01f, 0, -1), 0.0f,
+                INFINITY);
+        for (int i = 0; i < 4; i++) {
+            float best[8];
+            scene_hit hit[8];
+            for (int k = 0; k < 8; k++)
+                best[k] = INFINITY, hit[k].object = -1;
+            int first = scene_packet_object(s, i, &p, 0xff, best, hit);
+            cr_assert_geq(__builtin_popcount((unsigned)first), 4, "object %d: %#x", i, first);
+            for (int k = 0; k < 8; k++)
+                hit[k] = (scene_hit){{.t = best[k]}, 7}; /* the same distances, held by 7 */
+            int found = scene_packet_object(s, i, &p, first, best, hit);
+            cr_assert_eq(found, first, "%s, object %d: %#x", accel_isa_name((accel_isa)path), i,
+                         found);
+            for (int m = found; m; m &= m - 1)
+                cr_assert_eq(hit[__builtin_ctz((unsigned)m)].object, i);
         }
         scene_free(s);
     }
