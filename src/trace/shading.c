@@ -5,14 +5,18 @@
 #include "scene/scene_surface.h"
 #include "shade/texture.h"
 
-/* The point where a texture of this space is looked up. */
-static texture_point texture_at(const scene *s, const scene_hit *hit, const surface *sf,
-                                texture_space space)
+/* The point where a texture of this space is looked up, into *tp. Set
+ * in place, field by field: a struct returned and copied was read back
+ * in 16-byte loads just after its 4-byte stores, which stalled them. */
+static void texture_at(const scene *s, const scene_hit *hit, const surface *sf,
+                       texture_space space, texture_point *tp)
 {
-    texture_point tp = {sf->p, sf->n, sf->u, sf->v};
+    tp->p = sf->p;
+    tp->n = sf->n;
+    tp->u = sf->u;
+    tp->v = sf->v;
     if (space == SPACE_OBJECT)
-        scene_object_point(s, hit->object, sf->p, sf->n, &tp.p, &tp.n);
-    return tp;
+        scene_object_point(s, hit->object, sf->p, sf->n, &tp->p, &tp->n);
 }
 
 /* The outward normal n tilted by the bump pattern: the surface is raised
@@ -23,7 +27,8 @@ static vec3 bump(const trace_ctx *ctx, const scene_hit *hit, const surface *sf,
 {
     const scene *s = ctx->scene;
     const texture *t = &s->textures[m->bump];
-    texture_point tp = texture_at(s, hit, sf, t->space);
+    texture_point tp;
+    texture_at(s, hit, sf, t->space, &tp);
     vec3 g = texture_gradient(t, s->images, ctx->decode, &tp);
     const object *o = &s->objects[hit->object];
     if (t->space == SPACE_OBJECT && o->xform >= 0)
@@ -72,7 +77,8 @@ void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_poi
     vec3 base = v3_mul(m->color, sf.color); /* a mesh's vertex colours, else 1 */
     if (m->texture >= 0) {
         const texture *t = &s->textures[m->texture];
-        texture_point tp = texture_at(s, hit, &sf, t->space);
+        texture_point tp;
+        texture_at(s, hit, &sf, t->space, &tp);
         base = v3_mul(base, texture_eval(t, s->images, ctx->decode, &tp));
     }
     vec3 n = m->bump >= 0 ? bump(ctx, hit, &sf, m) : sf.n;
