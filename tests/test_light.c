@@ -288,15 +288,18 @@ Test(light, fresnel_off_and_emission)
     scene_free(s);
 }
 
-/* The highlight's power is powf's to the bit, the cases it answers without
- * powf (results of +0) included: every binade of (0, 1], mantissas from a
- * fixed seed, shininess from 0.5 to 10^4. */
-Test(light, highlight_power_is_powf_to_the_bit)
+/* The highlight's power: powf's to the bit for a shininess that is not a
+ * whole number, and for whole ones (repeated squaring) within n + 1 ulps
+ * of x^n relative to it, or below 2^-120 where x^n is; +0 where powf
+ * gives +0. Every binade of (0, 1], mantissas from a fixed seed,
+ * shininess from 0.5 to 10^4. */
+Test(light, highlight_power_is_x_to_the_n)
 {
-    const float shininess[] = {0.5f, 1.0f, 2.0f, 5.0f, 10.0f, 40.0f, 50.0f, 100.0f,
-                               151.0f, 152.0f, 153.0f, 1000.0f, 10000.0f};
+    const float shininess[] = {0.5f,   1.0f,   2.0f,   5.0f,    10.0f,   40.0f,   50.0f,
+                               100.0f, 151.0f, 152.0f, 153.0f,  1000.0f, 10000.0f, 2.5f,
+                               37.25f, 80.0f,  200.0f, 255.0f,  65536.0f};
     uint32_t seed = 12345u;
-    int zeros = 0;
+    int zeros = 0, whole = 0;
     for (uint32_t exp = 1; exp <= 127; exp++)
         for (int k = 0; k < 64; k++) {
             seed = seed * 1664525u + 1013904223u;
@@ -306,11 +309,24 @@ Test(light, highlight_power_is_powf_to_the_bit)
             if (!(x > 0.0f && x <= 1.0f))
                 continue;
             for (size_t i = 0; i < sizeof shininess / sizeof *shininess; i++) {
-                float a = material_highlight(x, shininess[i]), b = powf(x, shininess[i]);
-                cr_assert_eq(memcmp(&a, &b, sizeof a), 0, "%a^%g: %a, powf %a", (double)x,
-                             (double)shininess[i], (double)a, (double)b);
+                float n = shininess[i], a = material_highlight(x, n), b = powf(x, n);
+                double want = pow((double)x, (double)n);
+                if (n != floorf(n)) {
+                    cr_assert_eq(memcmp(&a, &b, sizeof a), 0, "%a^%g: %a, powf %a", (double)x,
+                                 (double)n, (double)a, (double)b);
+                } else if (want > 0x1p-120) {
+                    cr_assert_leq(fabs(a - want), (n + 1.0) * 0x1p-23 * want, "%a^%g: %a, not %a",
+                                  (double)x, (double)n, (double)a, want);
+                    whole++;
+                } else {
+                    cr_assert_leq(a, 0x1p-119f, "%a^%g: %a", (double)x, (double)n, (double)a);
+                }
+                if (b == 0.0f)
+                    cr_assert_eq(a, 0.0f, "%a^%g: %a where powf gives 0", (double)x, (double)n,
+                                 (double)a);
                 zeros += a == 0.0f;
             }
         }
+    cr_assert_gt(whole, 5000, "only %d whole powers checked", whole);
     cr_assert_gt(zeros, 10000, "only %d results of 0", zeros);
 }

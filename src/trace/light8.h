@@ -8,6 +8,61 @@
 #include "trace/light8_api.h"
 #include "trace/simd8.h"
 
+/* highlight (lighting.c) for the lanes of need, whose points see the
+ * light in unit directions u at shading normals n: the material's
+ * specular times max(0, r.v)^shininess, r the reflection of -u about n
+ * and v = -d, with a whole shininess raised by repeated squaring in
+ * material_highlight's steps (the bits of n from the lowest, each
+ * squaring after its product) and the same +0 for results below 2^-152;
+ * into out->hl, the lanes done into out->highlit. */
+__attribute__((always_inline)) static inline void light8_highlight(const shade_point *sp, int need,
+                                                                   const __m256 u[3],
+                                                                   const __m256 n[3],
+                                                                   light8_seen *out)
+{
+    const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
+    float spec[8] = {0}, shine[8] = {0};
+    for (int m = need; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        spec[k] = sp[k].m->specular;
+        shine[k] = sp[k].m->shininess;
+    }
+    __m256 nu[3], r[3], v[3];
+    for (int c = 0; c < 3; c++)
+        nu[c] = _mm256_xor_ps(u[c], sign);
+    __m256 s = _mm256_mul_ps(_mm256_set1_ps(-2.0f), simd8_dot(nu, n)); /* v3_reflect */
+    for (int c = 0; c < 3; c++)
+        r[c] = _mm256_add_ps(nu[c], _mm256_mul_ps(n[c], s));
+    simd8_vec3(sp, sizeof *sp, offsetof(shade_point, d), v);
+    __m256 rv = _mm256_xor_ps(simd8_dot(r, v), sign);
+    __m256 sv = _mm256_loadu_ps(spec), nv = _mm256_loadu_ps(shine);
+    __m256i bits = _mm256_castps_si256(rv);
+    __m256 e = _mm256_cvtepi32_ps(_mm256_sub_epi32(
+        _mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff)),
+        _mm256_set1_epi32(126)));
+    __m256 lit = _mm256_and_ps(_mm256_cmp_ps(sv, zero, _CMP_GT_OQ),
+                               _mm256_cmp_ps(rv, zero, _CMP_GT_OQ));
+    __m256 faint = _mm256_cmp_ps(_mm256_mul_ps(e, nv), _mm256_set1_ps(-152.0f), _CMP_LE_OQ);
+    __m256i k = _mm256_cvttps_epi32(nv);
+    __m256 whole = _mm256_and_ps(
+        _mm256_and_ps(_mm256_cmp_ps(nv, _mm256_set1_ps(1.0f), _CMP_GE_OQ),
+                      _mm256_cmp_ps(nv, _mm256_set1_ps(65536.0f), _CMP_LE_OQ)),
+        _mm256_cmp_ps(nv, _mm256_cvtepi32_ps(k), _CMP_EQ_OQ));
+    __m256 raise = _mm256_andnot_ps(faint, _mm256_and_ps(lit, whole));
+    k = _mm256_and_si256(k, _mm256_castps_si256(raise));
+    __m256 p = _mm256_set1_ps(1.0f), b = rv;
+    const __m256i one = _mm256_set1_epi32(1);
+    while (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(k, _mm256_setzero_si256())))) {
+        __m256 odd = _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(k, one), one));
+        p = _mm256_blendv_ps(p, _mm256_mul_ps(p, b), odd);
+        k = _mm256_srli_epi32(k, 1);
+        b = _mm256_mul_ps(b, b);
+    }
+    _mm256_storeu_ps(out->hl, _mm256_and_ps(raise, _mm256_mul_ps(sv, p)));
+    /* done: raised, or 0 (unlit or too faint); left: a shininess powf takes */
+    out->highlit = need & ~_mm256_movemask_ps(_mm256_andnot_ps(faint, _mm256_andnot_ps(whole, lit)));
+}
+
 /* light8_point (light8_api.h). */
 __attribute__((always_inline)) static inline int light8_point(const light *l,
                                                               const shade_point *sp, int lanes,
@@ -59,6 +114,7 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
     _mm256_storeu_ps(p->time, _mm256_loadu_ps(time));
     if (need)
         ray8_fill(p, need);
+    light8_highlight(sp, need, u, n, out);
     _mm256_storeu_ps(out->ndl, ndl);
     for (int c = 0; c < 3; c++) {
         _mm256_storeu_ps(out->dir[c], u[c]);

@@ -7,9 +7,13 @@
 #include "trace/shading.h"
 
 /* A light's sample as each lane's point sees it: the unit direction to
- * it, its colour there, and the cosine at the shading normal. */
+ * it, its colour there, and the cosine at the shading normal; and for
+ * the lanes of `highlit`, its highlight factor (lighting.c: highlight),
+ * the others' left to be worked out one by one (a shininess that is not
+ * a whole number, for powf). */
 typedef struct light8_seen {
-    float dir[3][8], color[3][8], ndl[8];
+    float dir[3][8], color[3][8], ndl[8], hl[8];
+    int highlit;
 } light8_seen;
 
 /* Point light l (one sample) from the points sp[k] of the lanes of lanes,

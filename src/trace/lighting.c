@@ -80,23 +80,38 @@ static inline bool lit(const shade_point *sp, const light_ray *lr, float *ndl)
     return !(*ndl <= 0.0f);
 }
 
-/* The share of a light sample of colour `color` seen in unit direction
- * dir, at cosine ndl, in diffuse and specular, given vis, what reaches the
- * point of it. */
+/* The highlight's factor of a light seen in unit direction dir: the
+ * material's specular times max(0, r.v)^shininess, 0 where either is.
+ * The light kernels (light8.h) work it out eight lanes at once. */
+__attribute__((always_inline)) static inline float highlight(const shade_point *sp, vec3 dir)
+{
+    const material *m = sp->m;
+    if (!(m->specular > 0.0f))
+        return 0.0f;
+    float rv = -v3_dot(v3_reflect(v3_neg(dir), sp->n), sp->d);
+    return rv > 0.0f ? m->specular * material_highlight(rv, m->shininess) : 0.0f;
+}
+
+/* The share of a light sample of colour `color`, at cosine ndl and with
+ * highlight factor hl, in diffuse and specular, given vis (not zero),
+ * what reaches the point of it. */
+__attribute__((always_inline)) static inline void add_seen(const shade_point *sp, vec3 color,
+                                                           float ndl, float hl, vec3 vis,
+                                                           vec3 *diffuse, vec3 *specular)
+{
+    vec3 lc = v3_mul(color, vis);
+    *diffuse = v3_madd(*diffuse, lc, sp->m->diffuse * ndl);
+    if (hl > 0.0f)
+        *specular = v3_madd(*specular, lc, hl);
+}
+
+/* add_seen for a light seen in unit direction dir. */
 __attribute__((always_inline)) static inline void add_lit(const shade_point *sp, vec3 dir,
                                                           vec3 color, float ndl, vec3 vis,
                                                           vec3 *diffuse, vec3 *specular)
 {
-    const material *m = sp->m;
-    if (v3_is_zero(vis))
-        return;
-    vec3 lc = v3_mul(color, vis);
-    *diffuse = v3_madd(*diffuse, lc, m->diffuse * ndl);
-    if (m->specular > 0.0f) {
-        float rv = -v3_dot(v3_reflect(v3_neg(dir), sp->n), sp->d);
-        if (rv > 0.0f)
-            *specular = v3_madd(*specular, lc, m->specular * material_highlight(rv, m->shininess));
-    }
+    if (!v3_is_zero(vis))
+        add_seen(sp, color, ndl, highlight(sp, dir), vis, diffuse, specular);
 }
 
 /* One light sample's diffuse and specular share, shadowed. */
@@ -221,9 +236,13 @@ static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l,
         shadow8_rays(ctx, &p, need, vis);
         for (int m = need; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
-            vec3 dir = v3(seen.dir[0][k], seen.dir[1][k], seen.dir[2][k]);
+            if (v3_is_zero(vis[k]))
+                continue;
             vec3 color = v3(seen.color[0][k], seen.color[1][k], seen.color[2][k]);
-            add_lit(&sp[k], dir, color, seen.ndl[k], vis[k], &diffuse[k], &specular[k]);
+            float hl = seen.highlit >> k & 1
+                           ? seen.hl[k]
+                           : highlight(&sp[k], v3(seen.dir[0][k], seen.dir[1][k], seen.dir[2][k]));
+            add_seen(&sp[k], color, seen.ndl[k], hl, vis[k], &diffuse[k], &specular[k]);
         }
         return;
     }
