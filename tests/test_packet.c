@@ -279,6 +279,10 @@ static void add_casters(scene *s, int copies)
     material glass = material_default(), pane = material_default(), solid = material_default();
     glass.transmit = 0.8f, glass.ior = 1.5f, glass.absorption = v3(0.05f, 0.1f, 0.2f);
     pane.transmit = 0.6f, pane.tint = v3(1.0f, 0.6f, 0.3f);
+    /* highlights: a whole shininess, one powf takes, and one of 1 */
+    glass.specular = 1.0f, glass.shininess = 200.0f;
+    pane.specular = 0.8f, pane.shininess = 37.5f;
+    solid.specular = 0.5f, solid.shininess = 1.0f;
     int mg = scene_add_material(s, &glass), mp = scene_add_material(s, &pane);
     int ms = scene_add_material(s, &solid);
     xform turn = xform_rotate(v3(0, 1, 0), 30.0f);
