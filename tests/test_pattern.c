@@ -18,6 +18,25 @@
 
 #define TOL 1e-6
 
+/* The parity of floor(x) + floor(y) + floor(z) is fmod(|s|, 2) < 0.5's,
+ * far out too: large odd and even cells, past 2^24 (where a float is a
+ * whole even number), infinities and NaN. */
+Test(pattern, checker_parity_far_out)
+{
+    const float at[] = {0.5f,        -0.5f,     3.0f,       -3.0f,    8388607.5f, -8388607.5f,
+                        16777215.0f, 16777216.0f, 1e20f,    -1e20f,   3.4e38f,    -3.4e38f,
+                        INFINITY,    -INFINITY,  NAN,       1e-45f,   -1e-45f,    2.5e9f};
+    int n = (int)(sizeof at / sizeof *at);
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            vec3 q = v3(at[i], at[j], at[(i + j) % n]);
+            double s = floor((double)q.x) + floor((double)q.y) + floor((double)q.z);
+            float want = fmod(fabs(s), 2.0) < 0.5 ? 0.0f : 1.0f;
+            cr_assert_eq(pattern_checker(q, false), want, "(%g, %g, %g)", (double)q.x,
+                         (double)q.y, (double)q.z);
+        }
+}
+
 Test(pattern, values_at_known_points)
 {
     cr_expect_eq(pattern_checker(v3(0.5f, 0.5f, 0.5f), true), 0.0f);
