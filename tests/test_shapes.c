@@ -13,6 +13,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "core/mat4.h"
 #include "core/rng.h"
@@ -561,7 +562,12 @@ Test(shapes, ellipsoid_normals_by_inverse_transpose)
     ASSERT_V3_NEAR(sf.p, 2, 2, 3 + zc, XTOL);
     ASSERT_V3_NEAR(sf.n, 0.25 / 1.75, 0, sqrt(3.0) / 1.75, XTOL);
     ASSERT_V3_NEAR(sf.ng, 0.25 / 1.75, 0, sqrt(3.0) / 1.75, XTOL);
-    /* (u, v) are the object's: the object point is (0.5, 0, 0.866). */
+    /* (u, v) are the object's where the material reads them (an untextured
+     * one leaves them 0): the object point is (0.5, 0, 0.866). */
+    texture chk = texture_checker(v3s(1.0f), v3s(0.0f), 1.0f, 1.0f);
+    s->materials[0].texture = scene_add_texture(s, &chk);
+    cr_assert(material_uses_uv(&s->materials[0]));
+    scene_surface(s, &r, &hit, &sf);
     ASSERT_NEAR(sf.u, 0.5 + atan2(0.5, sqrt(0.75)) / (2 * M_PI), XTOL);
     ASSERT_NEAR(sf.v, 0.5, XTOL);
 
@@ -703,5 +709,42 @@ Test(shapes, turned_torus_bounds_hold_it_tightly)
                       "turn %d axis %d: [%g, %g] is loose round [%g, %g]", k, a3, (double)lo[a3],
                       (double)hi[a3], (double)slo[a3], (double)shi[a3]);
         }
+    }
+}
+
+/* shape_surface_no_uv gives shape_surface's point and normals to the bit
+ * and (u, v) of 0, on the sides and caps of cylinders and cones, spheres
+ * and tori. */
+Test(shapes, surface_without_uv_is_the_same_surface)
+{
+    shape shapes[] = {
+        shape_sphere(v3(0.1f, 0.2f, -0.3f), 1.2f),
+        shape_cylinder(v3(0, -1, 0), 0.8f, 2.0f, true),
+        shape_cone(v3(0, -1, 0), 1.1f, 0.3f, 2.0f, true),
+        shape_torus(v3(0, 0, 0), 1.0f, 0.35f),
+    };
+    rng g = rng_seed(8, 1);
+    for (size_t k = 0; k < sizeof shapes / sizeof *shapes; k++) {
+        int hits = 0, caps = 0;
+        for (int i = 0; i < 3000; i++) {
+            vec3 o = v3_scale(rng_unit_dir(&g), 5.0f);
+            vec3 at = v3(rng_float(&g) - 0.5f, 2.2f * rng_float(&g) - 1.1f, rng_float(&g) - 0.5f);
+            ray r = ray_make(o, v3_sub(at, o), INFINITY);
+            shape_hit h;
+            if (!shape_intersect(&shapes[k], &r, &h))
+                continue;
+            surface a, b;
+            shape_surface(&shapes[k], &r, &h, &a);
+            shape_surface_no_uv(&shapes[k], &r, &h, &b);
+            cr_assert(memcmp(&a.p, &b.p, sizeof a.p) == 0 && memcmp(&a.n, &b.n, sizeof a.n) == 0 &&
+                          memcmp(&a.ng, &b.ng, sizeof a.ng) == 0,
+                      "shape %zu ray %d", k, i);
+            cr_assert(b.u == 0.0f && b.v == 0.0f);
+            hits++;
+            caps += h.part != 0;
+        }
+        cr_assert_gt(hits, 500, "shape %zu: %d hits", k, hits);
+        if (k == 1 || k == 2)
+            cr_assert_gt(caps, 50, "shape %zu: %d cap hits", k, caps);
     }
 }

@@ -112,11 +112,13 @@ bool cone_span(const struct cone *s, const ray *r, shape_hit *in, shape_hit *out
 
 /* Side: u once round the axis (u = 0.5 facing +z), v up the height; the
  * point moved out from the axis onto the side at its height. Caps: the
- * disc mapped onto [0, 1]^2 seen from outside, as for the cylinder. */
-void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *out)
+ * disc mapped onto [0, 1]^2 seen from outside, as for the cylinder.
+ * Without uv, (u, v) are left 0 (the side's u costs an arc tangent). */
+static void cone_point(const struct cone *s, vec3 p, const shape_hit *hit, surface *out, bool uv)
 {
     float x = p.x - s->base.x, z = p.z - s->base.z;
     out->p = p;
+    out->u = out->v = 0.0f;
     if (hit->part == 0) {
         float k = (s->top_radius - s->radius) / s->height;
         float y = fminf(fmaxf(p.y - s->base.y, 0.0f), s->height);
@@ -125,14 +127,28 @@ void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *o
         float cx = len > 0.0f ? x / len : 0.0f, cz = len > 0.0f ? z / len : 1.0f;
         out->p = v3(s->base.x + cx * rad, s->base.y + y, s->base.z + cz * rad);
         out->n = len > 0.0f ? v3_norm(v3(cx, -k, cz)) : v3(0.0f, 1.0f, 0.0f);
-        out->u = 0.5f + atan2f(x, z) * (float)(0.5 / M_PI);
-        out->v = y / s->height;
+        if (uv) {
+            out->u = 0.5f + atan2f(x, z) * (float)(0.5 / M_PI);
+            out->v = y / s->height;
+        }
         return;
     }
     bool top = hit->part == 2;
     float sign = top ? 1.0f : -1.0f, rad = top ? s->top_radius : s->radius;
     out->p.y = s->base.y + (top ? s->height : 0.0f);
     out->n = v3(0.0f, sign, 0.0f);
-    out->u = 0.5f + 0.5f * x / rad;
-    out->v = 0.5f - 0.5f * sign * z / rad;
+    if (uv) {
+        out->u = 0.5f + 0.5f * x / rad;
+        out->v = 0.5f - 0.5f * sign * z / rad;
+    }
+}
+
+void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *out)
+{
+    cone_point(s, p, hit, out, true);
+}
+
+void cone_surface_no_uv(const struct cone *s, vec3 p, const shape_hit *hit, surface *out)
+{
+    cone_point(s, p, hit, out, false);
 }

@@ -54,24 +54,41 @@ bool cylinder_intersect(const struct cylinder *s, const ray *r, shape_hit *hit)
 }
 
 /* Side: u once round the axis (u = 0.5 facing +z), v up the height. Caps:
- * the disc mapped onto [0, 1]^2 seen from outside. */
-void cylinder_surface(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out)
+ * the disc mapped onto [0, 1]^2 seen from outside. Without uv, (u, v)
+ * are left 0 (the side's u costs an arc tangent). */
+static void cylinder_point(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out,
+                           bool uv)
 {
     float x = p.x - s->base.x, z = p.z - s->base.z;
     out->p = p;
+    out->u = out->v = 0.0f;
     if (hit->part == 0) {
         out->n = v3_norm(v3(x, 0.0f, z));
         /* Back onto the side (shape.h). */
         out->p = v3(s->base.x + out->n.x * s->radius, p.y, s->base.z + out->n.z * s->radius);
-        out->u = 0.5f + atan2f(x, z) * (float)(0.5 / M_PI);
-        out->v = s->height > 0.0f ? (p.y - s->base.y) / s->height : 0.0f;
+        if (uv) {
+            out->u = 0.5f + atan2f(x, z) * (float)(0.5 / M_PI);
+            out->v = s->height > 0.0f ? (p.y - s->base.y) / s->height : 0.0f;
+        }
         return;
     }
     float sign = hit->part == 2 ? 1.0f : -1.0f;
     out->p.y = s->base.y + (hit->part == 2 ? s->height : 0.0f);
     out->n = v3(0.0f, sign, 0.0f);
-    out->u = 0.5f + 0.5f * x / s->radius;
-    out->v = 0.5f - 0.5f * sign * z / s->radius;
+    if (uv) {
+        out->u = 0.5f + 0.5f * x / s->radius;
+        out->v = 0.5f - 0.5f * sign * z / s->radius;
+    }
+}
+
+void cylinder_surface(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out)
+{
+    cylinder_point(s, p, hit, out, true);
+}
+
+void cylinder_surface_no_uv(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out)
+{
+    cylinder_point(s, p, hit, out, false);
 }
 
 /* The capped cylinder's entry and exit: the slab 0 <= y <= height met with

@@ -3,6 +3,7 @@
 #include "csg.h"
 #include "mesh.h"
 #include "polyhedron.h"
+#include "shape_inline.h"
 
 bool shape_intersect(const shape *s, const ray *r, shape_hit *hit)
 {
@@ -65,6 +66,37 @@ bool shape_occluded(const shape *s, const ray *r)
         break;
     }
     return false;
+}
+
+void shape_surface_no_uv(const shape *s, const ray *r, const shape_hit *hit, surface *out)
+{
+    vec3 p = ray_at(r, hit->t);
+    switch (s->kind) {
+    case SHAPE_SPHERE:
+        sphere_surface_plain(&s->sphere, p, out);
+        return;
+    case SHAPE_CYLINDER:
+        cylinder_surface_no_uv(&s->cylinder, p, hit, out);
+        break;
+    case SHAPE_CONE:
+        cone_surface_no_uv(&s->cone, p, hit, out);
+        break;
+    case SHAPE_TORUS:
+        torus_surface_no_uv(&s->torus, p, out);
+        break;
+    case SHAPE_PLANE:
+    case SHAPE_QUAD:
+    case SHAPE_BOX:
+    case SHAPE_TRIANGLE:
+    case SHAPE_DISK:
+    case SHAPE_POLYHEDRON:
+    case SHAPE_MESH:
+    case SHAPE_CSG:
+    case SHAPE_COUNT:
+        shape_surface(s, r, hit, out);
+        return;
+    }
+    out->ng = out->n;
 }
 
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out)

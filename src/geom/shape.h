@@ -214,6 +214,11 @@ void sphere8_crossings_avx2(const struct sphere *s, const ray8 *r, int active, f
 void sphere8_crossings_avx512(const struct sphere *s, const ray8 *r, int active, float t[2][8],
                               int took[2]);
 void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *out);
+/* shape_surface without (u, v), left 0, where they cost an inverse
+ * trigonometric call (spheres, cylinders, cones, tori); the same as
+ * shape_surface for every other shape. For materials that read no (u, v)
+ * (material_uses_uv). */
+void shape_surface_no_uv(const shape *s, const ray *r, const shape_hit *hit, surface *out);
 aabb shape_bounds(const shape *s);
 /* The box of the shape carried by the affine map m (object to world):
  * round a torus or a sphere the image's own extent, a little enlarged for
@@ -247,10 +252,12 @@ bool box_intersect(const struct box *s, const ray *r, shape_hit *hit);
 void box_surface(const struct box *s, vec3 p, const shape_hit *hit, surface *out);
 bool cylinder_intersect(const struct cylinder *s, const ray *r, shape_hit *hit);
 void cylinder_surface(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out);
+void cylinder_surface_no_uv(const struct cylinder *s, vec3 p, const shape_hit *hit, surface *out);
 bool triangle_intersect(const struct triangle *s, const ray *r, shape_hit *hit);
 void triangle_surface(const struct triangle *s, vec3 p, const shape_hit *hit, surface *out);
 bool cone_intersect(const struct cone *s, const ray *r, shape_hit *hit);
 void cone_surface(const struct cone *s, vec3 p, const shape_hit *hit, surface *out);
+void cone_surface_no_uv(const struct cone *s, vec3 p, const shape_hit *hit, surface *out);
 bool disk_intersect(const struct disk *s, const ray *r, shape_hit *hit);
 void disk_surface(const struct disk *s, vec3 p, surface *out);
 bool torus_intersect(const struct torus *s, const ray *r, shape_hit *hit);

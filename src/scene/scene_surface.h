@@ -11,20 +11,16 @@ __attribute__((always_inline)) static inline void scene_surface_inline(const sce
                                                                        surface *out)
 {
     const object *o = &s->objects[hit->object];
+    bool uv = material_uses_uv(scene_hit_material(s, hit));
     out->color = v3s(1.0f);
     if (o->xform < 0) {
-        /* An untextured sphere or torus needs no (u, v): its normal
-         * alone, as shape_surface would compute it. */
-        if (o->shape.kind == SHAPE_SPHERE && !material_uses_uv(scene_hit_material(s, hit))) {
+        /* An untextured sphere, the commonest hit, with its normal alone
+         * and inline (shape_surface_no_uv would call for it). */
+        if (!uv && o->shape.kind == SHAPE_SPHERE) {
             sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), out);
             return;
         }
-        if (o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit))) {
-            torus_surface_no_uv(&o->shape.torus, ray_at(r, hit->h.t), out);
-            out->ng = out->n;
-            return;
-        }
-        shape_surface(&o->shape, r, &hit->h, out);
+        (uv ? shape_surface : shape_surface_no_uv)(&o->shape, r, &hit->h, out);
         if (o->material >= 0) /* a material given in the scene replaces the file's colours */
             out->color = v3s(1.0f);
         return;
@@ -36,16 +32,13 @@ __attribute__((always_inline)) static inline void scene_surface_inline(const sce
         x = &moved;
     }
     ray lr = scene_object_ray(s, o, r);
-    /* A turned torus without texture, likewise; its two normals are one. */
-    bool one_normal = o->shape.kind == SHAPE_TORUS && !material_uses_uv(scene_hit_material(s, hit));
-    if (one_normal)
-        torus_surface_no_uv(&o->shape.torus, ray_at(&lr, hit->h.t), out);
-    else
-        shape_surface(&o->shape, &lr, &hit->h, out);
+    (uv ? shape_surface : shape_surface_no_uv)(&o->shape, &lr, &hit->h, out);
     if (o->material >= 0)
         out->color = v3s(1.0f);
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
+    /* Only meshes (vertex normals) and csg (a mesh leaf) have two normals. */
+    bool one_normal = o->shape.kind != SHAPE_MESH && o->shape.kind != SHAPE_CSG;
     out->ng = one_normal ? out->n : v3_norm(xform_normal(x, out->ng));
 }
 
