@@ -194,8 +194,10 @@ static void torus_point(const struct torus *s, vec3 p, surface *out, double q[3]
     q[2] = (double)p.z - s->center.z;
     double rho = sqrt(q[0] * q[0] + q[2] * q[2]);
     double ax = R, az = 0.0; /* on the axis every circle point is as near */
-    if (rho > 0.0)
-        ax = R * q[0] / rho, az = R * q[2] / rho;
+    if (rho > 0.0) {
+        double f = R / rho;
+        ax = q[0] * f, az = q[2] * f;
+    }
     double w[3] = {q[0] - ax, q[1], q[2] - az}, sgn = 1.0;
     double wa = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
     double wb = (q[0] + ax) * (q[0] + ax) + q[1] * q[1] + (q[2] + az) * (q[2] + az);
@@ -204,15 +206,13 @@ static void torus_point(const struct torus *s, vec3 p, surface *out, double q[3]
         w[0] = q[0] - ax, w[2] = q[2] - az;
         wa = wb;
     }
-    double wl = sqrt(wa);
-    if (wl > 0.0) {
-        double k = rm / wl;
+    double wl = sqrt(wa), inv = wl > 0.0 ? 1.0 / wl : 0.0, k = rm * inv;
+    if (wl > 0.0)
         q[0] = ax + w[0] * k, q[1] = w[1] * k, q[2] = az + w[2] * k;
-    }
     out->p = v3((float)(q[0] + s->center.x), (float)(q[1] + s->center.y),
                 (float)(q[2] + s->center.z));
-    out->n = wl > 0.0 ? v3((float)(sgn * w[0] / wl), (float)(sgn * w[1] / wl),
-                           (float)(sgn * w[2] / wl))
+    inv *= sgn;
+    out->n = wl > 0.0 ? v3((float)(w[0] * inv), (float)(w[1] * inv), (float)(w[2] * inv))
                       : v3(0.0f, 1.0f, 0.0f);
 }
 
