@@ -523,13 +523,20 @@ Test(packet, shadow_rays_match_one_ray_at_a_time)
     cr_assert_gt(spheres, 500, "sphere crossings: %d", spheres);
 }
 
-/* A scene of a ground plane at y = -2, of material *mat (the default). */
-static scene *grounded(int *mat)
+/* An empty scene with the default material, *mat. */
+static scene *bare(int *mat)
 {
     scene *s = scene_new();
     cr_assert_not_null(s);
     material mt = material_default();
     *mat = scene_add_material(s, &mt);
+    return s;
+}
+
+/* A scene of a ground plane at y = -2, of material *mat (the default). */
+static scene *grounded(int *mat)
+{
+    scene *s = bare(mat);
     shape ground = shape_plane(v3(0, -2, 0), v3(0, 1, 0));
     cr_assert_geq(scene_add_object(s, &ground, *mat, -1), 0);
     return s;
@@ -770,9 +777,8 @@ Test(packet, equal_distances_go_to_the_lower_object)
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = scene_new();
-        material mt = material_default();
-        int mat = scene_add_material(s, &mt);
+        int mat;
+        scene *s = bare(&mat);
         xform id = xform_translate(v3s(0.0f)); /* transformed objects get leaves of their own */
         int x = scene_add_xform(s, &id);
         shape quad = shape_quad(v3(-2, -2, 0), v3(4, 0, 0), v3(0, 4, 0));
@@ -826,9 +832,8 @@ Test(packet, a_tie_at_the_nearest_hit_goes_to_the_lower_index)
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = scene_new();
-        material mt = material_default();
-        int mat = scene_add_material(s, &mt);
+        int mat;
+        scene *s = bare(&mat);
         xform turn = xform_rotate(v3(0.2f, 1, 0.1f), 30.0f);
         int x = scene_add_xform(s, &turn);
         shape quad = shape_quad(v3(-2, -2, 0), v3(4, 0, 0), v3(0, 4, 0));
