@@ -48,24 +48,6 @@ static int shape8_on_path(const scene *s, const shape *sh, const ray8 *r, const 
     return -1;
 }
 
-/* keep8 for shape8_hit's hits h of the rays of `any`, of which those of
- * `nearer` beat best[k] and the others tie with it. */
-static int keep_hits8(int i, int any, int nearer, const shape_hits8 *h, float best[8],
-                      scene_hit hit[8])
-{
-    int kept = nearer;
-    for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
-        int k = __builtin_ctz((unsigned)m);
-        kept |= (i < hit[k].object) << k;
-    }
-    for (int m = kept; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        best[k] = h->t[k];
-        hit[k] = (scene_hit){{.t = h->t[k], .part = h->part[k], .b1 = h->b1[k], .b2 = h->b2[k]}, i};
-    }
-    return kept;
-}
-
 /* torus8_hit on the scene's path; -1 where it has none. */
 static int torus8_on_path(const scene *s, const struct torus *t, const ray8 *r, int active,
                           shape_hit h[8])

@@ -10,6 +10,7 @@
 #include "accel/traverse.h"
 #if defined(GLINT_TRAVERSE_AVX2)
 #include "geom/mesh_packet.h"
+#include "geom/shape8.h"
 #endif
 #include "geom/shape_inline.h"
 #include "scene/scene.h"
@@ -261,6 +262,24 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
     return false;
 }
 
+/* keep8 for shape8_hit's hits h of the rays of `any`, of which those of
+ * `nearer` beat best[k] and the others tie with it. */
+static inline int keep_hits8(int i, int any, int nearer, const shape_hits8 *h, float best[8],
+                      scene_hit hit[8])
+{
+    int kept = nearer;
+    for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
+        int k = __builtin_ctz((unsigned)m);
+        kept |= (i < hit[k].object) << k;
+    }
+    for (int m = kept; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        best[k] = h->t[k];
+        hit[k] = (scene_hit){{.t = h->t[k], .part = h->part[k], .b1 = h->b1[k], .b2 = h->b2[k]}, i};
+    }
+    return kept;
+}
+
 /* Object i against the rays of active of packet r, each searched up to
  * best[k] (scene_packet.c); returns the rays whose nearest hit it now is. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
@@ -286,9 +305,18 @@ __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, u
                                                                     __m256 *tmax)
 {
     scene_packet_ctx *c = ctx;
-    for (uint32_t i = 0; i < count; i++)
-        c->found |= scene_packet_object(c->s, c->s->bvh.prims[first + i], c->r, rays, c->best,
-                                        c->hit);
+    for (uint32_t i = 0; i < count; i++) {
+        int k = c->s->bvh.prims[first + i];
+        const object *o = &c->s->objects[k];
+        if (o->xform < 0 && shape_tests_eight(o->shape.kind) && ray8_three_or_more(rays)) {
+            /* scene_packet_object's commonest case, here without its calls */
+            shape_hits8 h;
+            int nearer = 0, any = shape8_hit(&o->shape, c->r, c->best, rays, &h, &nearer);
+            c->found |= keep_hits8(k, any, nearer, &h, c->best, c->hit);
+        } else {
+            c->found |= scene_packet_object(c->s, k, c->r, rays, c->best, c->hit);
+        }
+    }
     *tmax = _mm256_loadu_ps(c->best);
     return true;
 }
