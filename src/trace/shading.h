@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include "core/ray.h"
+#include "geom/shape_inline.h"
 #include "scene/scene.h"
 #include "trace/whitted.h"
 
@@ -19,7 +20,50 @@ typedef struct shade_point {
     const material *m;
 } shade_point;
 
-void shade_prepare(trace_ctx *ctx, const ray *r, const scene_hit *hit, shade_point *out);
+/* The shading point of material m at point p with shading normal n and
+ * geometric normal ng, for a ray of unit direction d: both normals turned
+ * to face the ray; the geometric one decides the side, the shading one
+ * the lighting. */
+__attribute__((always_inline)) static inline void facing(shade_point *out, const material *m,
+                                                         vec3 d, vec3 p, vec3 n, vec3 ng,
+                                                         vec3 base)
+{
+    out->m = m;
+    out->p = p;
+    out->d = d;
+    out->base = base;
+    out->inside = v3_dot(d, ng) > 0.0f;
+    out->ng = out->inside ? v3_neg(ng) : ng;
+    out->n = out->inside ? v3_neg(n) : n;
+    if (v3_dot(out->n, out->ng) < 0.0f)
+        out->n = out->ng;
+}
+
+/* shade_prepare past its commonest case, for material m and unit
+ * direction d (shading.c). */
+void shade_prepare_surface(trace_ctx *ctx, const ray *r, const scene_hit *hit, const material *m,
+                           vec3 d, shade_point *out);
+
+/* The shading point of a hit. Inline for its commonest case, an
+ * untextured, unturned sphere, whose surface then stays in registers
+ * (written to memory and read back in other widths, it stalled the
+ * loads); any other in shade_prepare_surface. */
+__attribute__((always_inline)) static inline void shade_prepare(trace_ctx *ctx, const ray *r,
+                                                                const scene_hit *hit,
+                                                                shade_point *out)
+{
+    const scene *s = ctx->scene;
+    const material *m = scene_hit_material(s, hit);
+    const object *o = &s->objects[hit->object];
+    vec3 d = v3_norm(r->d);
+    if (o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(m)) {
+        surface plain;
+        sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), &plain);
+        facing(out, m, d, plain.p, plain.n, plain.ng, v3_mul(m->color, v3s(1.0f)));
+        return;
+    }
+    shade_prepare_surface(ctx, r, hit, m, d, out);
+}
 
 /* What is seen through the segment of r from its origin to t (INFINITY
  * for a ray that hit nothing, sp NULL) of colour c at its end: fogged in
