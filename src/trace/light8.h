@@ -21,12 +21,21 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
                                                                    light8_seen *out)
 {
     const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
-    float spec[8] = {0}, shine[8] = {0};
-    for (int m = need; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        spec[k] = sp[k].m->specular;
-        shine[k] = sp[k].m->shininess;
+    if (!need) {
+        out->highlit = 0;
+        return;
     }
+    /* the materials' fields lane by lane into the registers (an array of
+     * them stored lane by lane and loaded at once would stall the load);
+     * an idle lane repeats the first lane's */
+    const material *m[8];
+    for (int k = 0, first = __builtin_ctz((unsigned)need); k < 8; k++)
+        m[k] = need >> k & 1 ? sp[k].m : sp[first].m;
+    __m256 sv = _mm256_setr_ps(m[0]->specular, m[1]->specular, m[2]->specular, m[3]->specular,
+                               m[4]->specular, m[5]->specular, m[6]->specular, m[7]->specular);
+    __m256 nv = _mm256_setr_ps(m[0]->shininess, m[1]->shininess, m[2]->shininess,
+                               m[3]->shininess, m[4]->shininess, m[5]->shininess,
+                               m[6]->shininess, m[7]->shininess);
     __m256 nu[3], r[3], v[3];
     for (int c = 0; c < 3; c++)
         nu[c] = _mm256_xor_ps(u[c], sign);
@@ -35,7 +44,6 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
         r[c] = _mm256_add_ps(nu[c], _mm256_mul_ps(n[c], s));
     simd8_vec3(sp, sizeof *sp, offsetof(shade_point, d), v);
     __m256 rv = _mm256_xor_ps(simd8_dot(r, v), sign);
-    __m256 sv = _mm256_loadu_ps(spec), nv = _mm256_loadu_ps(shine);
     __m256i bits = _mm256_castps_si256(rv);
     __m256 e = _mm256_cvtepi32_ps(_mm256_sub_epi32(
         _mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff)),
