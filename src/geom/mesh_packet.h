@@ -221,10 +221,10 @@ static inline bool packet_make(packet8 *p, const ray8 *r, int active)
     p->iy = _mm256_div_ps(one, _mm256_loadu_ps(r->dy));
     p->iz = _mm256_div_ps(one, _mm256_loadu_ps(r->dz));
     p->tmin = _mm256_loadu_ps(r->tmin);
-    bool nx, ny, nz;
-    bool same = packet_same(_mm256_cmp_ps(p->ix, zero, _CMP_LT_OQ), active, &nx) &
-                packet_same(_mm256_cmp_ps(p->iy, zero, _CMP_LT_OQ), active, &ny) &
-                packet_same(_mm256_cmp_ps(p->iz, zero, _CMP_LT_OQ), active, &nz);
+    bool nx, ny, nz; /* all three worked out (each sets its sign), hence & */
+    int same = (int)packet_same(_mm256_cmp_ps(p->ix, zero, _CMP_LT_OQ), active, &nx) &
+               (int)packet_same(_mm256_cmp_ps(p->iy, zero, _CMP_LT_OQ), active, &ny) &
+               (int)packet_same(_mm256_cmp_ps(p->iz, zero, _CMP_LT_OQ), active, &nz);
     p->nx = nx, p->ny = ny, p->nz = nz;
     return same;
 }
