@@ -265,7 +265,7 @@ __attribute__((always_inline)) static inline bool scene_blocked_node(const scene
 /* keep8 for shape8_hit's hits h of the rays of `any`, of which those of
  * `nearer` beat best[k] and the others tie with it. */
 static inline int keep_hits8(int i, int any, int nearer, const shape_hits8 *h, float best[8],
-                      scene_hit hit[8])
+                             scene_hit hit[8])
 {
     int kept = nearer;
     for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
