@@ -68,7 +68,8 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
     }
     _mm256_storeu_ps(out->hl, _mm256_and_ps(raise, _mm256_mul_ps(sv, p)));
     /* done: raised, or 0 (unlit or too faint); left: a shininess powf takes */
-    out->highlit = need & ~_mm256_movemask_ps(_mm256_andnot_ps(faint, _mm256_andnot_ps(whole, lit)));
+    __m256 for_powf = _mm256_andnot_ps(faint, _mm256_andnot_ps(whole, lit));
+    out->highlit = need & ~_mm256_movemask_ps(for_powf);
 }
 
 /* light8_point (light8_api.h). */
