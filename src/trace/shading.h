@@ -72,12 +72,11 @@ vec3 shade_segment_crossed(const scene *s, const ray *r, float t, const shade_po
                            vec3 c);
 
 /* shade_segment_crossed, or c at once where the segment crosses neither
- * fog nor the inside of a transmitting object that absorbs. */
+ * fog nor a transmitting object's inside. */
 static inline vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp,
                                  vec3 c)
 {
-    if (s->fog.kind == FOG_NONE &&
-        !(sp && sp->inside && sp->m->transmit > 0.0f && material_absorbs(sp->m)))
+    if (s->fog.kind == FOG_NONE && !(sp && sp->inside && sp->m->transmit > 0.0f))
         return c;
     return shade_segment_crossed(s, r, t, sp, c);
 }
