@@ -179,15 +179,18 @@ static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vec3 vis[8])
         if (crosses) /* their crossings together, which filter each */
             blocked |= scene_shadow_unblocked8(s, p, crosses, cross);
     }
-    for (int m = need; m; m &= m - 1) {
+    int filtered = alone | (crosses & ~blocked); /* the lanes that need their ray */
+    for (int m = need & ~filtered; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        vis[k] = v3s(blocked >> k & 1 ? 0.0f : 1.0f);
+    }
+    for (int m = need & filtered; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray sr = ray8_get(p, k);
-        vis[k] = alone >> k & 1     ? shadow_filter(s, &sr)
-                 : blocked >> k & 1 ? v3s(0.0f)
-                 : crosses >> k & 1 ? crossings_filter(s, &sr, &cross[k])
-                                    : v3s(1.0f);
-        ctx->shadow_rays++;
+        vis[k] = alone >> k & 1 ? shadow_filter(s, &sr) : crossings_filter(s, &sr, &cross[k]);
     }
+    for (int m = need; m; m &= m - 1)
+        ctx->shadow_rays++;
 }
 
 /* The shadow rays of lanes `need` towards their light samples lr[k]
