@@ -67,6 +67,16 @@ static inline void ray8_pack(ray8 *p, const ray r[8], int active)
     ray8_fill(p, active);
 }
 
+/* How many lanes mask has (without a popcount instruction, which
+ * baseline builds lack). */
+static inline int ray8_count(int mask)
+{
+    int n = 0;
+    for (; mask; mask &= mask - 1)
+        n++;
+    return n;
+}
+
 /* Whether mask has three lanes or more: enough for a packet to pay
  * (without a popcount instruction, which baseline builds lack). */
 static inline bool ray8_three_or_more(int mask)

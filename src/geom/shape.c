@@ -70,19 +70,18 @@ bool shape_occluded(const shape *s, const ray *r)
 
 void shape_surface_no_uv(const shape *s, const ray *r, const shape_hit *hit, surface *out)
 {
-    vec3 p = ray_at(r, hit->t);
     switch (s->kind) {
     case SHAPE_SPHERE:
-        sphere_surface_plain(&s->sphere, p, out);
+        sphere_surface_plain(&s->sphere, ray_at(r, hit->t), out);
         return;
     case SHAPE_CYLINDER:
-        cylinder_surface_no_uv(&s->cylinder, p, hit, out);
+        cylinder_surface_no_uv(&s->cylinder, ray_at(r, hit->t), hit, out);
         break;
     case SHAPE_CONE:
-        cone_surface_no_uv(&s->cone, p, hit, out);
+        cone_surface_no_uv(&s->cone, ray_at(r, hit->t), hit, out);
         break;
     case SHAPE_TORUS:
-        torus_surface_no_uv(&s->torus, p, out);
+        torus_surface_no_uv(&s->torus, ray_at(r, hit->t), out);
         break;
     case SHAPE_PLANE:
     case SHAPE_QUAD:

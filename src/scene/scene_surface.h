@@ -12,29 +12,28 @@ __attribute__((always_inline)) static inline void scene_surface_inline(const sce
 {
     const object *o = &s->objects[hit->object];
     bool uv = material_uses_uv(scene_hit_material(s, hit));
-    out->color = v3s(1.0f);
-    if (o->xform < 0) {
-        /* An untextured sphere, the commonest hit, with its normal alone
-         * and inline (shape_surface_no_uv would call for it). */
-        if (!uv && o->shape.kind == SHAPE_SPHERE) {
-            sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), out);
-            return;
-        }
-        (uv ? shape_surface : shape_surface_no_uv)(&o->shape, r, &hit->h, out);
-        if (o->material >= 0) /* a material given in the scene replaces the file's colours */
-            out->color = v3s(1.0f);
-        return;
-    }
     xform moved;
-    const xform *x = &s->xforms[o->xform];
-    if (o->moving) {
-        moved = scene_object_xform_at(s, o, r->time);
-        x = &moved;
+    const xform *x = NULL; /* the object's, where it is turned or moving */
+    if (o->xform >= 0) {
+        x = &s->xforms[o->xform];
+        if (o->moving) {
+            moved = scene_object_xform_at(s, o, r->time);
+            x = &moved;
+        }
     }
-    ray lr = scene_object_ray(s, o, r);
-    (uv ? shape_surface : shape_surface_no_uv)(&o->shape, &lr, &hit->h, out);
-    if (o->material >= 0)
+    ray lr; /* the ray in the object's space, as scene_object_ray carries it */
+    const ray *q = r;
+    if (x) {
+        lr = (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
+                   r->time};
+        q = &lr;
+    }
+    out->color = v3s(1.0f);
+    (uv ? shape_surface : shape_surface_no_uv)(&o->shape, q, &hit->h, out);
+    if (o->material >= 0) /* a material given in the scene replaces the file's colours */
         out->color = v3s(1.0f);
+    if (!x)
+        return;
     out->p = mat4_point(&x->fwd, out->p); /* on the surface, as the shape left it */
     out->n = v3_norm(xform_normal(x, out->n));
     /* Only meshes (vertex normals) and csg (a mesh leaf) have two normals. */

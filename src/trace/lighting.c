@@ -189,8 +189,7 @@ static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vec3 vis[8])
         ray sr = ray8_get(p, k);
         vis[k] = alone >> k & 1 ? shadow_filter(s, &sr) : crossings_filter(s, &sr, &cross[k]);
     }
-    for (int m = need; m; m &= m - 1)
-        ctx->shadow_rays++;
+    ctx->shadow_rays += (uint64_t)ray8_count(need);
 }
 
 /* The shadow rays of lanes `need` towards their light samples lr[k]

@@ -168,8 +168,7 @@ static int secondaries(trace_ctx *ctx, lanes8 *ls, const bounce8_from *f, int fo
         if (keep)
             ray8_pack(p, rs, keep);
     }
-    for (int m = keep; m; m &= m - 1)
-        ctx->secondary_rays++;
+    ctx->secondary_rays += (uint64_t)ray8_count(keep);
     return keep;
 }
 
