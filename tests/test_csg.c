@@ -250,12 +250,13 @@ Test(csg, random_trees_agree_with_the_membership_oracle, .timeout = 300)
 {
     rng g = rng_seed(99, 1);
     csg_tally tl = {0};
-    int points = 0, inside = 0;
+    int points = 0, inside = 0, tabled = 0;
     for (int tree = 0; tree < CSG_TREES; tree++) {
         csg c = {0};
         owned own = {.n = 0};
         random_tree(&c, &g, &own, 3);
         csg_finish(&c);
+        tabled += c.nleaves <= CSG_TABLE_LEAVES;
         char what[64];
         for (int i = 0; i < 200; i++) {
             /* Points: csg_contains is the oracle's own evaluation, so this
@@ -284,6 +285,40 @@ Test(csg, random_trees_agree_with_the_membership_oracle, .timeout = 300)
     cr_expect_gt(tl.hits, tl.rays / 8, "not vacuous");
     cr_expect_gt(inside, points / 200, "not vacuous");
     cr_expect_leq(tl.thin, tl.rays / 100);
+    /* Both ways to the tree's answer are taken: its table and its nodes. */
+    cr_expect_gt(tabled, CSG_TREES / 10, "%d of %d trees have a table", tabled, CSG_TREES);
+    cr_expect_lt(tabled, CSG_TREES - CSG_TREES / 10, "%d of %d trees have a table", tabled,
+                 CSG_TREES);
+}
+
+/* A small tree's table (csg_finish) holds the nodes' answer for every set
+ * of leaves a point can be inside. */
+Test(csg, table_is_the_tree_evaluated)
+{
+    rng g = rng_seed(7, 3);
+    int checked = 0;
+    for (int tree = 0; tree < 200; tree++) {
+        csg c = {0};
+        owned own = {.n = 0};
+        random_tree(&c, &g, &own, 3);
+        csg_finish(&c);
+        if (c.nleaves <= CSG_TABLE_LEAVES) {
+            for (unsigned st = 0; st < 1u << c.nleaves; st++) {
+                bool in[CSG_TABLE_LEAVES];
+                for (int i = 0; i < c.nleaves; i++)
+                    in[i] = st >> i & 1;
+                bool bit = c.table[st >> 6] >> (st & 63) & 1;
+                cr_assert_eq(bit, csg_contains(&c, in), "tree %d, leaves inside %#x", tree, st);
+            }
+            checked++;
+        } else {
+            cr_assert(!c.table[0] && !c.table[1] && !c.table[2] && !c.table[3],
+                      "tree %d: %d leaves, no table", tree, c.nleaves);
+        }
+        csg_free(&c);
+        free_owned(&own);
+    }
+    cr_expect_gt(checked, 40);
 }
 
 /* ---- identities ----------------------------------------------------------- */

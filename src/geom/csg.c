@@ -72,13 +72,6 @@ static aabb finish(csg *c, int32_t ref, bool flip)
     return b;
 }
 
-void csg_finish(csg *c)
-{
-    c->bounds = c->nnodes ? finish(c, CSG_NODE(c->nnodes - 1), false) : aabb_empty();
-    if (aabb_is_empty(c->bounds)) /* an intersection of things apart: nothing */
-        c->bounds = (aabb){v3s(0.0f), v3s(0.0f)};
-}
-
 void csg_free(csg *c)
 {
     if (!c)
@@ -129,6 +122,46 @@ static bool evaluate(const csg *c, const uint8_t *in, uint8_t *node_in)
     return c->nnodes ? node_in[c->nnodes - 1] : false;
 }
 
+/* The tree's table (csg.h), when it is small enough for one. */
+static void tabulate(csg *c)
+{
+    memset(c->table, 0, sizeof c->table);
+    if (c->nleaves > CSG_TABLE_LEAVES)
+        return;
+    uint8_t in[CSG_TABLE_LEAVES], node_in[CSG_MAX_LEAVES];
+    for (unsigned s = 0; s < 1u << c->nleaves; s++) {
+        for (int i = 0; i < c->nleaves; i++)
+            in[i] = s >> i & 1;
+        if (evaluate(c, in, node_in))
+            c->table[s >> 6] |= (uint64_t)1 << (s & 63);
+    }
+}
+
+/* The tree's answer for the leaves' states in (bits: the same, for the
+ * first CSG_TABLE_LEAVES leaves). */
+static inline bool answer(const csg *c, const uint8_t *in, unsigned bits, uint8_t *node_in)
+{
+    if (c->nleaves <= CSG_TABLE_LEAVES)
+        return c->table[bits >> 6] >> (bits & 63) & 1;
+    return evaluate(c, in, node_in);
+}
+
+/* Leaf i's state set to v in both in and bits. */
+static inline void set_in(uint8_t *in, unsigned *bits, int i, bool v)
+{
+    in[i] = v;
+    if (i < CSG_TABLE_LEAVES)
+        *bits = (*bits & ~(1u << i)) | (unsigned)v << i;
+}
+
+void csg_finish(csg *c)
+{
+    c->bounds = c->nnodes ? finish(c, CSG_NODE(c->nnodes - 1), false) : aabb_empty();
+    if (aabb_is_empty(c->bounds)) /* an intersection of things apart: nothing */
+        c->bounds = (aabb){v3s(0.0f), v3s(0.0f)};
+    tabulate(c);
+}
+
 bool csg_contains(const csg *c, const bool *leaf_inside)
 {
     uint8_t in[CSG_MAX_LEAVES], node_in[CSG_MAX_LEAVES];
@@ -153,11 +186,13 @@ static inline ray leaf_ray(const csg_leaf *l, const ray *r)
 /* Every leaf's crossings after t0, sorted by t (then leaf), and each leaf's
  * state just after t0. *cut is where a leaf's list was cut short (INFINITY
  * when none was): events beyond it are not all known. */
-static int gather(const csg *c, const ray *r, float t0, uint8_t *in, event *ev, float *cut)
+static int gather(const csg *c, const ray *r, float t0, uint8_t *in, unsigned *bits, event *ev,
+                  float *cut)
 {
     vec3 inv = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
     int n = 0;
     *cut = INFINITY;
+    *bits = 0;
     for (int i = 0; i < c->nleaves; i++) {
         const csg_leaf *l = &c->leaves[i];
         in[i] = 0;
@@ -170,7 +205,7 @@ static int gather(const csg *c, const ray *r, float t0, uint8_t *in, event *ev, 
         int k = shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, &more);
         if (k == 0)
             continue;
-        in[i] = !x[0].enter;
+        set_in(in, bits, i, !x[0].enter);
         if (more)
             *cut = fminf(*cut, x[k - 1].h.t);
         for (int j = 0; j < k; j++) {
@@ -201,16 +236,17 @@ bool csg_intersect(const csg *c, const ray *r, shape_hit *hit)
     float t0 = r->tmin;
     for (int round = 0; round < 64; round++) {
         float cut;
-        int n = gather(c, r, t0, in, ev, &cut);
-        bool inside = evaluate(c, in, node_in);
+        unsigned bits;
+        int n = gather(c, r, t0, in, &bits, ev, &cut);
+        bool inside = answer(c, in, bits, node_in);
         for (int i = 0; i < n && ev[i].x.h.t <= cut;) {
             float t = ev[i].x.h.t;
             if (t >= r->tmax)
                 return false;
             int j = i;
             for (; j < n && ev[j].x.h.t == t; j++)
-                in[ev[j].leaf] = ev[j].x.enter;
-            bool now = evaluate(c, in, node_in);
+                set_in(in, &bits, ev[j].leaf, ev[j].x.enter);
+            bool now = answer(c, in, bits, node_in);
             if (now != inside) {
                 const event *e = cause(c, ev + i, j - i, now);
                 *hit = e->x.h;

@@ -13,7 +13,8 @@
  * walked in order of t with each leaf's in/out state, and the tree is
  * evaluated on those states after each distinct t; the first t at which
  * the tree's answer changes is the hit. This is the same classification,
- * evaluated lazily. Because each crossing says which way it goes (rather
+ * evaluated lazily (a tree of at most CSG_TABLE_LEAVES leaves looks its
+ * answer up in a table made once, by csg_finish). Because each crossing says which way it goes (rather
  * than toggling a parity), a ray that starts inside operands, crossings
  * counted twice where a ray meets an edge of a mesh, and operands sharing
  * a surface (a - a is empty, a & a is a) all come out right, and a ray
@@ -34,6 +35,7 @@
  * report per query (more are fetched by querying again further on). */
 #define CSG_MAX_LEAVES 256
 #define CSG_LEAF_CROSSINGS 4
+#define CSG_TABLE_LEAVES 8
 
 typedef enum csg_op { CSG_UNION, CSG_INTERSECTION, CSG_DIFFERENCE, CSG_OP_COUNT } csg_op;
 
@@ -65,6 +67,10 @@ typedef struct csg {
     int32_t *kids;
     int nkids, cap_kids;
     aabb bounds; /* of the root, by csg_finish */
+    /* By csg_finish, for a tree of at most CSG_TABLE_LEAVES leaves: its
+     * answer for every set of leaves the point is inside (bit s: inside
+     * leaf i where bit i of s is set), read instead of walking the nodes. */
+    uint64_t table[4];
 } csg;
 
 /* Building: leaves and nodes in any order that adds a node's operands
