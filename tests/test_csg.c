@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "accel/isa.h"
 #include "core/array.h"
 #include "geom/csg.h"
 #include "geom/mesh.h"
@@ -96,11 +97,13 @@ static vec3 rand_vec(rng *g, float lo, float hi)
               lo + (hi - lo) * rng_float(g));
 }
 
-static shape random_solid(rng *g, owned *own)
+/* A solid of the first `kinds` of: sphere, box, cylinder (the kinds csg8
+ * spans), cone, torus, polyhedron. */
+static shape random_solid(rng *g, owned *own, unsigned kinds)
 {
     vec3 c = rand_vec(g, -0.8f, 0.8f);
     float r = 0.4f + 0.8f * rng_float(g);
-    switch (rng_u32(g) % 6) {
+    switch (rng_u32(g) % kinds) {
     case 0:
         return shape_sphere(c, r);
     case 1:
@@ -134,7 +137,7 @@ static xform random_xform(rng *g)
 static int32_t random_tree(csg *c, rng *g, owned *own, int depth)
 {
     if (depth == 0 || (depth < 3 && rng_float(g) < 0.35f)) {
-        shape s = random_solid(g, own);
+        shape s = random_solid(g, own, 6);
         xform x = random_xform(g);
         return csg_add_leaf(c, &s, rng_float(g) < 0.5f ? &x : NULL, c->nleaves);
     }
@@ -605,4 +608,185 @@ Test(csg, glass_lens_focuses_like_a_lens)
         ASSERT_NEAR(-d / 2 - z, bfd, 0.01 * bfd);
     }
     scene_free(s);
+}
+
+/* ---- eight rays at once (csg8.h) ------------------------------------------ */
+
+/* A random tree of solids of the first `kinds` of random_solid, half of
+ * them moved (turned, stretched, sheared and shifted), about one in four
+ * a copy of an earlier leaf (operands that share a surface, crossed at
+ * the same t). */
+static int32_t packet_tree(csg *c, rng *g, owned *own, int depth, unsigned kinds)
+{
+    if (depth == 0 || (depth < 3 && rng_float(g) < 0.35f)) {
+        if (c->nleaves > 0 && rng_float(g) < 0.25f) {
+            csg_leaf l = c->leaves[rng_u32(g) % (unsigned)c->nleaves];
+            return csg_add_leaf(c, &l.shape, l.moved ? &l.x : NULL, c->nleaves);
+        }
+        shape s = random_solid(g, own, kinds);
+        xform x = random_xform(g), t = xform_translate(rand_vec(g, -0.5f, 0.5f));
+        x = xform_then(&x, &t);
+        return csg_add_leaf(c, &s, rng_float(g) < 0.5f ? &x : NULL, c->nleaves);
+    }
+    int32_t kids[3];
+    int n = 2 + (int)(rng_u32(g) % 2);
+    for (int i = 0; i < n; i++)
+        kids[i] = packet_tree(c, g, own, depth - 1, kinds);
+    return csg_add_node(c, (csg_op)(rng_u32(g) % CSG_OP_COUNT), kids, n);
+}
+
+/* One ray of a packet: from one point into the bounds (coherent), from
+ * inside the bounds (inside operands), along an axis from a leaf's
+ * bounds' coordinates (grazing a box's faces, direction 0 on two axes), or
+ * anywhere; ranges from 0 or a little more, some of them short. */
+static ray packet_ray(rng *g, const csg *c, int i, int k, vec3 eye)
+{
+    vec3 o, d;
+    switch (i % 4) {
+    case 0:
+        o = v3_add(eye, rand_vec(g, -0.05f, 0.05f));
+        d = v3_sub(rand_in_box(g, c->bounds), o);
+        break;
+    case 1:
+        o = rand_in_box(g, c->bounds);
+        d = rng_unit_dir(g);
+        break;
+    case 2: {
+        aabb b = c->leaves[rng_u32(g) % (unsigned)c->nleaves].bounds;
+        float at[3][3] = {{b.lo.x, b.hi.x, 0.5f * (b.lo.x + b.hi.x)},
+                          {b.lo.y, b.hi.y, 0.5f * (b.lo.y + b.hi.y)},
+                          {b.lo.z, b.hi.z, 0.5f * (b.lo.z + b.hi.z)}};
+        float q[3], e[3] = {0, 0, 0};
+        for (int a = 0; a < 3; a++)
+            q[a] = at[a][rng_u32(g) % 3];
+        int axis = (int)(rng_u32(g) % 3);
+        e[axis] = k % 2 ? 1.0f : -1.0f;
+        q[axis] = -3.0f * e[axis];
+        o = v3(q[0], q[1], q[2]);
+        d = v3(e[0], e[1], e[2]);
+        break;
+    }
+    default:
+        o = rand_vec(g, -2.5f, 2.5f);
+        d = rng_unit_dir(g);
+        break;
+    }
+    d = v3_scale(d, (0.5f + rng_float(g)) / fmaxf(v3_len(d), 1e-6f));
+    ray r = ray_make(o, d, k % 3 == 0 ? 0.5f + 3.0f * rng_float(g) : INFINITY);
+    r.tmin = i % 3 == 0 ? 0.0f : 1e-3f * rng_float(g);
+    return r;
+}
+
+typedef int (*csg8_hit_fn)(const csg *, const ray8 *, int, shape_hit *);
+typedef int (*csg8_occluded_fn)(const csg *, const ray8 *, int);
+
+/* The eight-wide kernels this CPU runs: how many, into hit and occluded. */
+static int csg8_kernels(csg8_hit_fn hit[2], csg8_occluded_fn occluded[2])
+{
+    int n = 0;
+#if defined(GLINT_WIDE_KERNELS)
+    if (accel_isa_best() >= ACCEL_AVX2)
+        hit[n] = csg8_hit_avx2, occluded[n++] = csg8_occluded_avx2;
+    if (accel_isa_best() >= ACCEL_AVX512)
+        hit[n] = csg8_hit_avx512, occluded[n++] = csg8_occluded_avx512;
+#endif
+    (void)hit, (void)occluded;
+    return n;
+}
+
+typedef struct csg8_tally {
+    int rays, hits, blocked, fallback; /* fallback: hits on a leaf not spanned at once */
+} csg8_tally;
+
+/* Packet p (rays of active; the idle lanes hold NaN) on every kernel
+ * against csg_intersect and shape_occluded one ray at a time: the same
+ * rays hit and blocked, the same hits to the bit. */
+static void csg8_same(const csg *c, const ray8 *p, int active, csg8_tally *tl, const char *what)
+{
+    csg8_hit_fn hit[2];
+    csg8_occluded_fn occluded[2];
+    int kernels = csg8_kernels(hit, occluded);
+    shape sh = shape_csg(c);
+    for (int q = 0; q < kernels; q++) {
+        shape_hit h[8];
+        memset(h, 0xa5, sizeof h);
+        int found = hit[q](c, p, active, h), blocked = occluded[q](c, p, active);
+        cr_assert_eq(found & ~active, 0, "%s: an idle lane hit", what);
+        for (int k = 0; k < 8; k++) {
+            if (!(active >> k & 1))
+                continue;
+            ray r = ray8_get(p, k);
+            shape_hit want = {0};
+            bool w = csg_intersect(c, &r, &want);
+            cr_assert_eq(found >> k & 1, w, "%s kernel %d ray %d: hit %d", what, q, k, w);
+            cr_assert_eq(blocked >> k & 1, shape_occluded(&sh, &r), "%s kernel %d ray %d", what,
+                         q, k);
+            tl->rays++;
+            tl->blocked += blocked >> k & 1;
+            if (!w)
+                continue;
+            cr_assert(!memcmp(&h[k], &want, sizeof want),
+                      "%s kernel %d ray %d: t %a part %d leaf %d, one ray: t %a part %d leaf %d",
+                      what, q, k, (double)h[k].t, h[k].part, h[k].leaf, (double)want.t, want.part,
+                      want.leaf);
+            shape_kind kind = c->leaves[want.leaf].shape.kind;
+            tl->hits++;
+            tl->fallback += kind != SHAPE_SPHERE && kind != SHAPE_BOX && kind != SHAPE_CYLINDER;
+        }
+    }
+}
+
+/* Random trees of the first `kinds` solids against packets of every kind
+ * of packet_ray, some partly idle. */
+static csg8_tally csg8_trees(unsigned kinds, uint64_t seed, int trees)
+{
+    rng g = rng_seed(seed, 4);
+    csg8_tally tl = {0};
+    for (int tree = 0; tree < trees; tree++) {
+        csg c = {0};
+        owned own = {.n = 0};
+        packet_tree(&c, &g, &own, 3, kinds);
+        csg_finish(&c);
+        for (int i = 0; i < 40; i++) {
+            ray8 p;
+            vec3 eye = rand_vec(&g, -3.0f, 3.0f);
+            int active = i % 5 == 0 ? 0x5b : i % 7 == 0 ? 0x80 : 0xff;
+            for (int k = 0; k < 8; k++) {
+                ray r = packet_ray(&g, &c, i, k, eye);
+                if (!(active >> k & 1))
+                    r.o = r.d = v3s(NAN);
+                ray8_put(&p, k, &r);
+            }
+            char what[64];
+            snprintf(what, sizeof what, "tree %d packet %d", tree, i);
+            csg8_same(&c, &p, active, &tl, what);
+        }
+        csg_free(&c);
+        free_owned(&own);
+    }
+    return tl;
+}
+
+/* Trees of spheres, boxes and cylinders, whose spans csg8 finds for the
+ * eight rays at once. */
+Test(csg, eight_rays_match_one_at_a_time_for_convex_leaves)
+{
+    csg8_tally tl = csg8_trees(3, 11, CSG_TREES);
+    if (accel_isa_best() < ACCEL_AVX2)
+        return;
+    cr_log_info("csg8: %d rays, %d hits, %d blocked", tl.rays, tl.hits, tl.blocked);
+    cr_assert_gt(tl.hits, tl.rays / 8, "not vacuous: %d hits of %d rays", tl.hits, tl.rays);
+    cr_assert_eq(tl.blocked, tl.hits);
+}
+
+/* Trees with cones, tori and polyhedra too, which each ray asks for
+ * their crossings (shape_crossings) in the first round as in every other. */
+Test(csg, eight_rays_match_one_at_a_time_with_other_leaves)
+{
+    csg8_tally tl = csg8_trees(6, 12, CSG_TREES);
+    if (accel_isa_best() < ACCEL_AVX2)
+        return;
+    cr_log_info("csg8: %d rays, %d hits (%d on other leaves)", tl.rays, tl.hits, tl.fallback);
+    cr_assert_gt(tl.hits, tl.rays / 8, "not vacuous: %d hits of %d rays", tl.hits, tl.rays);
+    cr_assert_gt(tl.fallback, tl.hits / 4, "other leaves hit: %d of %d", tl.fallback, tl.hits);
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 #include "accel/isa.h"
 #include "core/rng.h"
+#include "geom/csg.h"
 #include "geom/mesh.h"
 #include "geom/mesh_trace.h"
 #include "geom/shape.h"
@@ -645,6 +646,101 @@ Test(packet, torus_shadows_match_one_ray_at_a_time_on_every_path)
     cr_assert_gt(walked, 2000, "packets: %d", walked);
     cr_assert_gt(counts[0], 5000, "clear: %d", counts[0]);
     cr_assert_gt(counts[1], 5000, "blocked: %d", counts[1]);
+}
+
+/* A grid of csg objects over a plane (bench/tori.awk's row 8 in small):
+ * (box & sphere) - cylinder, shifted by the object's transform, some
+ * turned too, some with a turned leaf, and every third with a torus for
+ * its hole (asked ray by ray inside csg8_hit). */
+static scene *csg_scene(void)
+{
+    int mat;
+    scene *s = grounded(&mat);
+    rng g = rng_seed(17, 4);
+    for (int i = 0; i < 10; i++)
+        for (int j = 0; j < 10; j++) {
+            csg *c = calloc(1, sizeof *c);
+            cr_assert_not_null(c);
+            shape box = shape_box(v3s(-0.4f), v3s(0.4f)), ball = shape_sphere(v3s(0.0f), 0.54f);
+            shape hole = (i + j) % 3 == 0 ? shape_torus(v3(0, 0.4f, 0), 0.3f, 0.12f)
+                                          : shape_cylinder(v3(0, -1, 0), 0.2f, 2.0f, true);
+            xform tilt = xform_rotate(v3(1, 0, 0), uniform(&g, 0, 90));
+            int32_t both[2] = {csg_add_leaf(c, &box, NULL, mat),
+                               csg_add_leaf(c, &ball, (i + j) % 4 == 1 ? &tilt : NULL, mat)};
+            int32_t ops[2] = {csg_add_node(c, CSG_INTERSECTION, both, 2),
+                              csg_add_leaf(c, &hole, (i + j) % 5 == 2 ? &tilt : NULL, mat)};
+            csg_add_node(c, CSG_DIFFERENCE, ops, 2);
+            csg_finish(c);
+            cr_assert_geq(scene_add_csg(s, c), 0);
+            vec3 at = v3(-5.0f + (float)i, -5.0f + (float)j, -2.0f * (float)((i + j) % 3));
+            xform ry = xform_rotate(v3(0, 1, 0), uniform(&g, 0, 360)), tr = xform_translate(at);
+            xform x = (i + j) % 2 ? xform_then(&ry, &tr) : tr;
+            shape sh = shape_csg(c);
+            cr_assert_geq(scene_add_object(s, &sh, -1, scene_add_xform(s, &x)), 0);
+        }
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+/* Camera packets into the csg grid (csg8_hit for three or more rays):
+ * each ray's hit is scene_intersect's to the bit, on every path. */
+Test(packet, csg_hits_match_one_ray_at_a_time_on_every_path)
+{
+    int many = 0;
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = csg_scene();
+        many += same_hits(s, v3(0.3f, -0.2f, 9.0f), 6000, SHAPE_CSG);
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    cr_assert_gt(many, 10000);
+}
+
+/* Shadow rays from behind the csg grid to a light in front of it, in
+ * packets (csg8_occluded for three or more): blocked as scene_shadow
+ * finds each ray alone, on every path. */
+Test(packet, csg_shadows_match_one_ray_at_a_time_on_every_path)
+{
+    int counts[2] = {0, 0}, walked = 0;
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = csg_scene();
+        rng g = rng_seed(5, 1);
+        for (int i = 0; i < 3000; i++) {
+            float spread = i % 3 == 0 ? 4.0f : 0.4f;
+            vec3 c = v3(uniform(&g, -6, 6), uniform(&g, -6, 6), uniform(&g, -10, -5));
+            ray8 p;
+            for (int k = 0; k < 8; k++) {
+                vec3 o = v3_add(c, v3(uniform(&g, -spread, spread), uniform(&g, -spread, spread),
+                                      uniform(&g, -spread, spread)));
+                put(&p, k, o, v3_sub(v3(0.3f, -0.2f, 9.0f), o), 1e-3f, 1.0f);
+            }
+            int active = i % 5 == 0 ? 0x7b : 0xff, blocked = 0, crosses = 0;
+            if (!scene_shadow8(s, &p, active, &blocked, &crosses))
+                continue;
+            walked++;
+            cr_assert_eq(crosses, 0);
+            for (int m = active; m; m &= m - 1) {
+                int k = __builtin_ctz((unsigned)m);
+                ray r = ray8_get(&p, k);
+                scene_crossings cross;
+                bool b = scene_shadow(s, &r, &cross);
+                cr_assert_eq(blocked >> k & 1, b, "packet %d ray %d", i, k);
+                counts[b]++;
+            }
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() < ACCEL_AVX2)
+        return;
+    cr_assert_gt(walked, 2000, "packets: %d", walked);
+    cr_assert_gt(counts[0], 3000, "clear: %d", counts[0]);
+    cr_assert_gt(counts[1], 3000, "blocked: %d", counts[1]);
 }
 
 /* Spheres, boxes, quads and cylinders (open and capped), turned,

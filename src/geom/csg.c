@@ -183,32 +183,50 @@ static inline ray leaf_ray(const csg_leaf *l, const ray *r)
                  r->time};
 }
 
+/* Leaf i's crossings after t0 (at most CSG_LEAF_CROSSINGS), none when r
+ * misses its bounds from t0 on. In a packet's first round (pre, for lane
+ * k) the bounds test and, for the leaves csg8.h spans, the span are read
+ * from pre, worked out there by the same operations; otherwise the leaf
+ * is asked. */
+static int leaf_crossings(const csg *c, int i, const ray *r, vec3 inv, float t0,
+                          const csg_spans8 *pre, int k, crossing *x, bool *more)
+{
+    const csg_leaf *l = &c->leaves[i];
+    *more = false;
+    if (pre ? !(pre->leaf[i].bounded >> k & 1) : !aabb_hit(l->bounds, r->o, inv, t0, INFINITY))
+        return 0;
+    if (pre && pre->leaf[i].spanned >> k & 1) {
+        const csg_leaf8 *s = &pre->leaf[i];
+        shape_hit in = {.t = s->tin[k], .part = s->pin[k]};
+        shape_hit out = {.t = s->tout[k], .part = s->pout[k]};
+        return shape_span_crossings(s->met >> k & 1, in, out, t0, x, CSG_LEAF_CROSSINGS);
+    }
+    ray lr = leaf_ray(l, r);
+    lr.tmin = t0;
+    return shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, more);
+}
+
 /* Every leaf's crossings after t0, sorted by t (then leaf), and each leaf's
  * state just after t0. *cut is where a leaf's list was cut short (INFINITY
  * when none was): events beyond it are not all known. */
-static int gather(const csg *c, const ray *r, float t0, uint8_t *in, unsigned *bits, event *ev,
-                  float *cut)
+static int gather(const csg *c, const ray *r, float t0, const csg_spans8 *pre, int k,
+                  uint8_t *in, unsigned *bits, event *ev, float *cut)
 {
     vec3 inv = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
     int n = 0;
     *cut = INFINITY;
     *bits = 0;
     for (int i = 0; i < c->nleaves; i++) {
-        const csg_leaf *l = &c->leaves[i];
-        in[i] = 0;
-        if (!aabb_hit(l->bounds, r->o, inv, t0, INFINITY))
-            continue;
-        ray lr = leaf_ray(l, r);
-        lr.tmin = t0;
         crossing x[CSG_LEAF_CROSSINGS];
-        bool more = false;
-        int k = shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, &more);
-        if (k == 0)
+        bool more;
+        in[i] = 0;
+        int nx = leaf_crossings(c, i, r, inv, t0, pre, k, x, &more);
+        if (nx == 0)
             continue;
         set_in(in, bits, i, !x[0].enter);
         if (more)
-            *cut = fminf(*cut, x[k - 1].h.t);
-        for (int j = 0; j < k; j++) {
+            *cut = fminf(*cut, x[nx - 1].h.t);
+        for (int j = 0; j < nx; j++) {
             event e = {x[j], i};
             int m = n++;
             for (; m > 0 && ev[m - 1].x.h.t > e.x.h.t; m--)
@@ -229,15 +247,20 @@ static const event *cause(const csg *c, const event *ev, int n, bool became_insi
     return &ev[0];
 }
 
-bool csg_intersect(const csg *c, const ray *r, shape_hit *hit)
+/* The classification: rounds of gathering the leaves' crossings from t0
+ * on, each walked in order of t with the tree's answer after every
+ * distinct t, until the answer changes (the hit), the range ends, or the
+ * crossings known are all there are. Only the first round can come from
+ * pre (csg_hit_lane); a round after a cut asks the leaves from the cut. */
+static bool classify(const csg *c, const ray *r, const csg_spans8 *pre, int k, shape_hit *hit)
 {
     uint8_t in[CSG_MAX_LEAVES], node_in[CSG_MAX_LEAVES];
     event ev[CSG_MAX_LEAVES * CSG_LEAF_CROSSINGS];
     float t0 = r->tmin;
-    for (int round = 0; round < 64; round++) {
+    for (int round = 0; round < 64; round++, pre = NULL) {
         float cut;
         unsigned bits;
-        int n = gather(c, r, t0, in, &bits, ev, &cut);
+        int n = gather(c, r, t0, pre, k, in, &bits, ev, &cut);
         bool inside = answer(c, in, bits, node_in);
         for (int i = 0; i < n && ev[i].x.h.t <= cut;) {
             float t = ev[i].x.h.t;
@@ -260,6 +283,16 @@ bool csg_intersect(const csg *c, const ray *r, shape_hit *hit)
         t0 = cut;
     }
     return false;
+}
+
+bool csg_intersect(const csg *c, const ray *r, shape_hit *hit)
+{
+    return classify(c, r, NULL, 0, hit);
+}
+
+bool csg_hit_lane(const csg *c, const ray *r, const csg_spans8 *pre, int k, shape_hit *hit)
+{
+    return classify(c, r, pre, k, hit);
 }
 
 /* The leaf's surface, carried into the csg's space and turned when the

@@ -87,6 +87,36 @@ void csg_finish(csg *c);
 void csg_free(csg *c);
 
 bool csg_intersect(const csg *c, const ray *r, shape_hit *hit);
+
+/* Eight rays against one leaf, from their tmin on, as csg_intersect's
+ * first round of crossings finds each ray's (csg8.h works them out in
+ * vector registers). bounded has bit k when ray k passes the leaf's
+ * bounds (aabb_hit); spanned, those of them whose span of the leaf is
+ * here: met when the line meets the leaf, with the entry's t and part in
+ * tin, pin, the exit's in tout, pout. A ray bounded but not spanned asks
+ * the leaf itself (shape_crossings). */
+typedef struct csg_leaf8 {
+    float tin[8], tout[8];
+    int32_t pin[8], pout[8];
+    uint8_t bounded, spanned, met;
+} csg_leaf8;
+
+typedef struct csg_spans8 {
+    csg_leaf8 leaf[CSG_MAX_LEAVES];
+} csg_spans8;
+
+/* csg_intersect for r, which is ray k of a packet whose first round of
+ * crossings pre holds: the same hit, from the one classification. */
+bool csg_hit_lane(const csg *c, const ray *r, const csg_spans8 *pre, int k, shape_hit *hit);
+
+/* csg_intersect against the rays of active, each within its own range:
+ * returns the rays hit, with hit[k] as csg_intersect sets it (the rest of
+ * it zero); csg8_occluded returns the rays that meet the csg, which is
+ * shape_occluded's answer. On the eight-wide paths (geom/csg8.h). */
+int csg8_hit_avx2(const csg *c, const ray8 *r, int active, shape_hit *hit);
+int csg8_hit_avx512(const csg *c, const ray8 *r, int active, shape_hit *hit);
+int csg8_occluded_avx2(const csg *c, const ray8 *r, int active);
+int csg8_occluded_avx512(const csg *c, const ray8 *r, int active);
 void csg_surface(const csg *c, const ray *r, const shape_hit *hit, surface *out);
 /* Membership of a point, for tests: the tree on the leaves' answers. */
 bool csg_contains(const csg *c, const bool *leaf_inside);

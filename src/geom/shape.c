@@ -311,20 +311,6 @@ bool shape_is_solid(const shape *s)
     return false;
 }
 
-/* A convex solid's entry and exit, those after tmin. */
-static int convex_crossings(bool found, shape_hit in, shape_hit out, const ray *r,
-                            crossing *x, int max)
-{
-    int n = 0;
-    if (!found)
-        return 0;
-    if (in.t > r->tmin && n < max)
-        x[n++] = (crossing){in, true};
-    if (out.t > r->tmin && n < max)
-        x[n++] = (crossing){out, false};
-    return n;
-}
-
 int shape_crossings(const shape *s, const ray *r, crossing *x, int max, bool *more)
 {
     shape_hit in, out;
@@ -357,7 +343,7 @@ int shape_crossings(const shape *s, const ray *r, crossing *x, int max, bool *mo
     case SHAPE_COUNT:
         return 0;
     }
-    return convex_crossings(found, in, out, r, x, max);
+    return shape_span_crossings(found, in, out, r->tmin, x, max);
 }
 
 int shape_hit_material(const shape *s, const shape_hit *hit)

@@ -288,12 +288,26 @@ void torus_surface(const struct torus *s, vec3 p, surface *out);
 void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out);
 
 /* Crossings of the convex solids: the whole line's entry and exit, of
- * which those after r->tmin are kept (convex_crossings, shape.c). Each
+ * which those after r->tmin are kept (shape_span_crossings). Each
  * returns false when the line misses. */
 bool sphere_span(const struct sphere *s, const ray *r, shape_hit *in, shape_hit *out);
 bool box_span(const struct box *s, const ray *r, shape_hit *in, shape_hit *out);
 bool cylinder_span(const struct cylinder *s, const ray *r, shape_hit *in, shape_hit *out);
 bool cone_span(const struct cone *s, const ray *r, shape_hit *in, shape_hit *out);
 int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max);
+/* A convex solid's crossings from its span (found: the line meets it):
+ * the entry and the exit, those after tmin, at most max of them. */
+static inline int shape_span_crossings(bool found, shape_hit in, shape_hit out, float tmin,
+                                       crossing *x, int max)
+{
+    int n = 0;
+    if (!found)
+        return 0;
+    if (in.t > tmin && n < max)
+        x[n++] = (crossing){in, true};
+    if (out.t > tmin && n < max)
+        x[n++] = (crossing){out, false};
+    return n;
+}
 
 #endif

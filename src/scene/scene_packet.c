@@ -5,8 +5,9 @@
  * tested against the rays that enter it. An object is tested against the
  * rays at once where it can be: a mesh in one walk of its tree
  * (mesh_intersect8), a sphere, quad, plane or box in one test (shape8_hit), a
- * torus's setup in one (torus8_hit) and its roots ray by ray; any other
- * ray by ray. Otherwise each ray goes through scene_intersect. Either way
+ * torus's setup in one (torus8_hit) and its roots ray by ray, a csg's
+ * leaves' bounds and convex spans in one (csg8_hit) and its classification
+ * ray by ray; any other ray by ray. Otherwise each ray goes through scene_intersect. Either way
  * every ray gets the hit scene_intersect gives it, to the bit.
  *
  * scene_shadow8 walks eight shadow rays the same way, asking each object
@@ -15,6 +16,7 @@
  * is left to the crossings' search). scene_shadow_unblocked8 then finds
  * the crossings of the rays nothing blocks, eight at a time. */
 #include <string.h>
+#include "geom/csg.h"
 #include "geom/mesh.h"
 #include "scene_trace.h"
 
@@ -76,6 +78,33 @@ static int torus8_occluded_on_path(const scene *s, const struct torus *t, const 
     return -1;
 }
 
+/* csg8_hit on the scene's path; -1 where it has none. */
+static int csg8_on_path(const scene *s, const struct csg *c, const ray8 *r, int active,
+                        shape_hit h[8])
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return csg8_hit_avx512(c, r, active, h);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return csg8_hit_avx2(c, r, active, h);
+#endif
+    (void)s, (void)c, (void)r, (void)active, (void)h;
+    return -1;
+}
+
+/* csg8_occluded on the scene's path; -1 where it has none. */
+static int csg8_occluded_on_path(const scene *s, const struct csg *c, const ray8 *r, int active)
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return csg8_occluded_avx512(c, r, active);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return csg8_occluded_avx2(c, r, active);
+#endif
+    (void)s, (void)c, (void)r, (void)active;
+    return -1;
+}
+
 /* The rays of active in object o's space, each searched up to best[k] (as
  * scene_hit_object searches them; best NULL: as far as it goes already);
  * idle lanes repeat an active ray. */
@@ -106,12 +135,27 @@ static void object_rays(const scene *s, const object *o, const ray8 *r, int acti
 
 /* Whether object o is tested against three or more of a packet's rays at
  * once (in its own space when it is turned): a mesh in one walk of its
- * tree, a torus's setup in one test, the shapes of shape_tests_eight in
- * one test. A moving one is not: its rays differ in their transforms. */
+ * tree, a torus's setup in one test, a csg's bounds and spans in one
+ * (csg8_hit), the shapes of shape_tests_eight in one test. A moving one
+ * is not: its rays differ in their transforms. */
 static bool tests_eight(const object *o)
 {
     shape_kind k = o->shape.kind;
-    return !o->moving && (k == SHAPE_MESH || k == SHAPE_TORUS || shape_tests_eight(k));
+    return !o->moving &&
+           (k == SHAPE_MESH || k == SHAPE_TORUS || k == SHAPE_CSG || shape_tests_eight(k));
+}
+
+/* The test of a mesh, torus or csg against the rays of active (in its
+ * space, each up to its best): the rays hit, with their hits in h; -1
+ * where the path has no such test. */
+static int packet_solid(const scene *s, const shape *sh, const ray8 *q, int active,
+                        shape_hit h[8])
+{
+    if (sh->kind == SHAPE_MESH)
+        return mesh_intersect8(sh->mesh, q, active, h);
+    if (sh->kind == SHAPE_CSG)
+        return csg8_on_path(s, sh->csg, q, active, h);
+    return torus8_on_path(s, &sh->torus, q, active, h);
 }
 
 /* Object i against the rays of active, each searched up to best[k]: three
@@ -125,7 +169,7 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
         shape_kind kind = o->shape.kind;
         ray8 lr;
         const ray8 *q = r;
-        if (kind == SHAPE_MESH || kind == SHAPE_TORUS || o->xform >= 0) {
+        if (!shape_tests_eight(kind) || o->xform >= 0) {
             object_rays(s, o, r, active, best, &lr);
             q = &lr;
         }
@@ -136,8 +180,7 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
                 return keep_hits8(i, any, nearer, &h, best, hit);
         } else {
             shape_hit h[8];
-            int any = kind == SHAPE_MESH ? mesh_intersect8(o->shape.mesh, q, active, h)
-                                         : torus8_on_path(s, &o->shape.torus, q, active, h);
+            int any = packet_solid(s, &o->shape, q, active, h);
             if (any >= 0)
                 return keep8(i, any, h, best, hit);
         }
@@ -207,7 +250,7 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
     int met = -1;
     shape_kind kind = o->shape.kind;
     if (ray8_three_or_more(active) && !o->moving &&
-        (kind == SHAPE_TORUS || shape_tests_eight(kind))) {
+        (kind == SHAPE_TORUS || kind == SHAPE_CSG || shape_tests_eight(kind))) {
         ray8 lr;
         const ray8 *q = r;
         if (o->xform >= 0) {
@@ -215,6 +258,7 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
             q = &lr;
         }
         met = kind == SHAPE_TORUS ? torus8_occluded_on_path(s, &o->shape.torus, q, active)
+              : kind == SHAPE_CSG ? csg8_occluded_on_path(s, o->shape.csg, q, active)
                                   : shape8_on_path(s, &o->shape, q, NULL, active, NULL, NULL);
     }
     if (met < 0 && o->transmits) { /* crossed or not: the crossings' search will say */

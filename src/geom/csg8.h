@@ -1,0 +1,266 @@
+/* csg8: a csg against eight rays at once (csg.h). Each leaf's bounds
+ * test, and the span of a sphere, box or cylinder leaf (carried by its
+ * own transform where it has one), are worked out for the eight rays in
+ * vector registers: the first round of crossings csg_intersect gathers.
+ * Each lane does the one-ray routines' operations in the same order
+ * (aabb_hit, mat4_point, mat4_vector, sphere_span, box_span,
+ * cylinder_span; no fused multiply-adds), so its spans are the same to
+ * the bit; branches become masks. Any other leaf is asked ray by ray
+ * (shape_crossings), and each ray's crossings are then classified by
+ * csg.c's one routine (csg_hit_lane). For translation units compiled with
+ * AVX2 (geom/shape8_<isa>.c). */
+#ifndef GLINT_GEOM_CSG8_H
+#define GLINT_GEOM_CSG8_H
+
+#include <immintrin.h>
+#include "geom/csg.h"
+#include "geom/shape8.h"
+
+/* glibc's fminf, which the spans call: the other operand where one is
+ * NaN, the first where they compare equal (-0 and +0 keep their order). */
+static inline __m256 fmin8(__m256 x, __m256 y)
+{
+    return _mm256_blendv_ps(_mm256_min_ps(y, x), y, _mm256_cmp_ps(x, x, _CMP_UNORD_Q));
+}
+
+/* fmaxf likewise. */
+static inline __m256 fmax8(__m256 x, __m256 y)
+{
+    return _mm256_blendv_ps(_mm256_max_ps(y, x), y, _mm256_cmp_ps(x, x, _CMP_UNORD_Q));
+}
+
+/* c ? b : a, lane by lane, for the ternaries of the one-ray code. */
+static inline __m256 pick8(__m256 c, __m256 b, __m256 a) { return _mm256_blendv_ps(a, b, c); }
+
+/* aabb_hit(b, o, inv, tmin, INFINITY): the rays whose slab interval
+ * reaches their tmin (minf and maxf are min_ps and max_ps exactly). */
+static inline int aabb8_hit(aabb b, const __m256 *o, const __m256 *inv, __m256 tmin)
+{
+    const float lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+    __m256 t0[3], t1[3];
+    for (int a = 0; a < 3; a++) {
+        t0[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(lo[a]), o[a]), inv[a]);
+        t1[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(hi[a]), o[a]), inv[a]);
+    }
+    __m256 near = _mm256_max_ps(_mm256_min_ps(t0[1], t1[1]), _mm256_min_ps(t0[2], t1[2]));
+    near = _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(t0[0], t1[0]), near), tmin);
+    __m256 far = _mm256_min_ps(_mm256_max_ps(t0[1], t1[1]), _mm256_max_ps(t0[2], t1[2]));
+    far = _mm256_min_ps(_mm256_max_ps(t0[0], t1[0]), far);
+    const float grow = 1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f);
+    far = _mm256_min_ps(_mm256_mul_ps(far, _mm256_set1_ps(grow)), _mm256_set1_ps(INFINITY));
+    return _mm256_movemask_ps(_mm256_cmp_ps(near, far, _CMP_LE_OQ));
+}
+
+/* The rays in leaf l's space (csg.c's leaf_ray): row by row of its
+ * inverse, ((a0 x + a1 y) + a2 z) + a3 as mat4_point adds them. */
+static inline void leaf8_rays(const csg_leaf *l, const __m256 *o, const __m256 *d, __m256 *lo,
+                              __m256 *ld)
+{
+    for (int i = 0; i < 3; i++) {
+        if (!l->moved) {
+            lo[i] = o[i], ld[i] = d[i];
+            continue;
+        }
+        const float *a = l->x.inv.m[i];
+        __m256 a0 = _mm256_set1_ps(a[0]), a1 = _mm256_set1_ps(a[1]), a2 = _mm256_set1_ps(a[2]);
+        lo[i] = _mm256_add_ps(dot8(a0, a1, a2, o[0], o[1], o[2]), _mm256_set1_ps(a[3]));
+        ld[i] = dot8(a0, a1, a2, d[0], d[1], d[2]);
+    }
+}
+
+/* sphere_span: the rays whose line meets the sphere, with the entry's
+ * and the exit's t. */
+static inline int sphere8_span(const struct sphere *s, const __m256 *o, const __m256 *d,
+                               __m256 *tin, __m256 *tout)
+{
+    const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
+    __m256 fx = _mm256_sub_ps(o[0], _mm256_set1_ps(s->center.x));
+    __m256 fy = _mm256_sub_ps(o[1], _mm256_set1_ps(s->center.y));
+    __m256 fz = _mm256_sub_ps(o[2], _mm256_set1_ps(s->center.z));
+    __m256 a = dot8(d[0], d[1], d[2], d[0], d[1], d[2]);
+    __m256 b = _mm256_xor_ps(dot8(fx, fy, fz, d[0], d[1], d[2]), sign);
+    __m256 ba = _mm256_div_ps(b, a);
+    __m256 lx = _mm256_add_ps(fx, _mm256_mul_ps(d[0], ba));
+    __m256 ly = _mm256_add_ps(fy, _mm256_mul_ps(d[1], ba));
+    __m256 lz = _mm256_add_ps(fz, _mm256_mul_ps(d[2], ba));
+    __m256 rr = _mm256_set1_ps(s->radius * s->radius);
+    __m256 disc = _mm256_mul_ps(a, _mm256_sub_ps(rr, dot8(lx, ly, lz, lx, ly, lz)));
+    int met = ~_mm256_movemask_ps(_mm256_cmp_ps(disc, zero, _CMP_LT_OQ)) & 0xff;
+    __m256 c = _mm256_sub_ps(dot8(fx, fy, fz, fx, fy, fz), rr);
+    __m256 q = _mm256_add_ps(b, copysign8(_mm256_sqrt_ps(disc), b));
+    __m256 q0 = _mm256_cmp_ps(q, zero, _CMP_EQ_OQ); /* q != 0 ? ... : 0 */
+    __m256 t0 = _mm256_andnot_ps(q0, _mm256_div_ps(c, q));
+    __m256 t1 = _mm256_andnot_ps(q0, _mm256_div_ps(q, a));
+    *tin = fmin8(t0, t1);
+    *tout = fmax8(t0, t1);
+    return met;
+}
+
+/* box_span likewise, with the faces in pin, pout: the slabs in the same
+ * order, a lane parallel to a slab missing when outside it. */
+static inline int box8_span(const struct box *s, const __m256 *o, const __m256 *d, __m256 *tin,
+                            __m256 *tout, __m256 *pin, __m256 *pout)
+{
+    const __m256 zero = _mm256_setzero_ps();
+    const float lo[3] = {s->lo.x, s->lo.y, s->lo.z}, hi[3] = {s->hi.x, s->hi.y, s->hi.z};
+    __m256 tnear = _mm256_set1_ps(-INFINITY), tfar = _mm256_set1_ps(INFINITY);
+    __m256 nf = _mm256_set1_ps(-1.0f), ff = nf, miss = zero;
+    for (int a = 0; a < 3; a++) {
+        __m256 l = _mm256_set1_ps(lo[a]), h = _mm256_set1_ps(hi[a]);
+        __m256 flat = _mm256_cmp_ps(d[a], zero, _CMP_EQ_OQ);
+        __m256 out = _mm256_or_ps(_mm256_cmp_ps(o[a], l, _CMP_LT_OQ),
+                                  _mm256_cmp_ps(o[a], h, _CMP_GT_OQ));
+        miss = _mm256_or_ps(miss, _mm256_and_ps(flat, out));
+        __m256 t0 = _mm256_div_ps(_mm256_sub_ps(l, o[a]), d[a]);
+        __m256 t1 = _mm256_div_ps(_mm256_sub_ps(h, o[a]), d[a]);
+        __m256 f0 = _mm256_set1_ps((float)(2 * a)), f1 = _mm256_set1_ps((float)(2 * a + 1));
+        __m256 swap = _mm256_cmp_ps(t0, t1, _CMP_GT_OQ);
+        __m256 tn = pick8(swap, t1, t0), tf = pick8(swap, t0, t1);
+        __m256 fn = pick8(swap, f1, f0), fb = pick8(swap, f0, f1);
+        __m256 up = _mm256_andnot_ps(flat, _mm256_cmp_ps(tn, tnear, _CMP_GT_OQ));
+        tnear = pick8(up, tn, tnear);
+        nf = pick8(up, fn, nf);
+        __m256 down = _mm256_andnot_ps(flat, _mm256_cmp_ps(tf, tfar, _CMP_LT_OQ));
+        tfar = pick8(down, tf, tfar);
+        ff = pick8(down, fb, ff);
+    }
+    miss = _mm256_or_ps(miss, _mm256_cmp_ps(tnear, tfar, _CMP_NLE_UQ)); /* !(tnear <= tfar) */
+    miss = _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_min_ps(nf, ff), zero, _CMP_LT_OQ));
+    *tin = tnear, *tout = tfar, *pin = nf, *pout = ff;
+    return ~_mm256_movemask_ps(miss) & 0xff;
+}
+
+/* cylinder_span's side: the infinite cylinder's roots into *t0, *t1
+ * where a > 0, the lanes that miss it into *miss. */
+static inline void cylinder8_side(const struct cylinder *s, __m256 ox, __m256 oz,
+                                  const __m256 *d, __m256 *t0, __m256 *t1, __m256 *miss)
+{
+    const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
+    __m256 rr = _mm256_set1_ps(s->radius * s->radius);
+    __m256 a = dot2_8(d[0], d[2], d[0], d[2]);
+    __m256 side = _mm256_cmp_ps(a, zero, _CMP_GT_OQ);
+    __m256 b = _mm256_xor_ps(dot2_8(ox, oz, d[0], d[2]), sign);
+    __m256 ba = _mm256_div_ps(b, a);
+    __m256 lx = _mm256_add_ps(ox, _mm256_mul_ps(d[0], ba));
+    __m256 lz = _mm256_add_ps(oz, _mm256_mul_ps(d[2], ba));
+    __m256 disc = _mm256_mul_ps(a, _mm256_sub_ps(rr, dot2_8(lx, lz, lx, lz)));
+    __m256 cc = dot2_8(ox, oz, ox, oz), c = _mm256_sub_ps(cc, rr);
+    __m256 q = _mm256_add_ps(b, copysign8(_mm256_sqrt_ps(disc), b));
+    __m256 ra = _mm256_andnot_ps(_mm256_cmp_ps(q, zero, _CMP_EQ_OQ), _mm256_div_ps(c, q));
+    __m256 rb = _mm256_div_ps(q, a);
+    *t0 = pick8(side, fmin8(ra, rb), *t0);
+    *t1 = pick8(side, fmax8(ra, rb), *t1);
+    __m256 off = pick8(side, _mm256_cmp_ps(disc, zero, _CMP_LT_OQ),
+                       _mm256_cmp_ps(cc, rr, _CMP_GT_OQ)); /* a <= 0: outside the disc */
+    *miss = _mm256_or_ps(*miss, off);
+}
+
+/* cylinder_span likewise: the side, then the slab of the caps, each end
+ * keeping the part that bounds it. */
+static inline int cylinder8_span(const struct cylinder *s, const __m256 *o, const __m256 *d,
+                                 __m256 *tin, __m256 *tout, __m256 *pin, __m256 *pout)
+{
+    const __m256 zero = _mm256_setzero_ps(), sign = _mm256_set1_ps(-0.0f);
+    __m256 ox = _mm256_sub_ps(o[0], _mm256_set1_ps(s->base.x));
+    __m256 oy = _mm256_sub_ps(o[1], _mm256_set1_ps(s->base.y));
+    __m256 oz = _mm256_sub_ps(o[2], _mm256_set1_ps(s->base.z));
+    __m256 t0 = _mm256_set1_ps(-INFINITY), t1 = _mm256_set1_ps(INFINITY), miss = zero;
+    cylinder8_side(s, ox, oz, d, &t0, &t1, &miss);
+    __m256 height = _mm256_set1_ps(s->height), p0 = zero, p1 = zero;
+    __m256 ends = _mm256_cmp_ps(d[1], zero, _CMP_NEQ_UQ);
+    __m256 ya = _mm256_div_ps(_mm256_xor_ps(oy, sign), d[1]);
+    __m256 yb = _mm256_div_ps(_mm256_sub_ps(height, oy), d[1]);
+    __m256 swap = _mm256_cmp_ps(ya, yb, _CMP_GT_OQ);
+    __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f);
+    __m256 lo = pick8(swap, yb, ya), hi = pick8(swap, ya, yb);
+    __m256 plo = pick8(swap, two, one), phi = pick8(swap, one, two);
+    __m256 up = _mm256_and_ps(ends, _mm256_cmp_ps(lo, t0, _CMP_GT_OQ));
+    __m256 down = _mm256_and_ps(ends, _mm256_cmp_ps(hi, t1, _CMP_LT_OQ));
+    t0 = pick8(up, lo, t0), p0 = pick8(up, plo, p0);
+    t1 = pick8(down, hi, t1), p1 = pick8(down, phi, p1);
+    __m256 beside = _mm256_or_ps(_mm256_cmp_ps(oy, zero, _CMP_LT_OQ),
+                                 _mm256_cmp_ps(oy, height, _CMP_GT_OQ));
+    miss = _mm256_or_ps(miss, _mm256_andnot_ps(ends, beside));
+    miss = _mm256_or_ps(miss, _mm256_cmp_ps(t0, t1, _CMP_NLE_UQ)); /* !(t0 <= t1) */
+    *tin = t0, *tout = t1, *pin = p0, *pout = p1;
+    return ~_mm256_movemask_ps(miss) & 0xff;
+}
+
+/* Leaf l against the rays of active (o, d, inv: theirs in the csg's
+ * space, tmin their start): the first round of crossings csg_hit_lane
+ * reads (csg.h). */
+static inline void csg8_leaf(const csg_leaf *l, const __m256 *o, const __m256 *d,
+                             const __m256 *inv, __m256 tmin, int active, csg_leaf8 *out)
+{
+    shape_kind kind = l->shape.kind;
+    out->bounded = (uint8_t)(active & aabb8_hit(l->bounds, o, inv, tmin));
+    out->spanned = out->met = 0;
+    if (!out->bounded || (kind != SHAPE_SPHERE && kind != SHAPE_BOX && kind != SHAPE_CYLINDER))
+        return;
+    __m256 lo[3], ld[3], tin, tout, pin = _mm256_setzero_ps(), pout = pin;
+    leaf8_rays(l, o, d, lo, ld);
+    const shape *sh = &l->shape;
+    int met = kind == SHAPE_SPHERE ? sphere8_span(&sh->sphere, lo, ld, &tin, &tout)
+              : kind == SHAPE_BOX  ? box8_span(&sh->box, lo, ld, &tin, &tout, &pin, &pout)
+                                   : cylinder8_span(&sh->cylinder, lo, ld, &tin, &tout, &pin, &pout);
+    out->spanned = out->bounded;
+    out->met = (uint8_t)(out->bounded & met);
+    _mm256_storeu_ps(out->tin, tin);
+    _mm256_storeu_ps(out->tout, tout);
+    _mm256_storeu_si256((__m256i *)out->pin, _mm256_cvttps_epi32(pin));
+    _mm256_storeu_si256((__m256i *)out->pout, _mm256_cvttps_epi32(pout));
+}
+
+/* Every leaf against the rays of active. Returns the rays that may cross
+ * a leaf's boundary: a ray that meets no leaf's bounds, or only spans it
+ * misses, has no crossing to classify, and so no hit. */
+static inline int csg8_spans(const csg *c, const ray8 *r, int active, csg_spans8 *pre)
+{
+    rays8 rs = rays8_load(r);
+    const __m256 one = _mm256_set1_ps(1.0f);
+    __m256 o[3] = {rs.ox, rs.oy, rs.oz}, d[3] = {rs.dx, rs.dy, rs.dz};
+    __m256 inv[3] = {_mm256_div_ps(one, d[0]), _mm256_div_ps(one, d[1]), _mm256_div_ps(one, d[2])};
+    int crosses = 0;
+    for (int i = 0; i < c->nleaves; i++) {
+        csg_leaf8 *l = &pre->leaf[i];
+        csg8_leaf(&c->leaves[i], o, d, inv, rs.tmin, active, l);
+        crosses |= (l->bounded & ~l->spanned) | l->met;
+    }
+    return crosses;
+}
+
+/* csg_intersect against the rays of active: the spans at once, then the
+ * classification of each ray that crosses a leaf. */
+static inline int csg8_hit(const csg *c, const ray8 *r, int active, shape_hit *hit)
+{
+    csg_spans8 pre;
+    int found = 0;
+    for (int m = csg8_spans(c, r, active, &pre); m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        ray one = ray8_get(r, k);
+        hit[k] = (shape_hit){0};
+        if (csg_hit_lane(c, &one, &pre, k, &hit[k]))
+            found |= 1 << k;
+    }
+    return found;
+}
+
+/* shape_occluded for a csg, which is whether it is hit at all. */
+static inline int csg8_occluded(const csg *c, const ray8 *r, int active)
+{
+    shape_hit h[8];
+    return csg8_hit(c, r, active, h);
+}
+
+/* Defines csg8_hit_<isa> and csg8_occluded_<isa>. */
+#define CSG8_KERNELS(isa)                                                                      \
+    int csg8_hit_##isa(const csg *c, const ray8 *r, int active, shape_hit *hit)               \
+    {                                                                                          \
+        return csg8_hit(c, r, active, hit);                                                    \
+    }                                                                                          \
+    int csg8_occluded_##isa(const csg *c, const ray8 *r, int active)                           \
+    {                                                                                          \
+        return csg8_occluded(c, r, active);                                                    \
+    }
+
+#endif
