@@ -530,7 +530,8 @@ Test(csg, mesh_operands_and_many_crossings)
             at[k] = side, at[(k + 1) % 3] = u, at[(k + 2) % 3] = rng_float(&g) < 0.5f ? u : -u;
             o = rand_vec(&g, -2, 2);
         } else {
-            at[k] = side, at[(k + 1) % 3] = rng_float(&g) < 0.5f ? -1.0f : 1.0f, at[(k + 2) % 3] = u;
+            at[k] = side, at[(k + 2) % 3] = u;
+            at[(k + 1) % 3] = rng_float(&g) < 0.5f ? -1.0f : 1.0f;
             o = rand_vec(&g, -0.95f, 0.95f);
         }
         vec3 aim = v3(at[0], at[1], at[2]);

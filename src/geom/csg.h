@@ -14,11 +14,12 @@
  * evaluated on those states after each distinct t; the first t at which
  * the tree's answer changes is the hit. This is the same classification,
  * evaluated lazily (a tree of at most CSG_TABLE_LEAVES leaves looks its
- * answer up in a table made once, by csg_finish). Because each crossing says which way it goes (rather
- * than toggling a parity), a ray that starts inside operands, crossings
- * counted twice where a ray meets an edge of a mesh, and operands sharing
- * a surface (a - a is empty, a & a is a) all come out right, and a ray
- * starting inside the result gets its way out.
+ * answer up in a table made once, by csg_finish). Because each crossing
+ * says which way it goes (rather than toggling a parity), a ray that
+ * starts inside operands, crossings counted twice where a ray meets an
+ * edge of a mesh, and operands sharing a surface (a - a is empty, a & a
+ * is a) all come out right, and a ray starting inside the result gets its
+ * way out.
  *
  * A surface keeps its leaf's material. At a leaf inside an odd number of
  * subtracted operands the result's outside is the leaf's inside, so its

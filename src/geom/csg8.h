@@ -200,9 +200,13 @@ static inline void csg8_leaf(const csg_leaf *l, const __m256 *o, const __m256 *d
     __m256 lo[3], ld[3], tin, tout, pin = _mm256_setzero_ps(), pout = pin;
     leaf8_rays(l, o, d, lo, ld);
     const shape *sh = &l->shape;
-    int met = kind == SHAPE_SPHERE ? sphere8_span(&sh->sphere, lo, ld, &tin, &tout)
-              : kind == SHAPE_BOX  ? box8_span(&sh->box, lo, ld, &tin, &tout, &pin, &pout)
-                                   : cylinder8_span(&sh->cylinder, lo, ld, &tin, &tout, &pin, &pout);
+    int met;
+    if (kind == SHAPE_SPHERE)
+        met = sphere8_span(&sh->sphere, lo, ld, &tin, &tout);
+    else if (kind == SHAPE_BOX)
+        met = box8_span(&sh->box, lo, ld, &tin, &tout, &pin, &pout);
+    else
+        met = cylinder8_span(&sh->cylinder, lo, ld, &tin, &tout, &pin, &pout);
     out->spanned = out->bounded;
     out->met = (uint8_t)(out->bounded & met);
     _mm256_storeu_ps(out->tin, tin);

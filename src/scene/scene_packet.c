@@ -4,11 +4,12 @@
  * (scene_walk8, when their directions' signs agree), each leaf's objects
  * tested against the rays that enter it. An object is tested against the
  * rays at once where it can be: a mesh in one walk of its tree
- * (mesh_intersect8), a sphere, quad, plane or box in one test (shape8_hit), a
- * torus's setup in one (torus8_hit) and its roots ray by ray, a csg's
- * leaves' bounds and convex spans in one (csg8_hit) and its classification
- * ray by ray; any other ray by ray. Otherwise each ray goes through scene_intersect. Either way
- * every ray gets the hit scene_intersect gives it, to the bit.
+ * (mesh_intersect8), a sphere, quad, plane or box in one test
+ * (shape8_hit), a torus's setup in one (torus8_hit) and its roots ray by
+ * ray, a csg's leaves' bounds and convex spans in one (csg8_hit) and its
+ * classification ray by ray; any other ray by ray. Otherwise each ray goes
+ * through scene_intersect. Either way every ray gets the hit
+ * scene_intersect gives it, to the bit.
  *
  * scene_shadow8 walks eight shadow rays the same way, asking each object
  * the question scene_shadow asks it: whether an opaque one blocks a ray,
