@@ -4,6 +4,7 @@
  * 1e-4 where entries reach 100). */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "core/mat4.h"
 #include "core/rng.h"
@@ -258,4 +259,61 @@ Test(mat4, is_finite_finds_any_bad_entry)
         }
     xform big = xform_scale(v3(3e38f, 1, 1));
     cr_assert(xform_is_finite(&big), "large but finite");
+}
+
+/* A random affine step: a translation, a rotation, a scale (mirrored when
+ * a factor is negative), a shear, or a general matrix, at scales from
+ * 1e-3 to 1e3 so that sums round. */
+static xform random_step(rng *g)
+{
+    float a = rng_float(g) * 2 - 1, b = rng_float(g) * 2 - 1, c = rng_float(g) * 2 - 1;
+    float big = powf(10.0f, 6.0f * rng_float(g) - 3.0f);
+    switch (rng_u32(g) % 5) {
+    case 0:
+        return xform_translate(v3(a * big, b * big, c * big));
+    case 1:
+        return xform_rotate(v3(a, b, c + 1e-3f), 720.0f * rng_float(g) - 360.0f);
+    case 2:
+        return xform_scale(v3((a < 0 ? -1 : 1) * (fabsf(a) + 0.1f) * big, b + 2.0f,
+                              c < 0 ? -0.5f : 3.0f));
+    case 3:
+        return xform_shear(a, b * big, c, a * b, b * c, c * a);
+    default: {
+        mat4 m = mat4_identity();
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 4; j++)
+                m.m[i][j] = (rng_float(g) * 2 - 1) * (j == 3 ? big : 1.0f) + (i == j ? 2.0f : 0.0f);
+        xform x = xform_identity();
+        xform_from_matrix(&m, &x);
+        return x;
+    }
+    }
+}
+
+/* The loader composes with xform_then_affine: it must give xform_then's
+ * very bits (the images depend on them), on chains of every kind of step. */
+Test(mat4, affine_compose_equals_the_general_one_to_the_bit)
+{
+    rng g = rng_seed(2025, 3);
+    for (int t = 0; t < 20000; t++) {
+        xform general = random_step(&g), affine = general;
+        int n = 1 + (int)(rng_u32(&g) % 6);
+        for (int s = 0; s < n; s++) {
+            xform step = random_step(&g);
+            general = xform_then(&general, &step);
+            affine = xform_then_affine(&affine, &step);
+            cr_assert(memcmp(&general, &affine, sizeof general) == 0,
+                      "chain %d, step %d: the affine compose differs", t, s);
+        }
+    }
+}
+
+/* Signed zeros too: -0 entries (a rotation by 180 degrees, a mirror) must
+ * come out as mat4_mul gives them. */
+Test(mat4, affine_compose_keeps_signed_zeros)
+{
+    xform a = xform_rotate(v3(0, 1, 0), 180.0f), b = xform_scale(v3(-1, 1, -1));
+    a.fwd.m[0][1] = -0.0f;
+    xform g = xform_then(&a, &b), f = xform_then_affine(&a, &b);
+    cr_assert(memcmp(&g, &f, sizeof g) == 0);
 }

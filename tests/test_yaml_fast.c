@@ -7,6 +7,7 @@
  * outside its subset must be declined. */
 #include <criterion/criterion.h>
 #include <glob.h>
+#include <regex.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,13 +30,18 @@ typedef struct evlist {
     size_t n, cap;
 } evlist;
 
-static void add(evlist *l, const yaml_event_t *y)
+static void append(evlist *l, ev e)
 {
     if (l->n == l->cap) {
         l->cap = l->cap ? 2 * l->cap : 256;
         l->e = realloc(l->e, l->cap * sizeof *l->e);
         cr_assert_not_null(l->e);
     }
+    l->e[l->n++] = e;
+}
+
+static void add(evlist *l, const yaml_event_t *y)
+{
     ev e = {(int)y->type, y->start_mark.line, y->start_mark.column, NULL, 0, false, false};
     if (y->type == YAML_SCALAR_EVENT) {
         e.value = strndup((const char *)y->data.scalar.value, y->data.scalar.length);
@@ -49,7 +55,7 @@ static void add(evlist *l, const yaml_event_t *y)
         e.tagged = y->data.sequence_start.tag != NULL;
         e.anchored = y->data.sequence_start.anchor != NULL;
     }
-    l->e[l->n++] = e;
+    append(l, e);
 }
 
 static void drop(evlist *l)
@@ -60,9 +66,16 @@ static void drop(evlist *l)
     *l = (evlist){0};
 }
 
-static glint_rc take(void *ctx, const struct yaml_event_s *y)
+/* The fast reader's events, which are plain, untagged and unanchored. */
+static glint_rc take(void *ctx, const yfast_event *y)
 {
-    add(ctx, y);
+    ev e = {y->type, y->line, y->column, NULL, 0, false, false};
+    if (y->type == YAML_SCALAR_EVENT) {
+        cr_assert_not_null(y->text);
+        e.value = strndup(y->text, y->len);
+        e.style = YAML_PLAIN_SCALAR_STYLE;
+    }
+    append(ctx, e);
     return GLINT_OK;
 }
 
@@ -280,4 +293,152 @@ Test(yaml_fast, a_refused_tree_gets_the_usual_message)
     glint_error err = {0};
     cr_assert_eq(ydoc_parse(text, strlen(text), "t.yaml", &d, &err), GLINT_ERR_INPUT);
     cr_assert(strncmp(err.msg, "t.yaml:3:1:", 11) == 0, "%s", err.msg);
+}
+
+/* ---- plain scalar typing ---------------------------------------------- */
+
+/* The YAML 1.2 core schema's forms as regular expressions
+ * (https://yaml.org/spec/1.2.2/#1032-tag-resolution), the oracle for
+ * ydoc_plain_kind's quick paths. */
+static const char *const null_re = "^(~|null|Null|NULL|)$";
+static const char *const true_re = "^(true|True|TRUE)$";
+static const char *const false_re = "^(false|False|FALSE)$";
+static const char *const int_re = "^([-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$";
+static const char *const float_re = "^([-+]?(\\.[0-9]+|[0-9]+(\\.[0-9]*)?)([eE][-+]?[0-9]+)?|"
+                                    "[-+]?\\.(inf|Inf|INF)|\\.(nan|NaN|NAN))$";
+
+typedef struct oracle {
+    regex_t null, yes, no, integer, real;
+} oracle;
+
+static void oracle_init(oracle *o)
+{
+    cr_assert_eq(regcomp(&o->null, null_re, REG_EXTENDED | REG_NOSUB), 0);
+    cr_assert_eq(regcomp(&o->yes, true_re, REG_EXTENDED | REG_NOSUB), 0);
+    cr_assert_eq(regcomp(&o->no, false_re, REG_EXTENDED | REG_NOSUB), 0);
+    cr_assert_eq(regcomp(&o->integer, int_re, REG_EXTENDED | REG_NOSUB), 0);
+    cr_assert_eq(regcomp(&o->real, float_re, REG_EXTENDED | REG_NOSUB), 0);
+}
+
+static void oracle_free(oracle *o)
+{
+    regfree(&o->null);
+    regfree(&o->yes);
+    regfree(&o->no);
+    regfree(&o->integer);
+    regfree(&o->real);
+}
+
+static bool matches(const regex_t *re, const char *s) { return regexec(re, s, 0, NULL, 0) == 0; }
+
+/* ydoc_plain_kind on s (NUL-terminated, no NUL inside) against the oracle. */
+static void check_kind(const oracle *o, const char *s)
+{
+    size_t len = strlen(s);
+    bool is_true, is_int;
+    ynode_kind k = ydoc_plain_kind(s, len, &is_true, &is_int);
+    bool integer = len <= 256 && matches(&o->integer, s);
+    bool number = len <= 256 && (integer || matches(&o->real, s));
+    ynode_kind want = matches(&o->null, s)                          ? YNODE_NULL
+                      : matches(&o->yes, s) || matches(&o->no, s) ? YNODE_BOOL
+                      : number                                     ? YNODE_NUMBER
+                                                                   : YNODE_STRING;
+    cr_assert_eq(k, want, "'%s': kind %d, the core schema says %d", s, (int)k, (int)want);
+    cr_assert_eq(is_true, k == YNODE_BOOL && matches(&o->yes, s), "'%s': is_true", s);
+    cr_assert_eq(is_int, k == YNODE_NUMBER && integer, "'%s': is_int", s);
+}
+
+/* Every text of up to three characters over the characters the forms are
+ * made of, and random longer ones, typed as the core schema types them. */
+Test(yaml_scalar, plain_kinds_follow_the_core_schema)
+{
+    static const char alphabet[] = "0179.+-eExXoaAfFnNtTuUlLrRsSiI~ _";
+    const size_t na = sizeof alphabet - 1;
+    oracle o;
+    oracle_init(&o);
+    char s[64];
+    check_kind(&o, "");
+    for (size_t a = 0; a < na; a++) {
+        s[0] = alphabet[a], s[1] = '\0';
+        check_kind(&o, s);
+        for (size_t b = 0; b < na; b++) {
+            s[1] = alphabet[b], s[2] = '\0';
+            check_kind(&o, s);
+            for (size_t c = 0; c < na; c++) {
+                s[2] = alphabet[c], s[3] = '\0';
+                check_kind(&o, s);
+            }
+        }
+    }
+    static const char *const tricky[] = {
+        "-.5",   "+.5",   ".5",    "5.",    "-5.",   "0x",     "0o",    "0x1F",  "0o17",
+        "0o8",   "0xg",   "007",   "+0",    "-0.0",  "1e5",    "1E+5",  "1.e-5", ".e5",
+        "1.2.3", "--1",   "+-1",   "1-",    ".inf",  "-.Inf",  "+.INF", ".nan",  "-.nan",
+        ".NaN",  "true",  "True",  "tRue",  "TRUE",  "false",  "FALSE", "fALSE", "null",
+        "nULL",  "~",     "~~",    "type",  "torus", "normal", "Null",  "nulls", "-49.5",
+        "0.42",  "0.320", "117",   "-1",    "1_000", "1 2",    "+",     "-",     ".",
+    };
+    for (size_t i = 0; i < sizeof tricky / sizeof *tricky; i++)
+        check_kind(&o, tricky[i]);
+    rng g = rng_seed(99, 4);
+    static const char digits[] = "0123456789.-+eE";
+    for (int k = 0; k < 50000; k++) {
+        size_t n = 1 + rng_u32(&g) % 12;
+        for (size_t i = 0; i < n; i++)
+            s[i] = rng_u32(&g) % 8 ? digits[rng_u32(&g) % 11] : digits[rng_u32(&g) % 15];
+        s[n] = '\0';
+        check_kind(&o, s);
+    }
+    char longer[300];
+    memset(longer, '7', sizeof longer - 1);
+    longer[sizeof longer - 1] = '\0';
+    check_kind(&o, longer); /* beyond 256 characters numbers are strings */
+    longer[256] = '\0';
+    check_kind(&o, longer);
+    oracle_free(&o);
+}
+
+/* Mappings that stand as read and mappings that need the general way
+ * (repeats, merge keys, more than 16 pairs, keys alike but for their first
+ * or last byte) give the same trees through both readers. */
+Test(yaml_scalar, mappings_read_alike_through_both_readers)
+{
+    static const char *const texts[] = {
+        "a: {ab: 1, bb: 2, ab1: 3}\n",
+        "a: {k1: 1, k2: 2, k3: 3, k4: 4, k5: 5, k6: 6, k7: 7, k8: 8, k9: 9, k10: 10, k11: 11, "
+        "k12: 12, k13: 13, k14: 14, k15: 15, k16: 16, k17: 17}\n",
+        "a: {x: 1, y: 2}\nb: [{x: 1}, {y: 2, x: 3}]\n",
+        "a: {<<: {b: 1}, c: 2}\n",
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof *texts; i++) {
+        size_t len = strlen(texts[i]);
+        char slow[512];
+        cr_assert_lt(len + 16, sizeof slow);
+        snprintf(slow, sizeof slow, "%sz: 'q'\n", texts[i]); /* the quotes make it libyaml's */
+        char fast[512];
+        snprintf(fast, sizeof fast, "%sz: q\n", texts[i]);
+        ydoc *a = NULL, *b = NULL;
+        glint_error err = {0};
+        cr_assert_eq(ydoc_parse(fast, strlen(fast), "a", &a, &err), GLINT_OK, "%s", err.msg);
+        cr_assert_eq(ydoc_parse(slow, strlen(slow), "b", &b, &err), GLINT_OK, "%s", err.msg);
+        cr_assert_eq(a->nnodes, b->nnodes, "text %zu", i);
+        cr_assert_eq(a->nkids, b->nkids, "text %zu", i);
+        for (uint32_t n = 0; n < a->nnodes; n++) {
+            const ynode *x = ydoc_node(a, n), *y = ydoc_node(b, n);
+            cr_assert(x->kind == y->kind && x->flags == y->flags && x->line == y->line &&
+                          x->col == y->col && x->count == y->count && x->first == y->first,
+                      "text %zu, node %u", i, n);
+        }
+        cr_assert(memcmp(a->kids, b->kids, a->nkids * sizeof *a->kids) == 0, "text %zu", i);
+        ydoc_free(a);
+        ydoc_free(b);
+    }
+    static const char *const refused[] = {"a: {ab: 1, ab: 2}\n", "a: {k: 1, j: 2, k: 3}\n"};
+    for (size_t i = 0; i < sizeof refused / sizeof *refused; i++) {
+        ydoc *d = NULL;
+        glint_error err = {0};
+        cr_assert_eq(ydoc_parse(refused[i], strlen(refused[i]), "t.yaml", &d, &err),
+                     GLINT_ERR_INPUT, "%s", refused[i]);
+        cr_assert(strstr(err.msg, "duplicate key") != NULL, "%s", err.msg);
+    }
 }

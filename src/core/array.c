@@ -24,6 +24,24 @@ int array_push(void **items, int *n, int *cap, size_t elem)
     return (*n)++;
 }
 
+bool array_grow(void **items, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return true;
+    size_t ncap = *cap ? *cap : 16;
+    while (ncap < need) {
+        if (ncap > SIZE_MAX / 2 / elem)
+            return false;
+        ncap *= 2;
+    }
+    void *q = realloc(*items, ncap * elem);
+    if (!q)
+        return false;
+    *items = q;
+    *cap = ncap;
+    return true;
+}
+
 #define HUGE_PAGE ((size_t)2 << 20)
 
 void *array_alloc_big(size_t n)

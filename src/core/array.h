@@ -3,12 +3,24 @@
 #ifndef GLINT_CORE_ARRAY_H
 #define GLINT_CORE_ARRAY_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 /* Makes room for one more element of size elem in *items (count *n, capacity
  * *cap) and returns its index, or -1 when memory runs out (the array is left
  * unchanged). The new element is zeroed. */
 int array_push(void **items, int *n, int *cap, size_t elem);
+
+/* Grows *items (elements of size elem, capacity *cap, counted in size_t)
+ * by doubling from 16 until it holds need; false when memory runs out or
+ * the size would overflow (the array is left unchanged). */
+bool array_grow(void **items, size_t *cap, size_t need, size_t elem);
+
+/* The same, asked where the array usually has room: the test is inline. */
+static inline bool array_reserve(void **items, size_t *cap, size_t need, size_t elem)
+{
+    return need <= *cap || array_grow(items, cap, need, elem);
+}
 
 /* n bytes for a large array written once in full (a BVH build's working
  * arrays), aligned to 64: from 2 MiB up in transparent huge pages where

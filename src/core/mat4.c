@@ -160,6 +160,33 @@ xform xform_then(const xform *a, const xform *b)
     return (xform){mat4_mul(&b->fwd, &a->fwd), mat4_mul(&a->inv, &b->inv)};
 }
 
+/* a * b for affine a and b, summed as mat4_mul sums. The terms it leaves
+ * out are a[i][3] * 0, exact zeros that change no sum (which starts at +0
+ * and so is never -0), and the last row's, which come to 0, 0, 0, 1; the
+ * last column's a[i][3] * 1 is a[i][3], added last as there. */
+static mat4 mul_affine(const mat4 *a, const mat4 *b)
+{
+    double bd[3][4];
+    for (int k = 0; k < 3; k++)
+        for (int j = 0; j < 4; j++)
+            bd[k][j] = b->m[k][j];
+    mat4 r;
+    for (int i = 0; i < 3; i++) {
+        double a0 = a->m[i][0], a1 = a->m[i][1], a2 = a->m[i][2];
+        for (int j = 0; j < 3; j++)
+            r.m[i][j] = (float)(0.0 + a0 * bd[0][j] + a1 * bd[1][j] + a2 * bd[2][j]);
+        r.m[i][3] = (float)(0.0 + a0 * bd[0][3] + a1 * bd[1][3] + a2 * bd[2][3] + a->m[i][3]);
+    }
+    r.m[3][0] = r.m[3][1] = r.m[3][2] = 0.0f;
+    r.m[3][3] = 1.0f;
+    return r;
+}
+
+xform xform_then_affine(const xform *a, const xform *b)
+{
+    return (xform){mul_affine(&b->fwd, &a->fwd), mul_affine(&a->inv, &b->inv)};
+}
+
 bool xform_is_identity(const xform *x)
 {
     mat4 id = mat4_identity();

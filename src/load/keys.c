@@ -77,9 +77,17 @@ void load_suggestion(const char *const *valid, const char *word, size_t len, cha
 
 /* ---- keys of a mapping ------------------------------------------------ */
 
-/* Refuses the first key of map that is not in valid; where says where the
- * mapping is ("in sphere", "at the top level"). */
-glint_rc load_check_keys(loader *L, uint32_t map, const char *const *valid, const char *where)
+/* Whether the NUL-terminated text (len bytes) is word: the first bytes
+ * are compared first, and most words differ there. */
+static bool is_word(const char *word, const char *text, size_t len)
+{
+    return word[0] == text[0] && strlen(word) == len && memcmp(word, text, len) == 0;
+}
+
+/* Refuses the first key of map that is not in valid; the message says
+ * where the mapping is, in the words lead, name and tail joined. */
+static glint_rc check_keys(loader *L, uint32_t map, const char *const *valid, const char *lead,
+                           const char *name, const char *tail)
 {
     const ynode *m = load_node(L, map);
     for (uint32_t i = 0; i < m->count; i++) {
@@ -88,14 +96,26 @@ glint_rc load_check_keys(loader *L, uint32_t map, const char *const *valid, cons
         const char *text = ydoc_text(load_doc(L), kn);
         bool known = false;
         for (const char *const *v = valid; *v && !known; v++)
-            known = strlen(*v) == kn->count && memcmp(*v, text, kn->count) == 0;
+            known = is_word(*v, text, kn->count);
         if (!known) {
             char buf[SHOWN], hint[512];
             load_suggestion(valid, text, kn->count, hint, sizeof hint);
-            return load_fail(L, k, "unknown key '%s' %s%s", load_shown(L, k, buf), where, hint);
+            return load_fail(L, k, "unknown key '%s' %s%s%s%s", load_shown(L, k, buf), lead, name,
+                             tail, hint);
         }
     }
     return GLINT_OK;
+}
+
+glint_rc load_check_keys(loader *L, uint32_t map, const char *const *valid, const char *where)
+{
+    return check_keys(L, map, valid, where, "", "");
+}
+
+glint_rc load_check_keys_in(loader *L, uint32_t map, const char *const *valid, const char *name,
+                            const char *tail)
+{
+    return check_keys(L, map, valid, "in ", name, tail);
 }
 
 uint32_t load_get(const loader *L, uint32_t map, const char *key)
@@ -261,7 +281,7 @@ glint_rc load_enum(loader *L, uint32_t v, const char *key, const char *what,
         return load_expected(L, v, "a string", key);
     const char *text = ydoc_text(load_doc(L), n);
     for (int i = 0; valid[i]; i++)
-        if (strlen(valid[i]) == n->count && memcmp(valid[i], text, n->count) == 0) {
+        if (is_word(valid[i], text, n->count)) {
             *out = i;
             return GLINT_OK;
         }

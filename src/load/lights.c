@@ -4,7 +4,6 @@
 
 #include <math.h>
 #include <stddef.h>
-#include <stdio.h>
 
 /* In light_kind order. */
 static const char *const light_types[] = {"point", "directional", "spot", "area", NULL};
@@ -165,9 +164,7 @@ glint_rc load_light(loader *L, uint32_t map)
         rc = load_enum(L, v, "type", "light type", light_types, &type);
     if (rc != GLINT_OK)
         return rc;
-    char where[64];
-    snprintf(where, sizeof where, "in %s light", light_types[type]);
-    rc = load_check_keys(L, map, light_keys[type], where);
+    rc = load_check_keys_in(L, map, light_keys[type], light_types[type], " light");
     vec3 color = v3s(1.0f);
     if (rc == GLINT_OK && (v = load_get(L, map, "color")) != YDOC_NONE)
         rc = load_anim_value(L, v, "color", 3, load_read_color, &color.x,

@@ -299,6 +299,8 @@ static void loader_free(loader *L)
     free(L->texture_refs);
     free(L->material_refs);
     free(L->pending);
+    free(L->step_room);
+    free(L->channel_room);
     free(L->image_jobs); /* emptied by load_decode_images */
     free(L->bump_refs);
     free(L->csg_refs);

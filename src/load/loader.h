@@ -132,6 +132,12 @@ typedef struct loader {
     uint32_t fov_node;
     anim_channel *pending; /* keyed values read, waiting for what they animate */
     int npending, cap_pending;
+    /* Room for a transform's steps and their channels as they are read,
+     * kept from one transform to the next (transform.c). */
+    anim_step *step_room;
+    int cap_step_room;
+    anim_channel *channel_room;
+    int cap_channel_room;
     image_job *image_jobs; /* texture files waiting to be decoded */
     int nimage_jobs, cap_image_jobs;
 } loader;
@@ -155,6 +161,10 @@ glint_rc load_expected(loader *L, uint32_t v, const char *what, const char *key)
 /* Refuses the first key of map that is not in valid (a NULL-terminated
  * list); where says where the mapping is ("in sphere", "at the top level"). */
 glint_rc load_check_keys(loader *L, uint32_t map, const char *const *valid, const char *where);
+/* The same in a mapping of a type, "in NAME" then tail (" light", or ""):
+ * the words are joined only for a message, not for every object. */
+glint_rc load_check_keys_in(loader *L, uint32_t map, const char *const *valid, const char *name,
+                            const char *tail);
 /* The value under key, or YDOC_NONE. */
 uint32_t load_get(const loader *L, uint32_t map, const char *key);
 /* The value under key, which must be there; what names the mapping. */

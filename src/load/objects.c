@@ -352,9 +352,7 @@ glint_rc load_object_type(loader *L, uint32_t map, const char *list, int *type)
         rc = load_enum(L, v, "type", "object type", object_types, type);
     if (rc != GLINT_OK)
         return rc;
-    char where[32];
-    snprintf(where, sizeof where, "in %s", object_types[*type]);
-    return load_check_keys(L, map, object_keys[*type], where);
+    return load_check_keys_in(L, map, object_keys[*type], object_types[*type], "");
 }
 
 glint_rc load_object_shape(loader *L, uint32_t map, shape_kind kind, shape *out)

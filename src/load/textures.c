@@ -5,7 +5,6 @@
 
 #include <pthread.h>
 #include <stdatomic.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -332,9 +331,7 @@ glint_rc load_texture(loader *L, uint32_t map, int *index)
         rc = load_enum(L, v, "type", "texture type", texture_types, &type);
     if (rc != GLINT_OK)
         return rc;
-    char where[64];
-    snprintf(where, sizeof where, "in %s texture", texture_types[type]);
-    rc = load_check_keys(L, map, texture_keys[type], where);
+    rc = load_check_keys_in(L, map, texture_keys[type], texture_types[type], " texture");
     if (rc != GLINT_OK)
         return rc;
     texture t;

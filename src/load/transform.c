@@ -4,7 +4,6 @@
 
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 
 #include "core/array.h"
 
@@ -232,7 +231,8 @@ static glint_rc load_steps(loader *L, uint32_t list, step_list *steps, xform *ac
         rc = load_step(L, item, steps, &step);
         if (rc != GLINT_OK)
             return rc;
-        *acc = *any ? xform_then(acc, &step) : step;
+        /* both are affine and finite (checked as each was made) */
+        *acc = *any ? xform_then_affine(acc, &step) : step;
         *any = true;
         if (!xform_is_finite(acc))
             return load_fail(L, item,
@@ -252,16 +252,32 @@ static glint_rc read_steps(loader *L, uint32_t list, step_list *steps, xform *ou
     return load_steps(L, list, steps, out, any);
 }
 
+/* An empty step list in the loader's room: a scene's thousands of
+ * transforms need not each allocate and free one. */
+static step_list borrow_steps(const loader *L)
+{
+    return (step_list){L->step_room, 0, L->cap_step_room, L->channel_room, 0,
+                       L->cap_channel_room};
+}
+
+/* Gives the room back, as it may have grown. */
+static void return_steps(loader *L, const step_list *steps)
+{
+    L->step_room = steps->steps;
+    L->cap_step_room = steps->cap;
+    L->channel_room = steps->channels;
+    L->cap_channel_room = steps->cap_channels;
+}
+
 /* A list of steps, first applied first, composed into *out; *any says
  * whether there was a step. Only an object's own transform may be keyed. */
 glint_rc load_xform(loader *L, uint32_t list, xform *out, bool *any)
 {
-    step_list steps = {0};
+    step_list steps = borrow_steps(L);
     glint_rc rc = read_steps(L, list, &steps, out, any);
     if (rc == GLINT_OK && steps.nchannels > 0)
         rc = load_fail(L, list, "only an object's own transform may be keyed, not this one");
-    free(steps.steps);
-    free(steps.channels);
+    return_steps(L, &steps);
     return rc;
 }
 
@@ -274,7 +290,7 @@ glint_rc load_transform(loader *L, uint32_t list, int *index)
     *index = -1;
     xform acc;
     bool any;
-    step_list steps = {0};
+    step_list steps = borrow_steps(L);
     glint_rc rc = read_steps(L, list, &steps, &acc, &any);
     if (rc == GLINT_OK && any) {
         *index = scene_add_xform(L->s, &acc);
@@ -285,7 +301,6 @@ glint_rc load_transform(loader *L, uint32_t list, int *index)
         anim_add_motion(&L->s->anim, *index, steps.steps, steps.n, steps.channels,
                         steps.nchannels) < 0)
         rc = err_nomem(L->err);
-    free(steps.steps);
-    free(steps.channels);
+    return_steps(L, &steps);
     return rc;
 }

@@ -22,10 +22,21 @@
 #include <stddef.h>
 #include "glint.h"
 
-struct yaml_event_s;
+/* One event, as much of it as the subset can hold: libyaml's event type,
+ * where the node starts (0-based line and column, as in libyaml's marks),
+ * and a scalar's text, which points into the text being read (it is not
+ * NUL-terminated). Nothing is tagged or anchored and every scalar is
+ * plain, so handing over a whole yaml_event_t, with the text copied out
+ * to be NUL-terminated, cost more than the reading. */
+typedef struct yfast_event {
+    int type; /* a yaml_event_type_t */
+    size_t line, column;
+    const char *text; /* scalars only; NULL otherwise */
+    size_t len;
+} yfast_event;
 
 /* Takes one event; anything but GLINT_OK stops the reading. */
-typedef glint_rc (*yfast_emit)(void *ctx, const struct yaml_event_s *ev);
+typedef glint_rc (*yfast_emit)(void *ctx, const yfast_event *ev);
 
 typedef enum yfast_result {
     YFAST_DONE,     /* the whole stream was read and every event taken */

@@ -97,25 +97,56 @@ static bool is_number_form(const char *s, size_t n)
                                    is_one_of(s, n, inf_forms) || is_one_of(s, n, nan_forms));
 }
 
+/* The form most numbers in a scene take, [-+]?[0-9]*(\.[0-9]*)? with a
+ * digit somewhere, judged in one pass: 'i' for an integer, 'f' for a
+ * float, and 0 for any other text, which the general forms then judge.
+ * Each text it types is a float form, and an integer form exactly when it
+ * has no point (0o and 0x stop it at their letter). */
+static char short_number(const char *s, size_t n)
+{
+    size_t i = n > 0 && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+    size_t start = i;
+    while (i < n && s[i] >= '0' && s[i] <= '9')
+        i++;
+    if (i == n)
+        return i > start ? 'i' : 0;
+    if (s[i] != '.')
+        return 0;
+    for (i++; i < n && s[i] >= '0' && s[i] <= '9'; i++)
+        ;
+    return i == n && n - start > 1 ? 'f' : 0;
+}
+
+/* A null or boolean form is empty or starts with one of ~nNtTfF, and is no
+ * longer than five characters: other words are strings at a glance. */
+static ynode_kind word_kind(const char *s, size_t len, bool *is_true)
+{
+    char c = len ? s[0] : '\0';
+    if (len > 5 || (c != '\0' && c != '~' && c != 'n' && c != 'N' && c != 't' && c != 'T' &&
+                    c != 'f' && c != 'F'))
+        return YNODE_STRING;
+    if (is_one_of(s, len, null_forms))
+        return YNODE_NULL;
+    if (is_one_of(s, len, true_forms)) {
+        *is_true = true;
+        return YNODE_BOOL;
+    }
+    return is_one_of(s, len, false_forms) ? YNODE_BOOL : YNODE_STRING;
+}
+
 /* Every number form starts with a digit, a sign or a point, and no null or
- * boolean form does (they start with one of ~nNtTfF, or are empty): the
- * first character says which to look for. */
+ * boolean form does: the first character says which to look for. */
 ynode_kind ydoc_plain_kind(const char *s, size_t len, bool *is_true, bool *is_int)
 {
     *is_true = false;
     *is_int = false;
     char c = len ? s[0] : '\0';
-    if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.')) {
-        if (c != '\0' && c != '~' && c != 'n' && c != 'N' && c != 't' && c != 'T' && c != 'f' &&
-            c != 'F')
-            return YNODE_STRING;
-        if (is_one_of(s, len, null_forms))
-            return YNODE_NULL;
-        if (is_one_of(s, len, true_forms)) {
-            *is_true = true;
-            return YNODE_BOOL;
-        }
-        return is_one_of(s, len, false_forms) ? YNODE_BOOL : YNODE_STRING;
+    if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.'))
+        return word_kind(s, len, is_true);
+    char quick = len <= NUMBER_MAX_LEN ? short_number(s, len) : 0;
+    if (quick) {
+        *is_int = quick == 'i';
+        return YNODE_NUMBER;
     }
     if (is_number_form(s, len)) {
         *is_int = len <= NUMBER_MAX_LEN && is_int_form(s, len);
@@ -131,7 +162,8 @@ uint32_t ydoc_get(const ydoc *d, const ynode *map, const char *key)
     size_t len = strlen(key);
     for (uint32_t i = 0; i < map->count; i++) {
         const ynode *k = &d->nodes[ydoc_key(d, map, i)];
-        if (k->count == len && memcmp(d->text + k->first, key, len) == 0)
+        if (k->count == len && d->text[k->first] == key[0] &&
+            memcmp(d->text + k->first, key, len) == 0)
             return ydoc_value(d, map, i);
     }
     return YDOC_NONE;
@@ -182,7 +214,9 @@ void ydoc_describe(const ydoc *d, const ynode *n, char *buf, size_t cap)
 bool ydoc_is_special(const ydoc *d, const ynode *n)
 {
     const char *s = ydoc_text(d, n);
-    if (n->count > 0 && s[0] >= '0' && s[0] <= '9') /* each form starts with '.', '+' or '-' */
+    /* each form starts with '.', '+' or '-' and ends with a letter */
+    if (n->count < 4 || (s[0] >= '0' && s[0] <= '9') ||
+        (s[n->count - 1] >= '0' && s[n->count - 1] <= '9'))
         return false;
     return is_one_of(s, n->count, inf_forms) || is_one_of(s, n->count, nan_forms);
 }
