@@ -604,20 +604,24 @@ Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
     cr_assert_gt(many, 10000);
 }
 
-/* Shadow rays from behind the torus grid to a light in front of it, in
- * packets (torus8_occluded for three or more): blocked as scene_shadow
- * finds each ray alone, on every path. */
-Test(packet, torus_shadows_match_one_ray_at_a_time_on_every_path)
+/* Shadow rays from behind a grid of objects (made by make) to a light in
+ * front of it, in packets (the eight-lane test for three or more):
+ * blocked as scene_shadow finds each ray alone, on every path. The
+ * packets' centres lie within reach of the axis in x and y; each answer
+ * must come up more than `each` times. */
+static void same_shadows(scene *(*make)(void), uint64_t seed, uint64_t stream, float reach,
+                         int each)
 {
     int counts[2] = {0, 0}, walked = 0;
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = torus_scene();
-        rng g = rng_seed(3, 9);
+        scene *s = make();
+        rng g = rng_seed(seed, stream);
         for (int i = 0; i < 3000; i++) {
             float spread = i % 3 == 0 ? 4.0f : 0.4f;
-            vec3 c = v3(uniform(&g, -7, 7), uniform(&g, -7, 7), uniform(&g, -10, -5));
+            vec3 c = v3(uniform(&g, -reach, reach), uniform(&g, -reach, reach),
+                        uniform(&g, -10, -5));
             ray8 p;
             for (int k = 0; k < 8; k++) {
                 vec3 o = v3_add(c, v3(uniform(&g, -spread, spread), uniform(&g, -spread, spread),
@@ -644,8 +648,14 @@ Test(packet, torus_shadows_match_one_ray_at_a_time_on_every_path)
     if (accel_isa_best() < ACCEL_AVX2)
         return;
     cr_assert_gt(walked, 2000, "packets: %d", walked);
-    cr_assert_gt(counts[0], 5000, "clear: %d", counts[0]);
-    cr_assert_gt(counts[1], 5000, "blocked: %d", counts[1]);
+    cr_assert_gt(counts[0], each, "clear: %d", counts[0]);
+    cr_assert_gt(counts[1], each, "blocked: %d", counts[1]);
+}
+
+/* The torus grid's shadows (torus8_occluded). */
+Test(packet, torus_shadows_match_one_ray_at_a_time_on_every_path)
+{
+    same_shadows(torus_scene, 3, 9, 7.0f, 5000);
 }
 
 /* A grid of csg objects over a plane (bench/tori.awk's row 8 in small):
@@ -699,48 +709,10 @@ Test(packet, csg_hits_match_one_ray_at_a_time_on_every_path)
     cr_assert_gt(many, 10000);
 }
 
-/* Shadow rays from behind the csg grid to a light in front of it, in
- * packets (csg8_occluded for three or more): blocked as scene_shadow
- * finds each ray alone, on every path. */
+/* The csg grid's shadows (csg8_occluded). */
 Test(packet, csg_shadows_match_one_ray_at_a_time_on_every_path)
 {
-    int counts[2] = {0, 0}, walked = 0;
-    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
-        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
-            continue;
-        scene *s = csg_scene();
-        rng g = rng_seed(5, 1);
-        for (int i = 0; i < 3000; i++) {
-            float spread = i % 3 == 0 ? 4.0f : 0.4f;
-            vec3 c = v3(uniform(&g, -6, 6), uniform(&g, -6, 6), uniform(&g, -10, -5));
-            ray8 p;
-            for (int k = 0; k < 8; k++) {
-                vec3 o = v3_add(c, v3(uniform(&g, -spread, spread), uniform(&g, -spread, spread),
-                                      uniform(&g, -spread, spread)));
-                put(&p, k, o, v3_sub(v3(0.3f, -0.2f, 9.0f), o), 1e-3f, 1.0f);
-            }
-            int active = i % 5 == 0 ? 0x7b : 0xff, blocked = 0, crosses = 0;
-            if (!scene_shadow8(s, &p, active, &blocked, &crosses))
-                continue;
-            walked++;
-            cr_assert_eq(crosses, 0);
-            for (int m = active; m; m &= m - 1) {
-                int k = __builtin_ctz((unsigned)m);
-                ray r = ray8_get(&p, k);
-                scene_crossings cross;
-                bool b = scene_shadow(s, &r, &cross);
-                cr_assert_eq(blocked >> k & 1, b, "packet %d ray %d", i, k);
-                counts[b]++;
-            }
-        }
-        scene_free(s);
-    }
-    accel_isa_force(ACCEL_AUTO);
-    if (accel_isa_best() < ACCEL_AVX2)
-        return;
-    cr_assert_gt(walked, 2000, "packets: %d", walked);
-    cr_assert_gt(counts[0], 3000, "clear: %d", counts[0]);
-    cr_assert_gt(counts[1], 3000, "blocked: %d", counts[1]);
+    same_shadows(csg_scene, 5, 1, 6.0f, 3000);
 }
 
 /* Spheres, boxes, quads and cylinders (open and capped), turned,
