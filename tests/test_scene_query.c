@@ -198,3 +198,33 @@ Test(scene_query, the_sizes_reach_every_walk)
     scene_free(node);
     scene_free(deep);
 }
+
+/* Room reserved for objects and their transforms is there: the adds that
+ * follow move neither array, and a second, smaller reserve changes
+ * nothing. */
+Test(scene, reserve_objects_makes_room_for_the_adds)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    cr_assert(scene_add_xform(s, &(xform){mat4_identity(), mat4_identity()}) == 0);
+    cr_assert(scene_reserve_objects(s, 500));
+    cr_assert_geq(s->cap_objects, 500);
+    cr_assert_geq(s->cap_xforms, 501);
+    const object *objects = s->objects;
+    const xform *xforms = s->xforms;
+    cr_assert(scene_reserve_objects(s, 10));
+    cr_assert(scene_reserve_objects(s, 0));
+    cr_assert_eq(s->objects, objects);
+    for (int k = 0; k < 500; k++) {
+        xform x = xform_translate(v3((float)k, 0.0f, 0.0f));
+        shape sh = shape_sphere(v3(0.0f, 0.0f, 0.0f), 1.0f);
+        int xi = scene_add_xform(s, &x);
+        cr_assert_eq(xi, k + 1);
+        cr_assert_eq(scene_add_object(s, &sh, 0, xi), k);
+    }
+    cr_assert_eq(s->objects, objects, "the reserved objects were moved");
+    cr_assert_eq(s->xforms, xforms, "the reserved transforms were moved");
+    cr_assert_eq(s->objects[499].xform, 500);
+    cr_assert_eq(s->xforms[500].fwd.m[0][3], 499.0f);
+    scene_free(s);
+}

@@ -284,6 +284,50 @@ Test(yaml_fast, trees_agree_through_ydoc_parse)
     ydoc_free(b);
 }
 
+/* A document of thousands of lines, whose arrays grow many times while
+ * the fast reader's scalars go straight into them, gives the tree libyaml
+ * gives it: every node (kind, flags, mark, text), every kid. */
+Test(yaml_fast, big_trees_agree_through_ydoc_parse)
+{
+    static const char *const lines[] = {
+        "  - {type: torus, center: [0, -1.5, .5], on: true, off: FALSE, none: ~, x: Null}\n",
+        "  - {a: 1, b: 3, list: [k: v, 0x1F, 0o17, -.inf, .NaN, 1e5, word]}\n",
+        "  - name: some_longer_words_here\n    n: [12345678, -0.0000001, 3.402823e38]\n",
+    };
+    size_t cap = 4000 * 120, len = 0;
+    char *fast = malloc(cap), *slow = malloc(cap);
+    cr_assert(fast && slow);
+    len += (size_t)snprintf(fast + len, cap - len, "objects:\n");
+    for (int i = 0; i < 4000; i++)
+        len += (size_t)snprintf(fast + len, cap - len, "%s", lines[i % 3]);
+    memcpy(slow, fast, len);
+    size_t flen = len + (size_t)snprintf(fast + len, cap - len, "z: q\n");
+    size_t slen = len + (size_t)snprintf(slow + len, cap - len, "z: 'q'\n");
+    cr_assert_eq(check(fast, flen, "big"), YFAST_DONE, "the fast reader reads it");
+    ydoc *a = NULL, *b = NULL;
+    glint_error err = {0};
+    cr_assert_eq(ydoc_parse(fast, flen, "a", &a, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(ydoc_parse(slow, slen, "b", &b, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(a->nnodes, b->nnodes);
+    cr_assert_gt(a->nnodes, 40000);
+    for (uint32_t i = 0; i + 1 < a->nnodes; i++) { /* the last is 'q' */
+        const ynode *x = ydoc_node(a, i), *y = ydoc_node(b, i);
+        cr_assert(x->kind == y->kind && x->flags == y->flags && x->line == y->line &&
+                      x->col == y->col && x->count == y->count,
+                  "node %u", i);
+        if (x->kind != YNODE_SEQ && x->kind != YNODE_MAP)
+            cr_assert_str_eq(ydoc_text(a, x), ydoc_text(b, y), "node %u", i);
+        else
+            cr_assert_eq(x->first, y->first, "node %u", i);
+    }
+    cr_assert_eq(a->nkids, b->nkids);
+    cr_assert(memcmp(a->kids, b->kids, a->nkids * sizeof *a->kids) == 0);
+    ydoc_free(a);
+    ydoc_free(b);
+    free(fast);
+    free(slow);
+}
+
 /* A duplicate key, read by the fast reader and refused by the tree, gets
  * libyaml's path's message, naming the place. */
 Test(yaml_fast, a_refused_tree_gets_the_usual_message)

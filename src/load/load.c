@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -120,6 +121,9 @@ static glint_rc load_top(loader *L, uint32_t root)
         } else if (strcmp(key, "materials") == 0) {
             rc = load_named(L, v, false);
         } else if (strcmp(key, "objects") == 0) {
+            /* most items are one object with one transform */
+            if (load_node(L, v)->kind == YNODE_SEQ && load_node(L, v)->count <= INT_MAX)
+                scene_reserve_objects(L->s, (int)load_node(L, v)->count);
             rc = load_list(L, v, "objects", load_object);
         } else {
             include = v;

@@ -31,9 +31,6 @@ static bool is_one_of(const char *s, size_t n, const char *const *list)
     return false;
 }
 
-static const char *const null_forms[] = {"", "~", "null", "Null", "NULL", NULL};
-static const char *const true_forms[] = {"true", "True", "TRUE", NULL};
-static const char *const false_forms[] = {"false", "False", "FALSE", NULL};
 static const char *const inf_forms[] = {".inf", ".Inf", ".INF", "+.inf", "+.Inf", "+.INF",
                                         "-.inf", "-.Inf", "-.INF", NULL};
 static const char *const nan_forms[] = {".nan", ".NaN", ".NAN", NULL};
@@ -117,21 +114,28 @@ static char short_number(const char *s, size_t n)
     return i == n && n - start > 1 ? 'f' : 0;
 }
 
-/* A null or boolean form is empty or starts with one of ~nNtTfF, and is no
- * longer than five characters: other words are strings at a glance. */
+/* A null or boolean form is "", "~", four letters (null, true) or five
+ * (false), each in three spellings: other words are strings at a glance,
+ * and a word of the right length is compared with its spellings whole. */
 static ynode_kind word_kind(const char *s, size_t len, bool *is_true)
 {
-    char c = len ? s[0] : '\0';
-    if (len > 5 || (c != '\0' && c != '~' && c != 'n' && c != 'N' && c != 't' && c != 'T' &&
-                    c != 'f' && c != 'F'))
-        return YNODE_STRING;
-    if (is_one_of(s, len, null_forms))
+    switch (len) {
+    case 0:
         return YNODE_NULL;
-    if (is_one_of(s, len, true_forms)) {
-        *is_true = true;
-        return YNODE_BOOL;
+    case 1:
+        return s[0] == '~' ? YNODE_NULL : YNODE_STRING;
+    case 4:
+        if (!memcmp(s, "null", 4) || !memcmp(s, "Null", 4) || !memcmp(s, "NULL", 4))
+            return YNODE_NULL;
+        *is_true = !memcmp(s, "true", 4) || !memcmp(s, "True", 4) || !memcmp(s, "TRUE", 4);
+        return *is_true ? YNODE_BOOL : YNODE_STRING;
+    case 5:
+        return !memcmp(s, "false", 5) || !memcmp(s, "False", 5) || !memcmp(s, "FALSE", 5)
+                   ? YNODE_BOOL
+                   : YNODE_STRING;
+    default:
+        return YNODE_STRING;
     }
-    return is_one_of(s, len, false_forms) ? YNODE_BOOL : YNODE_STRING;
 }
 
 /* Every number form starts with a digit, a sign or a point, and no null or

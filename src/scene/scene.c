@@ -1,5 +1,6 @@
 #include "scene.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -118,6 +119,26 @@ int scene_add_object(scene *s, const shape *sh, int mat, int xf)
     object o = {*sh, mat, xf, false, {0.0f, 0.0f, 0.0f}, -1, false};
     s->built = false;
     PUSH(s->objects, s->nobjects, s->cap_objects, o);
+}
+
+/* Makes *cap at least n + more, counted in elements of size elem. */
+static bool reserve_more(void **items, int n, int *cap, int more, size_t elem)
+{
+    if (more <= 0 || n > INT_MAX - more || n + more <= *cap)
+        return true;
+    void *p = realloc(*items, (size_t)(n + more) * elem);
+    if (!p)
+        return false;
+    *items = p;
+    *cap = n + more;
+    return true;
+}
+
+bool scene_reserve_objects(scene *s, int n)
+{
+    return reserve_more((void **)&s->objects, s->nobjects, &s->cap_objects, n,
+                        sizeof *s->objects) &&
+           reserve_more((void **)&s->xforms, s->nxforms, &s->cap_xforms, n, sizeof *s->xforms);
 }
 
 int scene_add_mesh(scene *s, mesh *m)

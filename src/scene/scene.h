@@ -100,6 +100,12 @@ void scene_set_image(scene *s, int i, image *img);
 int scene_add_light(scene *s, const light *l);
 int scene_add_xform(scene *s, const xform *x);
 int scene_add_object(scene *s, const shape *sh, int material, int xform);
+/* Room for n more objects and n more transforms, asked by a front end that
+ * knows how many are coming: grown by doubling, a scene of thousands of
+ * objects copied each array several times over, and every copy touched
+ * fresh pages. A hint only: false when memory is short, and the adds then
+ * grow the arrays as they would have. */
+bool scene_reserve_objects(scene *s, int n);
 /* Takes ownership of m (allocated with malloc, initialised by mesh_init). */
 int scene_add_mesh(scene *s, mesh *m);
 /* Appends lines (each ending in '\n'; "" adds nothing) to the scene's
