@@ -17,7 +17,11 @@
  * - A mesh operand (crossed twice where a ray meets an edge), and one
  *   whose crossings along a ray outnumber what a solid reports at once.
  * - A glass lens made as the intersection of two spheres focuses parallel
- *   rays where the thick-lens formula says. */
+ *   rays where the thick-lens formula says.
+ * - Eight rays at once (csg8.h) against one at a time, to the bit: trees
+ *   of convex leaves, of every solid, and with a mesh leaf that needs
+ *   several rounds of crossings; and a tree past the table (its nodes
+ *   evaluated) against the tabled tree it holds. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -790,4 +794,144 @@ Test(csg, eight_rays_match_one_at_a_time_with_other_leaves)
     cr_log_info("csg8: %d rays, %d hits (%d on other leaves)", tl.rays, tl.hits, tl.fallback);
     cr_assert_gt(tl.hits, tl.rays / 8, "not vacuous: %d hits of %d rays", tl.hits, tl.rays);
     cr_assert_gt(tl.fallback, tl.hits / 4, "other leaves hit: %d of %d", tl.fallback, tl.hits);
+}
+
+/* A ray of a packet along a row of cubes laid along x up to the origin
+ * (rows_tree): from before the row, or from inside one of its cubes,
+ * nearly along +x; some through the middle of the faces (where a face's
+ * two triangles meet), some ranges short. */
+static ray row_ray(rng *g, int i, int k)
+{
+    float y = 1.2f * (2 * rng_float(g) - 1), z = 1.2f * (2 * rng_float(g) - 1);
+    if (k % 4 == 0)
+        y = z = 0;
+    vec3 o = v3(i % 2 ? -16.0f : -12.0f + 3.0f * (float)(rng_u32(g) % 4), y, z);
+    vec3 d = v3_norm(v3(1, 0.02f * (2 * rng_float(g) - 1), 0.02f * (2 * rng_float(g) - 1)));
+    ray r = ray_make(o, v3_scale(d, 0.5f + rng_float(g)), k % 3 == 0 ? 10 + 20 * rng_float(g)
+                                                                      : INFINITY);
+    r.tmin = i % 3 == 0 ? 0.0f : 1e-3f * rng_float(g);
+    return r;
+}
+
+/* Leaf 0 is a row of five mesh cubes along x, the last round the origin,
+ * operand of a random tree of the other solids round the origin: a ray
+ * along the row crosses the mesh ten times, more than a leaf reports at
+ * once, before it reaches the rest. */
+static int32_t rows_tree(csg *c, rng *g, owned *own, const mesh *row)
+{
+    shape s = shape_mesh(row);
+    xform x = xform_translate(v3(-12, 0, 0));
+    int32_t kids[2] = {csg_add_leaf(c, &s, &x, 0), packet_tree(c, g, own, 2, 6)};
+    /* Intersections most often: they are hit past the first round. */
+    csg_op op = rng_u32(g) % 3 ? CSG_INTERSECTION : (csg_op)(rng_u32(g) % CSG_OP_COUNT);
+    return csg_add_node(c, op, kids, 2);
+}
+
+/* Whether the hit h on r lies past the crossings the row (leaf 0, the
+ * one leaf with more than it reports at once) reports from r's start:
+ * found in a later round than the first. */
+static bool past_first_round(const csg *c, const ray *r, const shape_hit *h)
+{
+    const csg_leaf *l = &c->leaves[0];
+    ray lr = {mat4_point(&l->x.inv, r->o), mat4_vector(&l->x.inv, r->d), r->tmin, r->tmax, 0};
+    crossing x[CSG_LEAF_CROSSINGS];
+    bool more;
+    int n = shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, &more);
+    return more && h->t > x[n - 1].h.t;
+}
+
+/* Trees with a mesh leaf that needs several rounds of crossings: the
+ * packet's first round reads the other leaves' spans from csg8.h and
+ * asks the mesh, its later rounds ask every leaf, and each ray's hit is
+ * the one ray's to the bit. */
+Test(csg, eight_rays_match_one_at_a_time_over_several_rounds)
+{
+    mesh *row = cubes(5);
+    rng g = rng_seed(13, 4);
+    csg8_tally tl = {0};
+    int later = 0;
+    for (int tree = 0; tree < 40; tree++) {
+        csg c = {0};
+        owned own = {.n = 0};
+        rows_tree(&c, &g, &own, row);
+        csg_finish(&c);
+        for (int i = 0; i < 40; i++) {
+            ray8 p;
+            int active = i % 5 == 0 ? 0x6d : 0xff;
+            for (int k = 0; k < 8; k++) {
+                ray r = row_ray(&g, i, k);
+                if (!(active >> k & 1))
+                    r.o = r.d = v3s(NAN);
+                ray8_put(&p, k, &r);
+                shape_hit h;
+                if (active >> k & 1 && csg_intersect(&c, &r, &h))
+                    later += past_first_round(&c, &r, &h);
+            }
+            char what[64];
+            snprintf(what, sizeof what, "tree %d packet %d", tree, i);
+            csg8_same(&c, &p, active, &tl, what);
+        }
+        csg_free(&c);
+        free_owned(&own);
+    }
+    mesh_free(row);
+    free(row);
+    cr_log_info("csg8 over rounds: %d rays, %d hits, %d after the first round", tl.rays,
+                tl.hits, later);
+    cr_assert_gt(later, 200, "hits found in a later round: %d", later);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert_gt(tl.hits, tl.rays / 8, "not vacuous: %d hits of %d rays", tl.hits, tl.rays);
+}
+
+/* A tree of at most CSG_TABLE_LEAVES leaves, whose answers come from its
+ * table, and the same tree less nine small balls far away, which takes
+ * it past the table (its nodes are evaluated) without changing the solid:
+ * every ray's hit is the same to the bit, one ray at a time and eight. */
+Test(csg, trees_past_the_table_classify_as_their_tabled_core)
+{
+    rng g = rng_seed(14, 4);
+    csg8_tally tl = {0};
+    int trees = 0, rays = 0, hits = 0;
+    while (trees < 60) {
+        csg a = {0}, b = {0};
+        owned own_a = {.n = 0}, own_b = {.n = 0};
+        rng same = g;
+        packet_tree(&a, &g, &own_a, 3, 6);
+        int32_t kids[10] = {packet_tree(&b, &same, &own_b, 3, 6)};
+        for (int i = 1; i < 10; i++) {
+            shape ball = shape_sphere(v3(40.0f + 3.0f * (float)i, 40, 40), 1);
+            kids[i] = csg_add_leaf(&b, &ball, NULL, b.nleaves);
+        }
+        csg_add_node(&b, CSG_DIFFERENCE, kids, 10);
+        csg_finish(&a);
+        csg_finish(&b);
+        cr_assert_gt(b.nleaves, CSG_TABLE_LEAVES);
+        if (a.nleaves <= CSG_TABLE_LEAVES) {
+            trees++;
+            for (int i = 0; i < 40; i++) {
+                ray8 p;
+                vec3 eye = rand_vec(&g, -3.0f, 3.0f);
+                for (int k = 0; k < 8; k++) {
+                    ray r = packet_ray(&g, &a, i, k, eye);
+                    ray8_put(&p, k, &r);
+                    shape_hit ha = {0}, hb = {0};
+                    bool wa = csg_intersect(&a, &r, &ha), wb = csg_intersect(&b, &r, &hb);
+                    cr_assert_eq(wa, wb, "tree %d ray %d: hit %d, past the table %d", trees,
+                                 8 * i + k, wa, wb);
+                    cr_assert(!memcmp(&ha, &hb, sizeof ha), "tree %d ray %d: t %a leaf %d, "
+                              "past the table t %a leaf %d", trees, 8 * i + k, (double)ha.t,
+                              ha.leaf, (double)hb.t, hb.leaf);
+                    rays++;
+                    hits += wa;
+                }
+                csg8_same(&b, &p, 0xff, &tl, "past the table");
+            }
+        }
+        csg_free(&a);
+        csg_free(&b);
+        free_owned(&own_a);
+        free_owned(&own_b);
+    }
+    cr_log_info("tabled cores: %d rays, %d hits", rays, hits);
+    cr_assert_gt(hits, rays / 8, "not vacuous: %d hits of %d rays", hits, rays);
 }

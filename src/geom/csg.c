@@ -137,23 +137,6 @@ static void tabulate(csg *c)
     }
 }
 
-/* The tree's answer for the leaves' states in (bits: the same, for the
- * first CSG_TABLE_LEAVES leaves). */
-static inline bool answer(const csg *c, const uint8_t *in, unsigned bits, uint8_t *node_in)
-{
-    if (c->nleaves <= CSG_TABLE_LEAVES)
-        return c->table[bits >> 6] >> (bits & 63) & 1;
-    return evaluate(c, in, node_in);
-}
-
-/* Leaf i's state set to v in both in and bits. */
-static inline void set_in(uint8_t *in, unsigned *bits, int i, bool v)
-{
-    in[i] = v;
-    if (i < CSG_TABLE_LEAVES)
-        *bits = (*bits & ~(1u << i)) | (unsigned)v << i;
-}
-
 void csg_finish(csg *c)
 {
     c->bounds = c->nnodes ? finish(c, CSG_NODE(c->nnodes - 1), false) : aabb_empty();
@@ -170,11 +153,6 @@ bool csg_contains(const csg *c, const bool *leaf_inside)
     return evaluate(c, in, node_in);
 }
 
-typedef struct event {
-    crossing x;
-    int leaf;
-} event;
-
 static inline ray leaf_ray(const csg_leaf *l, const ray *r)
 {
     if (!l->moved)
@@ -183,56 +161,152 @@ static inline ray leaf_ray(const csg_leaf *l, const ray *r)
                  r->time};
 }
 
-/* Leaf i's crossings after t0 (at most CSG_LEAF_CROSSINGS), none when r
- * misses its bounds from t0 on. In a packet's first round (pre, for lane
- * k) the bounds test and, for the leaves csg8.h spans, the span are read
- * from pre, worked out there by the same operations; otherwise the leaf
- * is asked. */
-static int leaf_crossings(const csg *c, int i, const ray *r, vec3 inv, float t0,
-                          const csg_spans8 *pre, int k, crossing *x, bool *more)
+/* One crossing of a round: its t, and which leaf's which crossing it is.
+ * Eight bytes, so that sorting the round moves a word per step rather
+ * than a whole crossing, whose record stays where its leaf put it (or,
+ * for a span read from pre, in pre). */
+typedef struct event {
+    float t;
+    uint16_t leaf;
+    uint8_t j; /* the leaf's x[j] */
+    bool enter;
+} event;
+
+/* What one classification works in: the crossings of the leaves asked in
+ * a round, leaf i's from x[i * CSG_LEAF_CROSSINGS] on; the round's events
+ * in order of t, from ev[1] on, between two sentinels that end the loops
+ * over them without counting (ev[0] at -INFINITY, below every t, and one
+ * at NAN after the last, equal to none and in no range); and, for a tree
+ * without a table, the leaves' states in in (a tree with one keeps them
+ * in a word, bit i for leaf i). */
+typedef struct walk {
+    crossing x[CSG_MAX_LEAVES * CSG_LEAF_CROSSINGS];
+    event ev[CSG_MAX_LEAVES * CSG_LEAF_CROSSINGS + 2];
+    uint8_t in[CSG_MAX_LEAVES], node_in[CSG_MAX_LEAVES];
+} walk;
+
+/* Leaf i's state set to v; tabled: the tree has a table (a constant in
+ * each copy of the classification, so the test costs nothing). */
+static inline void set_in(bool tabled, walk *w, unsigned *bits, int i, bool v)
 {
-    const csg_leaf *l = &c->leaves[i];
-    *more = false;
-    if (pre ? !(pre->leaf[i].bounded >> k & 1) : !aabb_hit(l->bounds, r->o, inv, t0, INFINITY))
-        return 0;
-    if (pre && pre->leaf[i].spanned >> k & 1) {
-        const csg_leaf8 *s = &pre->leaf[i];
-        shape_hit in = {.t = s->tin[k], .part = s->pin[k]};
-        shape_hit out = {.t = s->tout[k], .part = s->pout[k]};
-        return shape_span_crossings(s->met >> k & 1, in, out, t0, x, CSG_LEAF_CROSSINGS);
-    }
-    ray lr = leaf_ray(l, r);
-    lr.tmin = t0;
-    return shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, more);
+    if (tabled)
+        *bits = (*bits & ~(1u << i)) | (unsigned)v << i;
+    else
+        w->in[i] = v;
 }
 
-/* Every leaf's crossings after t0, sorted by t (then leaf), and each leaf's
- * state just after t0. *cut is where a leaf's list was cut short (INFINITY
- * when none was): events beyond it are not all known. */
-static int gather(const csg *c, const ray *r, float t0, const csg_spans8 *pre, int k,
-                  uint8_t *in, unsigned *bits, event *ev, float *cut)
+/* The tree's answer for the leaves' states. */
+static inline bool answer(bool tabled, const csg *c, walk *w, unsigned bits)
+{
+    if (tabled)
+        return c->table[bits >> 6] >> (bits & 63) & 1;
+    return evaluate(c, w->in, w->node_in);
+}
+
+/* e into ev[0 .. n), after those of t no greater (so crossings at one t
+ * keep the order of their leaves, and a leaf's own their order); ev[-1]
+ * is the sentinel below every t. */
+static inline void insert(event *ev, int n, event e)
+{
+    for (; ev[n - 1].t > e.t; n--)
+        ev[n] = ev[n - 1];
+    ev[n] = e;
+}
+
+/* Lane k's span of leaf i, from pre, as events into ev[0 .. n): the
+ * entry and the exit after t0, as shape_span_crossings keeps them.
+ * Returns the new count, and sets *inside when the lane starts inside
+ * the leaf (its first crossing leaves it). */
+static inline int span_events(const csg_leaf8 *s, int k, int i, float t0, event *ev, int n,
+                              bool *inside)
+{
+    if (!(s->met >> k & 1))
+        return n;
+    float tin = s->tin[k], tout = s->tout[k];
+    if (tin > t0)
+        insert(ev, n++, (event){tin, (uint16_t)i, 0, true});
+    else
+        *inside = tout > t0;
+    if (tout > t0)
+        insert(ev, n++, (event){tout, (uint16_t)i, 1, false});
+    return n;
+}
+
+/* Leaf i asked for its crossings after t0 (at most CSG_LEAF_CROSSINGS),
+ * as events into w->ev[0 .. n). Returns the new count, with *inside as
+ * span_events, and *cut lowered to the last crossing when the leaf has
+ * more. */
+__attribute__((always_inline)) static inline int asked_events(const csg *c, int i, const ray *r,
+                                                              float t0, walk *w, int n,
+                                                              bool *inside, float *cut)
+{
+    const csg_leaf *l = &c->leaves[i];
+    crossing *x = w->x + i * CSG_LEAF_CROSSINGS;
+    ray lr = leaf_ray(l, r);
+    lr.tmin = t0;
+    bool more;
+    int nx = shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, &more);
+    if (nx == 0)
+        return n;
+    *inside = !x[0].enter;
+    if (more)
+        *cut = fminf(*cut, x[nx - 1].h.t);
+    for (int j = 0; j < nx; j++, n++)
+        insert(w->ev + 1, n, (event){x[j].h.t, (uint16_t)i, (uint8_t)j, x[j].enter});
+    return n;
+}
+
+/* asked_events out of line, for the packet's rounds, where other leaves
+ * than those csg8.h spans are few and the loop stays in registers. */
+__attribute__((noinline)) static int asked_lane(const csg *c, int i, const ray *r, walk *w, int n,
+                                                bool *inside, float *cut)
+{
+    return asked_events(c, i, r, r->tmin, w, n, inside, cut);
+}
+
+/* A round's gathering: every leaf's crossings after t0 as events sorted
+ * by t (then leaf), each leaf's state just after t0 (into *bits or
+ * w->in), and in *cut where a leaf's list was cut short (INFINITY when
+ * none was): events beyond it are not all known. Each leaf whose bounds
+ * r meets from t0 on is asked. */
+__attribute__((always_inline)) static inline int gather(bool tabled, const csg *c, const ray *r,
+                                                        float t0, walk *w, unsigned *bits,
+                                                        float *cut)
 {
     vec3 inv = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
     int n = 0;
     *cut = INFINITY;
     *bits = 0;
     for (int i = 0; i < c->nleaves; i++) {
-        crossing x[CSG_LEAF_CROSSINGS];
-        bool more;
-        in[i] = 0;
-        int nx = leaf_crossings(c, i, r, inv, t0, pre, k, x, &more);
-        if (nx == 0)
-            continue;
-        set_in(in, bits, i, !x[0].enter);
-        if (more)
-            *cut = fminf(*cut, x[nx - 1].h.t);
-        for (int j = 0; j < nx; j++) {
-            event e = {x[j], i};
-            int m = n++;
-            for (; m > 0 && ev[m - 1].x.h.t > e.x.h.t; m--)
-                ev[m] = ev[m - 1];
-            ev[m] = e;
-        }
+        bool inside = false;
+        if (aabb_hit(c->leaves[i].bounds, r->o, inv, t0, INFINITY))
+            n = asked_events(c, i, r, t0, w, n, &inside, cut);
+        set_in(tabled, w, bits, i, inside);
+    }
+    return n;
+}
+
+/* gather for a packet's first round (lane k of pre, from r->tmin): the
+ * bounds tests and, for the leaves csg8.h spans, the spans are read from
+ * pre, worked out there by the same operations; only the other leaves
+ * within their bounds are asked. */
+__attribute__((always_inline)) static inline int gather_lane(bool tabled, const csg *c,
+                                                             const ray *r,
+                                                             const csg_spans8 *pre, int k,
+                                                             walk *w, unsigned *bits,
+                                                             float *cut)
+{
+    int n = 0;
+    *cut = INFINITY;
+    *bits = 0;
+    for (int i = 0; i < c->nleaves; i++) {
+        const csg_leaf8 *s = &pre->leaf[i];
+        bool inside = false;
+        if (s->spanned >> k & 1) /* spanned lanes are bounded (csg.h) */
+            n = span_events(s, k, i, r->tmin, w->ev + 1, n, &inside);
+        else if (s->bounded >> k & 1)
+            n = asked_lane(c, i, r, w, n, &inside, cut);
+        set_in(tabled, w, bits, i, inside);
     }
     return n;
 }
@@ -241,39 +315,61 @@ static int gather(const csg *c, const ray *r, float t0, const csg_spans8 *pre, i
  * the tree made: into the result when became_inside, out of it otherwise. */
 static const event *cause(const csg *c, const event *ev, int n, bool became_inside)
 {
-    for (int i = 0; i < n; i++)
-        if ((ev[i].x.enter != c->leaves[ev[i].leaf].flip) == became_inside)
-            return &ev[i];
+    if (n > 1) /* a crossing alone at its t is the cause */
+        for (int i = 0; i < n; i++)
+            if ((ev[i].enter != c->leaves[ev[i].leaf].flip) == became_inside)
+                return &ev[i];
     return &ev[0];
+}
+
+/* Event e's crossing as the hit: from pre when it is a span read there
+ * (an entry's or an exit's t and part), else the record its leaf made. */
+static shape_hit event_hit(const walk *w, const csg_spans8 *pre, int k, event e)
+{
+    shape_hit h;
+    if (pre && pre->leaf[e.leaf].spanned >> k & 1) {
+        const csg_leaf8 *s = &pre->leaf[e.leaf];
+        h = (shape_hit){.t = e.t, .part = e.enter ? s->pin[k] : s->pout[k]};
+    } else {
+        h = w->x[e.leaf * CSG_LEAF_CROSSINGS + e.j].h;
+    }
+    h.leaf = e.leaf;
+    return h;
 }
 
 /* The classification: rounds of gathering the leaves' crossings from t0
  * on, each walked in order of t with the tree's answer after every
  * distinct t, until the answer changes (the hit), the range ends, or the
  * crossings known are all there are. Only the first round can come from
- * pre (csg_hit_lane); a round after a cut asks the leaves from the cut. */
-static bool classify(const csg *c, const ray *r, const csg_spans8 *pre, int k, shape_hit *hit)
+ * pre (csg_hit_lane); a round after a cut asks the leaves from the cut.
+ * Made twice, for trees with a table (tabled) and without. */
+__attribute__((always_inline)) static inline bool rounds(bool tabled, const csg *c, const ray *r,
+                                                         const csg_spans8 *pre, int k,
+                                                         shape_hit *hit)
 {
-    uint8_t in[CSG_MAX_LEAVES], node_in[CSG_MAX_LEAVES];
-    event ev[CSG_MAX_LEAVES * CSG_LEAF_CROSSINGS];
+    walk w;
+    event *ev = w.ev + 1;
+    w.ev[0].t = -INFINITY;
     float t0 = r->tmin;
     for (int round = 0; round < 64; round++, pre = NULL) {
         float cut;
         unsigned bits;
-        int n = gather(c, r, t0, pre, k, in, &bits, ev, &cut);
-        bool inside = answer(c, in, bits, node_in);
-        for (int i = 0; i < n && ev[i].x.h.t <= cut;) {
-            float t = ev[i].x.h.t;
+        int n = pre ? gather_lane(tabled, c, r, pre, k, &w, &bits, &cut)
+                    : gather(tabled, c, r, t0, &w, &bits, &cut);
+        if (n == 0 || ev[0].t >= r->tmax) /* nothing in the range changes */
+            return false;
+        ev[n].t = NAN;
+        bool inside = answer(tabled, c, &w, bits);
+        for (int i = 0; ev[i].t <= cut;) {
+            float t = ev[i].t;
             if (t >= r->tmax)
                 return false;
             int j = i;
-            for (; j < n && ev[j].x.h.t == t; j++)
-                set_in(in, &bits, ev[j].leaf, ev[j].x.enter);
-            bool now = answer(c, in, bits, node_in);
+            for (; ev[j].t == t; j++)
+                set_in(tabled, &w, &bits, ev[j].leaf, ev[j].enter);
+            bool now = answer(tabled, c, &w, bits);
             if (now != inside) {
-                const event *e = cause(c, ev + i, j - i, now);
-                *hit = e->x.h;
-                hit->leaf = e->leaf;
+                *hit = event_hit(&w, pre, k, *cause(c, ev + i, j - i, now));
                 return true;
             }
             i = j;
@@ -283,6 +379,13 @@ static bool classify(const csg *c, const ray *r, const csg_spans8 *pre, int k, s
         t0 = cut;
     }
     return false;
+}
+
+static bool classify(const csg *c, const ray *r, const csg_spans8 *pre, int k, shape_hit *hit)
+{
+    if (c->nleaves <= CSG_TABLE_LEAVES)
+        return rounds(true, c, r, pre, k, hit);
+    return rounds(false, c, r, pre, k, hit);
 }
 
 bool csg_intersect(const csg *c, const ray *r, shape_hit *hit)
