@@ -1055,3 +1055,83 @@ Test(packet, coplanar_objects_tie_alike_in_any_tree)
     }
     accel_isa_force(ACCEL_AUTO);
 }
+
+/* 10 x 10 x 2 balls and cubes (alternately) of radius 0.45 on a unit
+ * lattice: a tree of three levels, whose boxes the rays below graze. */
+static vec3 lattice_at(int i) { return v3((float)(i % 10), (float)(i / 100), (float)(-(i / 10 % 10))); }
+
+static scene *ball_lattice(void)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    int mat = scene_add_material(s, &mt);
+    for (int i = 0; i < 200; i++) {
+        vec3 c = lattice_at(i), e = v3s(0.45f);
+        shape b = i % 2 ? shape_box(v3_sub(c, e), v3_add(c, e)) : shape_sphere(c, 0.45f);
+        cr_assert_geq(scene_add_object(s, &b, mat, -1), 0);
+    }
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+/* Eight rays from origins up to `spread` apart, each at a ball's
+ * silhouette or a cube's edge (give or take a float or two, so most go
+ * by a box's edge or corner). */
+static ray8 grazing_packet(rng *g, float spread)
+{
+    ray8 p;
+    vec3 eye = v3(uniform(g, -3, 12), uniform(g, 3, 9), uniform(g, 4, 12));
+    int first = (int)(rng_float(g) * 200.0f) % 200;
+    for (int k = 0; k < 8; k++) {
+        vec3 o = v3_add(eye, v3(uniform(g, -spread, spread), uniform(g, -spread, spread),
+                                uniform(g, -spread, spread)));
+        int b = k < 4 ? first : (first + k) % 200;
+        vec3 c = lattice_at(b), to = v3_sub(c, o);
+        float edge = 0.45f * (1.0f + uniform(g, -4e-7f, 4e-7f));
+        vec3 at = v3_scale(v3_norm(v3_cross(to, v3(0.3f, 1.0f, 0.1f))), edge);
+        if (b % 2) /* a cube: an edge, one coordinate anywhere along it */
+            at = v3(k & 1 ? edge : -edge, k & 2 ? uniform(g, -edge, edge) : edge,
+                    k & 2 ? -edge : uniform(g, -edge, edge));
+        put(&p, k, o, v3_add(to, at), 1e-3f, INFINITY);
+    }
+    return p;
+}
+
+/* The eight-wide walks cull a node's children for the whole packet at
+ * once before testing each ray (packet_cull, interval arithmetic over the
+ * rays' origins and directions): a ray grazing a box must still reach
+ * what it hits or what blocks it, whether the packet's rays share an
+ * origin, spread a little (shadow rays from one surface) or a lot. */
+Test(packet, culling_a_node_for_the_packet_keeps_every_box_a_ray_enters)
+{
+    int hits = 0, blocked_rays = 0;
+    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = ball_lattice();
+        cr_assert(!s->flat && s->bvh.nnodes > 8);
+        rng g = rng_seed(17, 8);
+        static const float spreads[] = {0.0f, 0.02f, 0.5f, 4.0f};
+        for (int i = 0; i < 6000; i++) {
+            ray8 p = grazing_packet(&g, spreads[i % 4]);
+            int active = i % 9 == 0 ? 0xb7 : 0xff;
+            hits += same_packet_hits(s, &p, active, i, SHAPE_SPHERE);
+            int blocked, crosses;
+            if (!scene_shadow8(s, &p, active, &blocked, &crosses))
+                continue; /* the rays differ in their directions' signs */
+            cr_assert_eq(crosses, 0);
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                bool want = (active >> k & 1) && scene_occluded_opaque(s, &r);
+                cr_assert_eq(blocked >> k & 1, want, "packet %d ray %d", i, k);
+                blocked_rays += want;
+            }
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert(hits > 10000 && blocked_rays > 10000, "%d hits, %d blocked", hits, blocked_rays);
+}

@@ -40,6 +40,13 @@ typedef struct packet8 {
     const ray8 *r;
     __m256 ox, oy, oz, ix, iy, iz, tmin;
     int nx, ny, nz;
+    /* The whole packet's bounds, for packet_cull: per axis the origin that
+     * enters a box last (near) and leaves it first (far) and the least and
+     * greatest inverse direction, and the least tmin, each in every lane.
+     * bounded is false when a ray's values are not all finite. */
+    bool bounded;
+    int near[3]; /* the rows of a node's boxes (bvh8_node) nearer the rays */
+    __m256 on[3], of[3], ilo[3], ihi[3], tlo;
     bool tri_ready;
     __m256 qox, qoy, qoz, sx, sy, sz; /* tri4_ray's per-ray values */
     int kx, ky, kz;
@@ -82,9 +89,46 @@ static inline float packet_hmin(__m256 v)
     return _mm_cvtss_f32(m);
 }
 
+static inline float packet_hmax(__m256 v)
+{
+    __m128 m = _mm_max_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+    m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
+    return _mm_cvtss_f32(m);
+}
+
+/* The children of node n that some ray of the packet may enter, one bit
+ * each, found for all of them at once by interval arithmetic over the
+ * packet's bounds (Boulos et al., "Geometric and Arithmetic Culling
+ * Methods for Entire Ray Packets", 2006): each child's nearest possible
+ * entry and furthest possible exit. Rounding to nearest is monotonic, so
+ * each bound is as far out as any ray's own rounded distance, and a child
+ * a ray enters in packet_node's test is never culled: the culled ones are
+ * those no ray would enter, and the walk is the same, only cheaper (on
+ * row 8 of the benchmark, 37 box tests a packet were made for 6 children
+ * entered). reach is a bound on the rays' reaches; a NaN lets all pass. */
+__attribute__((always_inline)) static inline int packet_cull(const bvh8_node *n, const packet8 *p,
+                                                             float reach)
+{
+    if (!p->bounded)
+        return 0xff;
+    __m256 lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        __m256 dn = _mm256_sub_ps(_mm256_load_ps(n->box[p->near[a]]), p->on[a]);
+        __m256 df = _mm256_sub_ps(_mm256_load_ps(n->box[p->near[a] ^ 1]), p->of[a]);
+        lo[a] = _mm256_min_ps(_mm256_mul_ps(dn, p->ilo[a]), _mm256_mul_ps(dn, p->ihi[a]));
+        hi[a] = _mm256_max_ps(_mm256_mul_ps(df, p->ilo[a]), _mm256_mul_ps(df, p->ihi[a]));
+    }
+    __m256 vn = _mm256_max_ps(_mm256_max_ps(lo[0], lo[1]), _mm256_max_ps(lo[2], p->tlo));
+    __m256 vf = _mm256_min_ps(_mm256_min_ps(hi[0], hi[1]), hi[2]);
+    vf = _mm256_min_ps(_mm256_mul_ps(vf, _mm256_set1_ps(WIDE_FAR_SCALE)), _mm256_set1_ps(reach));
+    return _mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_NGT_UQ));
+}
+
 /* The children of node n the rays of `active` enter; returns how many,
  * with their entries in out, nearest first (by the first distance at which
- * any of the rays enters). */
+ * any of the rays enters). Only the children packet_cull leaves are
+ * tested ray by ray. */
 __attribute__((always_inline)) static inline int packet_node(const bvh8_node *n, const packet8 *p,
                                                              __m256 tmax, int active,
                                                              packet_entry out[8])
@@ -93,7 +137,8 @@ __attribute__((always_inline)) static inline int packet_node(const bvh8_node *n,
     int m = 0;
     const __m256 scale = _mm256_set1_ps(WIDE_FAR_SCALE), inf = _mm256_set1_ps(INFINITY);
     const __m256 act = packet_lanes(active);
-    for (int k = 0; k < 8; k++) {
+    for (int left = packet_cull(n, p, packet_hmax(tmax)); left; left &= left - 1) {
+        int k = __builtin_ctz((unsigned)left);
         if (n->count[k] == 0 && n->child[k] < 0)
             break; /* empty lanes come last */
         __m256 t0x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[0 + p->nx][k]), p->ox), p->ix);
@@ -209,6 +254,38 @@ static inline bool packet_same(__m256 c, int active, bool *set)
     return m == 0 || m == active;
 }
 
+/* packet_cull's bounds of the rays of active, their directions' signs
+ * set: idle lanes take the first active ray's values so they add
+ * nothing. Left unbounded when a ray's origin is not finite or the
+ * inverse of its direction is zero or not finite, where a bound could be
+ * NaN. */
+static inline void packet_bound(packet8 *p, int active)
+{
+    const __m256 sign = _mm256_set1_ps(-0.0f), inf = _mm256_set1_ps(INFINITY);
+    const __m256i first = _mm256_set1_epi32(__builtin_ctz((unsigned)active));
+    const __m256 idle = packet_lanes(~active & 0xff), zero = _mm256_setzero_ps();
+    __m256 o[3] = {p->ox, p->oy, p->oz}, i[3] = {p->ix, p->iy, p->iz};
+    const int neg[3] = {p->nx, p->ny, p->nz};
+    int ok = 0xff;
+    for (int a = 0; a < 3; a++) {
+        o[a] = _mm256_blendv_ps(o[a], _mm256_permutevar8x32_ps(o[a], first), idle);
+        i[a] = _mm256_blendv_ps(i[a], _mm256_permutevar8x32_ps(i[a], first), idle);
+        __m256 ai = _mm256_andnot_ps(sign, i[a]);
+        ok &= _mm256_movemask_ps(_mm256_cmp_ps(_mm256_andnot_ps(sign, o[a]), inf, _CMP_LT_OQ)) &
+              _mm256_movemask_ps(_mm256_cmp_ps(ai, inf, _CMP_LT_OQ)) &
+              _mm256_movemask_ps(_mm256_cmp_ps(ai, zero, _CMP_GT_OQ));
+        __m256 olo = _mm256_set1_ps(packet_hmin(o[a])), ohi = _mm256_set1_ps(packet_hmax(o[a]));
+        p->near[a] = 2 * a + neg[a];
+        p->on[a] = neg[a] ? olo : ohi;
+        p->of[a] = neg[a] ? ohi : olo;
+        p->ilo[a] = _mm256_set1_ps(packet_hmin(i[a]));
+        p->ihi[a] = _mm256_set1_ps(packet_hmax(i[a]));
+    }
+    __m256 t = _mm256_blendv_ps(p->tmin, _mm256_permutevar8x32_ps(p->tmin, first), idle);
+    p->tlo = _mm256_set1_ps(packet_hmin(t));
+    p->bounded = ok == 0xff;
+}
+
 /* The rays' values for the box tests, as wide_ray_make works them out;
  * false when the rays of active differ in the signs of their directions. */
 static inline bool packet_make(packet8 *p, const ray8 *r, int active)
@@ -226,6 +303,7 @@ static inline bool packet_make(packet8 *p, const ray8 *r, int active)
                (int)packet_same(_mm256_cmp_ps(p->iy, zero, _CMP_LT_OQ), active, &ny) &
                (int)packet_same(_mm256_cmp_ps(p->iz, zero, _CMP_LT_OQ), active, &nz);
     p->nx = nx, p->ny = ny, p->nz = nz;
+    packet_bound(p, active);
     return same;
 }
 
