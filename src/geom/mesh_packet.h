@@ -125,44 +125,67 @@ __attribute__((always_inline)) static inline int packet_cull(const bvh8_node *n,
     return _mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_NGT_UQ));
 }
 
+/* Child k of node n against the rays of `active` (act, their lanes);
+ * when some enter it, its entry goes into out[0 .. m] by key (the first
+ * distance at which any of them enters; ties keep child order). Returns
+ * the new count. */
+__attribute__((always_inline)) static inline int packet_child(const bvh8_node *n, const packet8 *p,
+                                                              int k, __m256 tmax, __m256 act,
+                                                              float key[8], packet_entry out[8],
+                                                              int m)
+{
+    const __m256 scale = _mm256_set1_ps(WIDE_FAR_SCALE), inf = _mm256_set1_ps(INFINITY);
+    __m256 t0x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[0 + p->nx][k]), p->ox), p->ix);
+    __m256 t1x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[1 - p->nx][k]), p->ox), p->ix);
+    __m256 t0y = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[2 + p->ny][k]), p->oy), p->iy);
+    __m256 t1y = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[3 - p->ny][k]), p->oy), p->iy);
+    __m256 t0z = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[4 + p->nz][k]), p->oz), p->iz);
+    __m256 t1z = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[5 - p->nz][k]), p->oz), p->iz);
+    __m256 vn = _mm256_max_ps(_mm256_max_ps(t0x, t0y), _mm256_max_ps(t0z, p->tmin));
+    __m256 vf = _mm256_min_ps(_mm256_min_ps(t1x, t1y), _mm256_min_ps(t1z, inf));
+    vf = _mm256_min_ps(_mm256_mul_ps(vf, scale), tmax);
+    __m256 in = _mm256_and_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ), act); /* idle rays: out */
+    int mask = _mm256_movemask_ps(in);
+    if (!mask)
+        return m;
+    __m256 tn = _mm256_blendv_ps(inf, vn, in);
+    float kk = packet_hmin(tn);
+    int j = m++;
+    for (; j > 0 && key[j - 1] > kk; j--) {
+        key[j] = key[j - 1];
+        out[j] = out[j - 1];
+    }
+    key[j] = kk;
+    out[j] = (packet_entry){tn, n->child[k], n->count[k], (uint32_t)mask};
+    return m;
+}
+
 /* The children of node n the rays of `active` enter; returns how many,
  * with their entries in out, nearest first (by the first distance at which
- * any of the rays enters). Only the children packet_cull leaves are
- * tested ray by ray. */
+ * any of the rays enters). With the packet's bounds (p->bounded), only the
+ * children packet_cull leaves are tested ray by ray; without, every child
+ * in turn (a loop the compiler unrolls: a tree of one node, where culling
+ * costs more than it saves, keeps that). */
 __attribute__((always_inline)) static inline int packet_node(const bvh8_node *n, const packet8 *p,
                                                              __m256 tmax, int active,
-                                                             packet_entry out[8])
+                                                             packet_entry out[8], bool cull)
 {
     float key[8];
     int m = 0;
-    const __m256 scale = _mm256_set1_ps(WIDE_FAR_SCALE), inf = _mm256_set1_ps(INFINITY);
     const __m256 act = packet_lanes(active);
-    for (int left = packet_cull(n, p, packet_hmax(tmax)); left; left &= left - 1) {
-        int k = __builtin_ctz((unsigned)left);
-        if (n->count[k] == 0 && n->child[k] < 0)
-            break; /* empty lanes come last */
-        __m256 t0x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[0 + p->nx][k]), p->ox), p->ix);
-        __m256 t1x = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[1 - p->nx][k]), p->ox), p->ix);
-        __m256 t0y = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[2 + p->ny][k]), p->oy), p->iy);
-        __m256 t1y = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[3 - p->ny][k]), p->oy), p->iy);
-        __m256 t0z = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[4 + p->nz][k]), p->oz), p->iz);
-        __m256 t1z = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n->box[5 - p->nz][k]), p->oz), p->iz);
-        __m256 vn = _mm256_max_ps(_mm256_max_ps(t0x, t0y), _mm256_max_ps(t0z, p->tmin));
-        __m256 vf = _mm256_min_ps(_mm256_min_ps(t1x, t1y), _mm256_min_ps(t1z, inf));
-        vf = _mm256_min_ps(_mm256_mul_ps(vf, scale), tmax);
-        __m256 in = _mm256_and_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ), act); /* idle rays: out */
-        int mask = _mm256_movemask_ps(in);
-        if (!mask)
-            continue;
-        __m256 tn = _mm256_blendv_ps(inf, vn, in);
-        float kk = packet_hmin(tn);
-        int j = m++;
-        for (; j > 0 && key[j - 1] > kk; j--) { /* ties keep child order */
-            key[j] = key[j - 1];
-            out[j] = out[j - 1];
+    if (cull && p->bounded) {
+        for (int left = packet_cull(n, p, packet_hmax(tmax)); left; left &= left - 1) {
+            int k = __builtin_ctz((unsigned)left);
+            if (n->count[k] == 0 && n->child[k] < 0)
+                break; /* empty lanes come last */
+            m = packet_child(n, p, k, tmax, act, key, out, m);
         }
-        key[j] = kk;
-        out[j] = (packet_entry){tn, n->child[k], n->count[k], (uint32_t)mask};
+        return m;
+    }
+    for (int k = 0; k < 8; k++) {
+        if (n->count[k] == 0 && n->child[k] < 0)
+            break;
+        m = packet_child(n, p, k, tmax, act, key, out, m);
     }
     return m;
 }
@@ -254,6 +277,22 @@ static inline bool packet_same(__m256 c, int active, bool *set)
     return m == 0 || m == active;
 }
 
+/* The least and the greatest of v's lanes, each in every lane: three
+ * steps of swapping halves, pairs and neighbours, with no broadcast. */
+static inline __m256 packet_all_min(__m256 v)
+{
+    v = _mm256_min_ps(v, _mm256_permute2f128_ps(v, v, 1));
+    v = _mm256_min_ps(v, _mm256_shuffle_ps(v, v, 0x4e));
+    return _mm256_min_ps(v, _mm256_shuffle_ps(v, v, 0xb1));
+}
+
+static inline __m256 packet_all_max(__m256 v)
+{
+    v = _mm256_max_ps(v, _mm256_permute2f128_ps(v, v, 1));
+    v = _mm256_max_ps(v, _mm256_shuffle_ps(v, v, 0x4e));
+    return _mm256_max_ps(v, _mm256_shuffle_ps(v, v, 0xb1));
+}
+
 /* packet_cull's bounds of the rays of active, their directions' signs
  * set: idle lanes take the first active ray's values so they add
  * nothing. Left unbounded when a ray's origin is not finite or the
@@ -264,30 +303,30 @@ static inline void packet_bound(packet8 *p, int active)
     const __m256 sign = _mm256_set1_ps(-0.0f), inf = _mm256_set1_ps(INFINITY);
     const __m256i first = _mm256_set1_epi32(__builtin_ctz((unsigned)active));
     const __m256 idle = packet_lanes(~active & 0xff), zero = _mm256_setzero_ps();
-    __m256 o[3] = {p->ox, p->oy, p->oz}, i[3] = {p->ix, p->iy, p->iz};
+    __m256 o[3] = {p->ox, p->oy, p->oz}, i[3] = {p->ix, p->iy, p->iz}, bad = zero;
     const int neg[3] = {p->nx, p->ny, p->nz};
-    int ok = 0xff;
     for (int a = 0; a < 3; a++) {
         o[a] = _mm256_blendv_ps(o[a], _mm256_permutevar8x32_ps(o[a], first), idle);
         i[a] = _mm256_blendv_ps(i[a], _mm256_permutevar8x32_ps(i[a], first), idle);
         __m256 ai = _mm256_andnot_ps(sign, i[a]);
-        ok &= _mm256_movemask_ps(_mm256_cmp_ps(_mm256_andnot_ps(sign, o[a]), inf, _CMP_LT_OQ)) &
-              _mm256_movemask_ps(_mm256_cmp_ps(ai, inf, _CMP_LT_OQ)) &
-              _mm256_movemask_ps(_mm256_cmp_ps(ai, zero, _CMP_GT_OQ));
-        __m256 olo = _mm256_set1_ps(packet_hmin(o[a])), ohi = _mm256_set1_ps(packet_hmax(o[a]));
+        bad = _mm256_or_ps(bad, _mm256_cmp_ps(_mm256_andnot_ps(sign, o[a]), inf, _CMP_NLT_UQ));
+        bad = _mm256_or_ps(bad, _mm256_cmp_ps(ai, inf, _CMP_NLT_UQ));
+        bad = _mm256_or_ps(bad, _mm256_cmp_ps(ai, zero, _CMP_NGT_UQ));
+        __m256 olo = packet_all_min(o[a]), ohi = packet_all_max(o[a]);
         p->near[a] = 2 * a + neg[a];
         p->on[a] = neg[a] ? olo : ohi;
         p->of[a] = neg[a] ? ohi : olo;
-        p->ilo[a] = _mm256_set1_ps(packet_hmin(i[a]));
-        p->ihi[a] = _mm256_set1_ps(packet_hmax(i[a]));
+        p->ilo[a] = packet_all_min(i[a]);
+        p->ihi[a] = packet_all_max(i[a]);
     }
     __m256 t = _mm256_blendv_ps(p->tmin, _mm256_permutevar8x32_ps(p->tmin, first), idle);
-    p->tlo = _mm256_set1_ps(packet_hmin(t));
-    p->bounded = ok == 0xff;
+    p->tlo = packet_all_min(t);
+    p->bounded = _mm256_movemask_ps(bad) == 0;
 }
 
 /* The rays' values for the box tests, as wide_ray_make works them out;
- * false when the rays of active differ in the signs of their directions. */
+ * false when the rays of active differ in the signs of their directions.
+ * The packet is left without its bounds (packet_bound adds them). */
 static inline bool packet_make(packet8 *p, const ray8 *r, int active)
 {
     p->r = r;
@@ -303,7 +342,7 @@ static inline bool packet_make(packet8 *p, const ray8 *r, int active)
                (int)packet_same(_mm256_cmp_ps(p->iy, zero, _CMP_LT_OQ), active, &ny) &
                (int)packet_same(_mm256_cmp_ps(p->iz, zero, _CMP_LT_OQ), active, &nz);
     p->nx = nx, p->ny = ny, p->nz = nz;
-    packet_bound(p, active);
+    p->bounded = false;
     return same;
 }
 
@@ -349,10 +388,14 @@ typedef bool (*packet_leaf_fn)(void *ctx, uint32_t first, uint32_t count, int ra
  * any of them visited with those that enter it, nearest first (by the
  * nearest of them); an entry is dropped for the rays whose nearest hit so
  * far (*tmax) lies before it by more than wide_reach allows, as in
- * wide_traverse. Returns false when a leaf abandons it. */
+ * wide_traverse. cull, a constant at each call: whether nodes' children
+ * are culled for the whole packet first (packet_bound must have been
+ * called); a walk made without it is compiled without the culling.
+ * Returns false when a leaf abandons it. */
 __attribute__((always_inline)) static inline bool packet_walk(const bvhw *b, const packet8 *p,
                                                               int active, __m256 *tmax,
-                                                              packet_leaf_fn leaf, void *ctx)
+                                                              packet_leaf_fn leaf, void *ctx,
+                                                              bool cull)
 {
     packet_entry stack[WIDE_STACK(8)];
     int sp = 0;
@@ -361,7 +404,7 @@ __attribute__((always_inline)) static inline bool packet_walk(const bvhw *b, con
         if (cur.child >= 0) {
             packet_entry kids[8];
             __m256 reach = _mm256_mul_ps(*tmax, _mm256_set1_ps(WIDE_TIE_SCALE)); /* wide_reach */
-            int nk = packet_node(&b->n8[cur.child], p, reach, (int)cur.mask, kids);
+            int nk = packet_node(&b->n8[cur.child], p, reach, (int)cur.mask, kids, cull);
             if (nk > 0) {
                 for (int i = nk - 1; i > 0; i--)
                     stack[sp++] = kids[i];
@@ -413,11 +456,12 @@ __attribute__((always_inline)) static inline int packet_closest(const mesh *m, c
     packet8 p;
     if (!packet_make(&p, r, active))
         return -1;
+    packet_bound(&p, active);
     packet_mesh_ctx c = {m, &p, active,
                          {_mm256_loadu_ps(r->tmax), _mm256_setzero_ps(), _mm256_setzero_ps(),
                           _mm256_set1_epi32(-1)}};
     __m256 tmax = c.best.t;
-    if (!packet_walk(b, &p, active, &tmax, packet_mesh_leaf, &c))
+    if (!packet_walk(b, &p, active, &tmax, packet_mesh_leaf, &c, true))
         return -1;
     float t[8], b1[8], b2[8];
     int32_t id[8];

@@ -195,14 +195,16 @@ int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float 
     return found;
 }
 
-/* scene_walk8 on the scene's path; -1 where it has none. */
+/* scene_walk8 on the scene's path, culling nodes' children for the whole
+ * packet in a tree of more than one node; -1 where the path has none. */
 static int walk8(const scene *s, const ray8 *r, int active, float best[8], scene_hit hit[8])
 {
 #if defined(GLINT_WIDE_KERNELS)
+    bool deep = s->bvh.nnodes > 1;
     if (s->bvh.isa == ACCEL_AVX512)
-        return scene_walk8_avx512(s, r, active, best, hit);
+        return (deep ? scene_walk8_culled_avx512 : scene_walk8_avx512)(s, r, active, best, hit);
     if (s->bvh.isa == ACCEL_AVX2)
-        return scene_walk8_avx2(s, r, active, best, hit);
+        return (deep ? scene_walk8_culled_avx2 : scene_walk8_avx2)(s, r, active, best, hit);
 #endif
     (void)s, (void)r, (void)active, (void)best, (void)hit;
     return -1;
@@ -347,14 +349,18 @@ int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_cros
     return blocked;
 }
 
-/* scene_shadow_walk8 on the scene's path; false where it has none. */
+/* scene_shadow_walk8 on the scene's path, culling as walk8 does; false
+ * where the path has none. */
 static bool shadow_walk8(const scene *s, const ray8 *r, int active, int *blocked, int *crosses)
 {
 #if defined(GLINT_WIDE_KERNELS)
+    bool deep = s->bvh.nnodes > 1;
     if (s->bvh.isa == ACCEL_AVX512)
-        return scene_shadow_walk8_avx512(s, r, active, blocked, crosses);
+        return (deep ? scene_shadow_walk8_culled_avx512
+                     : scene_shadow_walk8_avx512)(s, r, active, blocked, crosses);
     if (s->bvh.isa == ACCEL_AVX2)
-        return scene_shadow_walk8_avx2(s, r, active, blocked, crosses);
+        return (deep ? scene_shadow_walk8_culled_avx2
+                     : scene_shadow_walk8_avx2)(s, r, active, blocked, crosses);
 #endif
     (void)s, (void)r, (void)active, (void)blocked, (void)crosses;
     return false;
