@@ -274,11 +274,25 @@ static void *samples(int w, int h, int channels, int bits, uint32_t seed)
     return p;
 }
 
-/* Encodes the image with each number of threads: the same bytes every
- * time, and libspng reads back exactly the samples. Returns the strips. */
-static int round_trip(int w, int h, int channels, int bits)
+/* Samples for a w x h 8-bit image whose bands of `band` rows are in
+ * turn noise (few filtered bytes zero: compressed as noisy strips) and a
+ * smooth ramp (nearly all zero after the filter). */
+static void *banded(int w, int h, int channels, int band)
 {
-    void *px = samples(w, h, channels, bits, (uint32_t)(w * 31 + h));
+    size_t row = (size_t)w * (size_t)channels;
+    uint8_t *p = malloc(row * (size_t)h);
+    cr_assert_not_null(p);
+    uint32_t s = 17;
+    for (int y = 0; y < h; y++)
+        for (size_t i = 0; i < row; i++)
+            p[(size_t)y * row + i] = y / band % 2 ? (uint8_t)rng_next(&s) : (uint8_t)(i / 7);
+    return p;
+}
+
+/* Encodes px with each number of threads: the same bytes every time, and
+ * libspng reads back exactly the samples. Frees px; returns the strips. */
+static int round_trip_pixels(int w, int h, int channels, int bits, void *px)
+{
     const int threads[] = {1, 2, 3, 8, 0};
     bytebuf first = {0};
     for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
@@ -310,6 +324,11 @@ static int round_trip(int w, int h, int channels, int bits)
     return (h + rows - 1) / rows;
 }
 
+static int round_trip(int w, int h, int channels, int bits)
+{
+    return round_trip_pixels(w, h, channels, bits, samples(w, h, channels, bits, (uint32_t)(w * 31 + h)));
+}
+
 Test(png_strips, odd_sizes_one_row_and_one_column_read_back_exactly)
 {
     const int sizes[][2] = {{1, 1}, {1, 1000}, {1000, 1}, {7, 5}, {333, 777}, {1001, 3}};
@@ -327,6 +346,17 @@ Test(png_strips, many_strips_read_back_exactly)
     /* one row too many for a whole number of strips, and a last strip of one row */
     int rows = png_strip_rows(2000, 10000, 3, 8);
     cr_expect_eq(round_trip(2000, rows * 3 + 1, 3, 8), 4);
+}
+
+/* Noisy strips and smooth ones, compressed at different levels, in one
+ * stream; bands of half a strip and of several make strips of each kind
+ * and strips that mix them. */
+Test(png_strips, noisy_and_smooth_strips_read_back_exactly)
+{
+    int w = 900, h = 2000, rows = png_strip_rows(w, h, 3, 8);
+    cr_expect_gt(round_trip_pixels(w, h, 3, 8, banded(w, h, 3, rows / 2)), 8);
+    cr_expect_gt(round_trip_pixels(w, h, 3, 8, banded(w, h, 3, rows * 3)), 8);
+    cr_expect_gt(round_trip_pixels(w, h, 4, 8, banded(w, h, 4, 1)), 8);
 }
 
 Test(png_strips, strips_are_cut_by_size_alone)

@@ -58,23 +58,45 @@ static size_t bit_position(const bitreader *b) { return b->at * 8 - b->have; }
 #define TABLE_BITS 10
 #define MAX_BITS 15
 
-/* What a symbol means, as an entry of a code's table: its kind, the extra
- * bits that follow its code, and its value (a literal byte, or the base of
- * a length or distance, or a code length), with the code's length in the
- * low four bits once it is in a table. */
-enum { KIND_LITERAL, KIND_COPY, KIND_END, KIND_BAD };
-#define MEANING(kind, extra, value) \
-    ((uint32_t)(value) << 16 | (uint32_t)(kind) << 8 | (uint32_t)(extra) << 4)
+/* What a symbol means, as an entry of a code's table: its value (a
+ * literal byte, the base of a length or distance, or a code length), its
+ * kind, and how many extra bits follow its code; in a table the code's
+ * length is added, on its own and into the bits the entry uses:
+ *
+ *   bit 31       a literal byte of the literal/length code
+ *   bits 16-30   value
+ *   bit 15       anything but a literal or a copy: an end of block, a
+ *                symbol no block may hold, a code longer than TABLE_BITS
+ *   bits 12-14   kind
+ *   bits 8-11    the code's length
+ *   bits 0-7     bits the symbol uses: its code and its extra bits
+ *
+ * so that a literal is told by one test and used up by one shift. */
+enum { KIND_LITERAL, KIND_COPY, KIND_END, KIND_BAD, KIND_LONG };
+#define ENTRY_LITERAL (1u << 31)
+#define ENTRY_OTHER (1u << 15)
+#define MEANING(kind, extra, value)                                                 \
+    ((uint32_t)(value) << 16 | (uint32_t)(kind) << 12 | (uint32_t)(extra) |         \
+     ((kind) >= KIND_END ? ENTRY_OTHER : 0))
+#define ENTRY_USES(e) ((e) & 0xff)
+#define ENTRY_CODE(e) ((e) >> 8 & 15)
+#define ENTRY_KIND(e) ((e) >> 12 & 7)
+#define ENTRY_VALUE(e) ((e) >> 16 & 0x7fff)
+/* In a table, where a longer code starts. */
+#define ENTRY_LONG MEANING(KIND_LONG, 0, 0)
 
 /* A canonical code: codes up to TABLE_BITS long are found in one look-up
- * of the next TABLE_BITS bits (0 for the prefix of a longer code), longer
- * ones bit by bit from the counts. */
+ * of the next TABLE_BITS bits (ENTRY_LONG for the prefix of a longer
+ * code), longer ones bit by bit from the counts. */
 typedef struct huffman {
     uint32_t table[1 << TABLE_BITS];
     uint16_t count[MAX_BITS + 1];
     uint16_t sorted[288]; /* symbols by code length, then by value */
     const uint32_t *meaning;
 } huffman;
+
+/* A meaning with a code of l bits. */
+static uint32_t with_code(uint32_t meaning, unsigned l) { return meaning + (l << 8) + l; }
 
 /* False for a code with more codes than its lengths have room for. */
 static bool huffman_build(huffman *h, const uint8_t *len, int nsym, const uint32_t *meaning)
@@ -96,7 +118,8 @@ static bool huffman_build(huffman *h, const uint8_t *len, int nsym, const uint32
     for (int s = 0; s < nsym; s++)
         if (len[s])
             h->sorted[offs[len[s]]++] = (uint16_t)s;
-    memset(h->table, 0, sizeof h->table);
+    for (unsigned j = 0; j < (1u << TABLE_BITS); j++)
+        h->table[j] = ENTRY_LONG;
     unsigned code = 0;
     int k = 0;
     for (unsigned l = 1; l <= TABLE_BITS; l++, code <<= 1)
@@ -104,7 +127,7 @@ static bool huffman_build(huffman *h, const uint8_t *len, int nsym, const uint32
             unsigned rev = 0;
             for (unsigned i = 0; i < l; i++)
                 rev |= (code >> i & 1u) << (l - 1 - i);
-            uint32_t e = meaning[h->sorted[k]] | l;
+            uint32_t e = with_code(meaning[h->sorted[k]], l);
             for (unsigned j = rev; j < (1u << TABLE_BITS); j += 1u << l)
                 h->table[j] = e;
         }
@@ -120,26 +143,37 @@ static uint32_t decode_long(uint64_t buf, const huffman *h)
         code |= (int)(buf & 1);
         int count = h->count[l];
         if (code - count < first)
-            return h->meaning[h->sorted[index + (code - first)]] | l;
+            return with_code(h->meaning[h->sorted[index + (code - first)]], l);
         index += count;
         first = (first + count) << 1;
         code <<= 1;
     }
-    return MEANING(KIND_BAD, 0, 0) | 1;
+    return with_code(MEANING(KIND_BAD, 0, 0), 1);
+}
+
+/* The entry of the next symbol, looked up. */
+INLINE uint32_t look_up(uint64_t buf, const huffman *h)
+{
+    uint32_t e = h->table[buf & ((1u << TABLE_BITS) - 1)];
+    return __builtin_expect(ENTRY_KIND(e) == KIND_LONG, 0) ? decode_long(buf, h) : e;
+}
+
+/* Uses up the symbol of entry e: its value with its extra bits added. */
+INLINE uint32_t use(uint64_t *buf, unsigned *have, uint32_t e)
+{
+    uint32_t extra = (uint32_t)((*buf & ((1ull << ENTRY_USES(e)) - 1)) >> ENTRY_CODE(e));
+    *buf >>= ENTRY_USES(e);
+    *have -= ENTRY_USES(e);
+    return ENTRY_VALUE(e) + extra;
 }
 
 /* The next symbol's kind, its value with its extra bits added into
  * *value. The buffer must hold MAX_BITS bits and the extra ones. */
 INLINE unsigned decode_bits(uint64_t *buf, unsigned *have, const huffman *h, uint32_t *value)
 {
-    uint32_t e = h->table[*buf & ((1u << TABLE_BITS) - 1)];
-    if (__builtin_expect((e & 15) == 0, 0))
-        e = decode_long(*buf, h);
-    unsigned l = e & 15, x = e >> 4 & 15;
-    *value = (e >> 16) + (uint32_t)(*buf >> l & ((1u << x) - 1));
-    *buf >>= l + x;
-    *have -= l + x;
-    return e >> 8 & 0xff;
+    uint32_t e = look_up(*buf, h);
+    *value = use(buf, have, e);
+    return ENTRY_KIND(e);
 }
 
 INLINE unsigned decode(bitreader *b, const huffman *h, uint32_t *value)
@@ -169,7 +203,7 @@ typedef struct walk {
 static void meanings(walk *w)
 {
     for (int s = 0; s < 288; s++)
-        w->lit_meaning[s] = s < 256    ? MEANING(KIND_LITERAL, 0, s)
+        w->lit_meaning[s] = s < 256    ? MEANING(KIND_LITERAL, 0, s) | ENTRY_LITERAL
                             : s == 256 ? MEANING(KIND_END, 0, 0)
                             : s < 286  ? MEANING(KIND_COPY, len_extra[s - 257], len_base[s - 257])
                                        : MEANING(KIND_BAD, 0, 0);
@@ -180,8 +214,24 @@ static void meanings(walk *w)
         w->length_meaning[s] = MEANING(KIND_LITERAL, 0, s);
 }
 
+/* Uses up a symbol without its value. */
+INLINE void skip(uint64_t *buf, unsigned *have, uint32_t e)
+{
+    *buf >>= ENTRY_USES(e);
+    *have -= ENTRY_USES(e);
+}
+
 /* The symbols of a compressed block, counted; false on a broken one. The
- * reader's parts are local, which the compiler keeps in registers. */
+ * reader's parts are local, which the compiler keeps in registers, and
+ * the buffer is topped up on every turn (one load while the stream lasts)
+ * rather than tested: after it, two literals of the table, or a literal,
+ * a length and a distance, are in it (10 + 15 + 28 of at least 56 bits;
+ * a longer code tops it up again). Literals, most symbols of a noisy
+ * image, take the shortest path, two to a turn. The count is checked
+ * against expect at each copy, and by the caller after the block, rather
+ * than at each literal; a stream that runs on past its end is stopped
+ * when the reader is 8 bytes past it (its bit position is then past the
+ * end, which fails the walk all the same). */
 static bool walk_codes(walk *w)
 {
     const uint8_t *z = w->b.z;
@@ -191,21 +241,42 @@ static bool walk_codes(walk *w)
     unsigned have = w->b.have;
     bool ok = false;
     for (;;) {
-        if (have < 48) /* a length and a distance with their extra bits */
-            refill_bits(z, n, &at, &buf, &have);
-        uint32_t len, dist;
-        unsigned kind = decode_bits(&buf, &have, &w->lit, &len);
-        if (kind == KIND_LITERAL) {
-            if (++out > expect)
-                break;
-            continue;
-        }
-        if (kind != KIND_COPY) {
-            ok = kind == KIND_END;
+        refill_bits(z, n, &at, &buf, &have);
+        if (at > n + 8)
             break;
+        uint32_t e = w->lit.table[buf & ((1u << TABLE_BITS) - 1)];
+        if (e & ENTRY_LITERAL) {
+            skip(&buf, &have, e);
+            out++;
+            e = w->lit.table[buf & ((1u << TABLE_BITS) - 1)];
+            if (e & ENTRY_LITERAL) {
+                skip(&buf, &have, e);
+                out++;
+                continue;
+            }
         }
-        if (decode_bits(&buf, &have, &w->dist, &dist) != KIND_COPY || dist > out ||
-            len > expect - out)
+        if (e & ENTRY_OTHER) {
+            if (have < 48)
+                refill_bits(z, n, &at, &buf, &have);
+            e = look_up(buf, &w->lit);
+            if (ENTRY_KIND(e) != KIND_COPY) {
+                skip(&buf, &have, e);
+                out += ENTRY_KIND(e) == KIND_LITERAL;
+                if (ENTRY_KIND(e) == KIND_LITERAL)
+                    continue;
+                ok = ENTRY_KIND(e) == KIND_END;
+                break;
+            }
+        }
+        size_t len = use(&buf, &have, e);
+        if (have < 28)
+            refill_bits(z, n, &at, &buf, &have);
+        uint32_t d = look_up(buf, &w->dist);
+        if (ENTRY_KIND(d) != KIND_COPY || out + len > expect)
+            break;
+        if (out >= 32768) /* past the longest distance: only its bits matter */
+            skip(&buf, &have, d);
+        else if (use(&buf, &have, d) > out)
             break;
         out += len;
     }
@@ -296,7 +367,7 @@ bool deflate_walk(const uint8_t *z, size_t n, size_t expect, deflate_ends *ends)
             ok = walk_dynamic(&w) && walk_codes(&w);
         }
         size_t at = bit_position(&w.b);
-        if (!ok || at > n * 8)
+        if (!ok || at > n * 8 || w.out > expect)
             return false;
         if (final) {
             ends->final_header = header;

@@ -2,11 +2,11 @@
  * filters section 9, CRC annex D); zlib's wrapper: RFC 1950.
  *
  * Every row gets one fixed filter, Up, and the rows are compressed by
- * libdeflate at level 2: on rendered images about 5 times faster than
- * libpng's defaults (zlib level 6, adaptive filters) for files about 1.16
- * times their size. ISA-L's igzip, which can flush, is faster still but
- * its files come out 1.34-1.5 times libpng's whatever the filter
- * (bench/README.md, row 5).
+ * libdeflate at level 2 (1 for noisy strips, PNG_NOISY_LEVEL): on
+ * rendered images about 5 times faster than libpng's defaults (zlib
+ * level 6, adaptive filters) for files about 1.16 times their size.
+ * ISA-L's igzip, which can flush, is faster still but its files come out
+ * 1.34-1.5 times libpng's whatever the filter (bench/README.md, row 5).
  *
  * The work is spread over threads in strips of whole rows, cut by the
  * image's size alone (png_strip_rows), so the file is the same for any
@@ -43,8 +43,17 @@
 
 /* The deflate level, 1 to 12 in libdeflate: on rendered images 2 is as
  * fast as 1 with files a few percent smaller; higher levels cost more
- * time than they save bytes. */
+ * time than they save bytes. But on noisy strips (one sample per pixel,
+ * fine detail: less than PNG_FAST_ZEROS of the filtered bytes are zero,
+ * the rows above no longer foretelling the rows below) level 2's longer
+ * search for matches finds few and costs more: level 1 compresses them in
+ * about three quarters of the time for streams 2-8% larger (bench row 8's
+ * tori: 0.7 of the time, 2.2% larger). Smooth strips, where level 1 is
+ * slower, keep level 2 (row 5's image is all smooth strips). The choice rests on the strip's bytes
+ * alone, so the file is still the same for any number of threads. */
 #define PNG_DEFLATE_LEVEL 2
+#define PNG_NOISY_LEVEL 1
+#define PNG_FAST_ZEROS 0.75
 
 /* Raw bytes in a strip: enough that a fresh start costs little, few
  * enough that two threads finish close together. */
@@ -165,20 +174,31 @@ static void fill_row(const png_source *s, int y, uint8_t *dst, uint16_t *tmp)
 
 /* Up filter (section 9.2, type 2) of row against the row above it, in
  * place: each byte minus the one above. It compresses flat and vertically
- * smooth areas to almost nothing. */
-static void filter_up(uint8_t *row, const uint8_t *above, size_t n)
+ * smooth areas to almost nothing. Returns how many filtered bytes are
+ * zero, which tells smooth rows from noisy ones. */
+static size_t filter_up(uint8_t *row, const uint8_t *above, size_t n)
 {
     row[-1] = 2;
-    size_t i = 0;
+    size_t i = 0, zeros = 0;
 #if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi8(1);
+    __m128i count = zero; /* zero bytes: two sums, one per half */
     for (; i + 16 <= n; i += 16) {
         __m128i a = _mm_loadu_si128((const __m128i *)(const void *)(row + i));
         __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(above + i));
-        _mm_storeu_si128((__m128i *)(void *)(row + i), _mm_sub_epi8(a, b));
+        __m128i d = _mm_sub_epi8(a, b);
+        _mm_storeu_si128((__m128i *)(void *)(row + i), d);
+        count = _mm_add_epi64(count, _mm_sad_epu8(_mm_and_si128(_mm_cmpeq_epi8(d, zero), one), zero));
     }
+    uint64_t sums[2];
+    _mm_storeu_si128((__m128i *)(void *)sums, count);
+    zeros = (size_t)(sums[0] + sums[1]);
 #endif
-    for (; i < n; i++)
+    for (; i < n; i++) {
         row[i] = (uint8_t)(row[i] - above[i]);
+        zeros += row[i] == 0;
+    }
+    return zeros;
 }
 
 /* ---- strips ---------------------------------------------------------------- */
@@ -201,19 +221,19 @@ typedef struct png_job {
     atomic_int nomem; /* a thread could not get its memory */
 } png_job;
 
-/* A thread's own memory: its compressor, a strip's rows as PNG wants
- * them before compression (each row a filter-type byte, then its
- * samples), made again for each strip it takes (so they stay in the
- * cache), and two more rows. */
+/* A thread's own memory: its compressor, one for noisy strips once it
+ * meets one, a strip's rows as PNG wants them before compression (each
+ * row a filter-type byte, then its samples), made again for each strip it
+ * takes (so they stay in the cache), and two more rows. */
 typedef struct strip_tools {
-    struct libdeflate_compressor *c;
+    struct libdeflate_compressor *c, *noisy;
     uint8_t *rows, *above;
     uint16_t *tmp;
 } strip_tools;
 
 static bool tools_get(strip_tools *t, const png_job *j, int rows)
 {
-    *t = (strip_tools){libdeflate_alloc_compressor(PNG_DEFLATE_LEVEL),
+    *t = (strip_tools){libdeflate_alloc_compressor(PNG_DEFLATE_LEVEL), NULL,
                        malloc(j->stride * (size_t)rows), malloc(j->stride),
                        malloc((size_t)j->src->width * 4 * sizeof *t->tmp)};
     return t->c && t->rows && t->above && t->tmp;
@@ -222,6 +242,7 @@ static bool tools_get(strip_tools *t, const png_job *j, int rows)
 static void tools_free(strip_tools *t)
 {
     libdeflate_free_compressor(t->c);
+    libdeflate_free_compressor(t->noisy);
     free(t->rows);
     free(t->above);
     free(t->tmp);
@@ -229,34 +250,50 @@ static void tools_free(strip_tools *t)
 
 /* The strip's rows into samples in t->rows, filtered: row 0 of the image
  * unfiltered (type 0), every other row Up against the row above, from the
- * last up so that the rows above are still unfiltered. */
-static void strip_rows(const png_job *j, const strip *s, strip_tools *t)
+ * last up so that the rows above are still unfiltered. Returns how many
+ * of the filtered samples are zero. */
+static size_t strip_rows(const png_job *j, const strip *s, strip_tools *t)
 {
-    size_t n = j->stride - 1;
+    size_t n = j->stride - 1, zeros = 0;
     for (int y = s->y0; y < s->y1; y++)
         fill_row(j->src, y, t->rows + (size_t)(y - s->y0) * j->stride + 1, t->tmp);
     for (int y = s->y1 - 1; y > s->y0; y--) {
         uint8_t *row = t->rows + (size_t)(y - s->y0) * j->stride + 1;
-        filter_up(row, row - j->stride, n);
+        zeros += filter_up(row, row - j->stride, n);
     }
     if (s->y0 == 0) {
         t->rows[0] = 0;
-        return;
+        return zeros;
     }
     fill_row(j->src, s->y0 - 1, t->above, t->tmp);
-    filter_up(t->rows + 1, t->above, n);
+    return zeros + filter_up(t->rows + 1, t->above, n);
 }
 
-/* Compresses the strip's filtered rows; false when memory runs out. */
-static bool strip_compress(png_job *j, strip *s, strip_tools *t)
+/* The compressor for a strip of n raw bytes of which `zeros` filtered
+ * samples are zero (PNG_DEFLATE_LEVEL); NULL when memory runs out. */
+static struct libdeflate_compressor *strip_compressor(strip_tools *t, size_t n, size_t zeros)
+{
+    if ((double)zeros >= PNG_FAST_ZEROS * (double)n)
+        return t->c;
+    if (!t->noisy)
+        t->noisy = libdeflate_alloc_compressor(PNG_NOISY_LEVEL);
+    return t->noisy;
+}
+
+/* Compresses the strip's filtered rows, `zeros` of them zero; false
+ * when memory runs out. */
+static bool strip_compress(png_job *j, strip *s, strip_tools *t, size_t zeros)
 {
     size_t n = (size_t)(s->y1 - s->y0) * j->stride;
     s->adler = libdeflate_adler32(1, t->rows, n);
-    size_t bound = libdeflate_deflate_compress_bound(t->c, n);
+    struct libdeflate_compressor *c = strip_compressor(t, n, zeros);
+    if (!c)
+        return false;
+    size_t bound = libdeflate_deflate_compress_bound(c, n);
     s->z = malloc(bound + DEFLATE_UNFINAL_EXTRA);
     if (!s->z)
         return false;
-    s->zlen = libdeflate_deflate_compress(t->c, t->rows, n, s->z, bound);
+    s->zlen = libdeflate_deflate_compress(c, t->rows, n, s->z, bound);
     if (s == &j->strips[j->nstrips - 1]) {
         s->joined = s->zlen > 0;
         return true;
@@ -280,8 +317,8 @@ static void *strip_worker(void *arg)
         if (!have)
             ok = have = tools_get(&t, j, j->strip_rows);
         if (ok) {
-            strip_rows(j, &j->strips[i], &t);
-            ok = strip_compress(j, &j->strips[i], &t);
+            size_t zeros = strip_rows(j, &j->strips[i], &t);
+            ok = strip_compress(j, &j->strips[i], &t, zeros);
         }
         if (!ok)
             atomic_store(&j->nomem, 1);
