@@ -590,18 +590,27 @@ static int same_hits(scene *s, vec3 eye, int packets, shape_kind kind)
     return of_kind;
 }
 
-Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
+/* Camera packets into a grid of objects (made by make) on every path:
+ * each ray's hit is scene_intersect's to the bit; more than 10,000 of
+ * them on objects of the kind the grid is made of. */
+static void same_hits_on_every_path(scene *(*make)(void), shape_kind kind)
 {
     int many = 0;
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = torus_scene();
-        many += same_hits(s, v3(0.3f, -0.2f, 9.0f), 6000, SHAPE_TORUS);
+        scene *s = make();
+        many += same_hits(s, v3(0.3f, -0.2f, 9.0f), 6000, kind);
         scene_free(s);
     }
     accel_isa_force(ACCEL_AUTO);
     cr_assert_gt(many, 10000);
+}
+
+/* The torus grid (torus8_hit). */
+Test(packet, torus_hits_match_one_ray_at_a_time_on_every_path)
+{
+    same_hits_on_every_path(torus_scene, SHAPE_TORUS);
 }
 
 /* Shadow rays from behind a grid of objects (made by make) to a light in
@@ -697,16 +706,7 @@ static scene *csg_scene(void)
  * each ray's hit is scene_intersect's to the bit, on every path. */
 Test(packet, csg_hits_match_one_ray_at_a_time_on_every_path)
 {
-    int many = 0;
-    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
-        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
-            continue;
-        scene *s = csg_scene();
-        many += same_hits(s, v3(0.3f, -0.2f, 9.0f), 6000, SHAPE_CSG);
-        scene_free(s);
-    }
-    accel_isa_force(ACCEL_AUTO);
-    cr_assert_gt(many, 10000);
+    same_hits_on_every_path(csg_scene, SHAPE_CSG);
 }
 
 /* The csg grid's shadows (csg8_occluded). */
