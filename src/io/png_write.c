@@ -49,8 +49,9 @@
  * search for matches finds few and costs more: level 1 compresses them in
  * about three quarters of the time for streams 2-8% larger (bench row 8's
  * tori: 0.7 of the time, 2.2% larger). Smooth strips, where level 1 is
- * slower, keep level 2 (row 5's image is all smooth strips). The choice rests on the strip's bytes
- * alone, so the file is still the same for any number of threads. */
+ * slower, keep level 2 (row 5's image is all smooth strips). The choice
+ * rests on the strip's bytes alone, so the file is still the same for any
+ * number of threads. */
 #define PNG_DEFLATE_LEVEL 2
 #define PNG_NOISY_LEVEL 1
 #define PNG_FAST_ZEROS 0.75
@@ -188,7 +189,8 @@ static size_t filter_up(uint8_t *row, const uint8_t *above, size_t n)
         __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(above + i));
         __m128i d = _mm_sub_epi8(a, b);
         _mm_storeu_si128((__m128i *)(void *)(row + i), d);
-        count = _mm_add_epi64(count, _mm_sad_epu8(_mm_and_si128(_mm_cmpeq_epi8(d, zero), one), zero));
+        __m128i is_zero = _mm_and_si128(_mm_cmpeq_epi8(d, zero), one);
+        count = _mm_add_epi64(count, _mm_sad_epu8(is_zero, zero));
     }
     uint64_t sums[2];
     _mm_storeu_si128((__m128i *)(void *)sums, count);

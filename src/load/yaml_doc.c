@@ -195,6 +195,17 @@ static glint_rc begin_anchor(builder *b, const yaml_char_t *name, uint32_t node,
     return GLINT_OK;
 }
 
+/* s[0 .. len) as scalar node n's text: copied to the end of the text,
+ * NUL-terminated, where there is room for it. */
+static inline void put_text(ydoc *d, ynode *n, const char *s, size_t len)
+{
+    n->first = (uint32_t)d->ntext;
+    n->count = (uint32_t)len;
+    memcpy(d->text + d->ntext, s, len);
+    d->text[d->ntext + len] = '\0';
+    d->ntext += len + 1;
+}
+
 /* A new scalar node at m holding a copy of s[0 .. len), NUL-terminated. */
 static glint_rc new_scalar(builder *b, const char *s, size_t len, yaml_mark_t m, uint32_t *node)
 {
@@ -206,12 +217,7 @@ static glint_rc new_scalar(builder *b, const char *s, size_t len, yaml_mark_t m,
         return rc;
     if (!array_reserve((void **)&d->text, &d->cap_text, d->ntext + len + 1, 1))
         return err_nomem(b->err);
-    ynode *n = &d->nodes[*node];
-    n->first = (uint32_t)d->ntext;
-    n->count = (uint32_t)len;
-    memcpy(d->text + d->ntext, s, len);
-    d->text[d->ntext + len] = '\0';
-    d->ntext += len + 1;
+    put_text(d, &d->nodes[*node], s, len);
     return GLINT_OK;
 }
 
@@ -391,12 +397,9 @@ static bool fast_scalar(builder *b, const yfast_event *ev)
         return false;
     uint32_t node = d->nnodes++;
     ynode *n = &d->nodes[node];
-    *n = (ynode){YNODE_STRING, 0, (uint32_t)ev->line + 1, (uint32_t)ev->column + 1,
-                 (uint32_t)d->ntext, (uint32_t)len};
+    *n = (ynode){YNODE_STRING, 0, (uint32_t)ev->line + 1, (uint32_t)ev->column + 1, 0, 0};
+    put_text(d, n, ev->text, len);
     type_plain(n, ev->text, len);
-    memcpy(d->text + d->ntext, ev->text, len);
-    d->text[d->ntext + len] = '\0';
-    d->ntext += len + 1;
     b->expanded++;
     b->pending[b->npending++] = node;
     b->stack[b->depth - 1].size++;
