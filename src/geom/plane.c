@@ -10,7 +10,7 @@ bool plane_intersect(const struct plane *s, const ray *r, shape_hit *hit)
 void plane_surface(const struct plane *s, vec3 p, surface *out)
 {
     vec3 d = v3_sub(p, s->point);
-    out->p = v3_madd(p, s->normal, -v3_dot(d, s->normal)); /* onto the plane (shape.h) */
+    out->p = plane_onto(s, p, d);
     out->n = s->normal;
     out->u = v3_dot(d, s->tu);
     out->v = v3_dot(d, s->tv);

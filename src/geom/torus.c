@@ -23,6 +23,7 @@
 
 #include "core/roots.h"
 #include "shape.h"
+#include "shape_inline.h"
 
 /* Clips t in (tmin, tmax) to the torus's box, enlarged by 1% so that a
  * root is never on its faces; false when nothing is left. */
@@ -176,50 +177,10 @@ int torus_crossings(const struct torus *s, const ray *r, crossing *out, int max)
     return k;
 }
 
-/* The point of the surface nearest p, and the outward normal there, in
- * closed form. f factors as (|q - a|^2 - r^2)(|q - b|^2 - r^2), a and b
- * the points of the centre circle nearest q and farthest from it (at
- * distance R from the axis, towards q and away from it); a point near the
- * surface is near the sphere of radius r round one of them, and its
- * nearest point there is that centre plus r along the way to q. The
- * normal is the gradient's direction, which points out of the tube: away
- * from a, and, on the lens a spindle torus (r > R) holds round its
- * centre, towards b. Exact, where Newton steps along the gradient would
- * take three divisions each and land only near it. q is left as the
- * point relative to the centre. */
-static void torus_point(const struct torus *s, vec3 p, surface *out, double q[3])
-{
-    double R = s->major, rm = s->minor;
-    q[0] = (double)p.x - s->center.x, q[1] = (double)p.y - s->center.y;
-    q[2] = (double)p.z - s->center.z;
-    double rho = sqrt(q[0] * q[0] + q[2] * q[2]);
-    double ax = R, az = 0.0; /* on the axis every circle point is as near */
-    if (rho > 0.0) {
-        double f = R / rho;
-        ax = q[0] * f, az = q[2] * f;
-    }
-    double w[3] = {q[0] - ax, q[1], q[2] - az}, sgn = 1.0;
-    double wa = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-    double wb = (q[0] + ax) * (q[0] + ax) + q[1] * q[1] + (q[2] + az) * (q[2] + az);
-    if (fabs(wb - rm * rm) < fabs(wa - rm * rm)) { /* on the lens */
-        ax = -ax, az = -az, sgn = -1.0;
-        w[0] = q[0] - ax, w[2] = q[2] - az;
-        wa = wb;
-    }
-    double wl = sqrt(wa), inv = wl > 0.0 ? 1.0 / wl : 0.0, k = rm * inv;
-    if (wl > 0.0)
-        q[0] = ax + w[0] * k, q[1] = w[1] * k, q[2] = az + w[2] * k;
-    out->p = v3((float)(q[0] + s->center.x), (float)(q[1] + s->center.y),
-                (float)(q[2] + s->center.z));
-    inv *= sgn;
-    out->n = wl > 0.0 ? v3((float)(w[0] * inv), (float)(w[1] * inv), (float)(w[2] * inv))
-                      : v3(0.0f, 1.0f, 0.0f);
-}
-
 void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out)
 {
     double q[3];
-    torus_point(s, p, out, q);
+    torus_nearest(s, p, &out->p, &out->n, q);
     out->u = out->v = 0.0f;
 }
 
@@ -228,7 +189,7 @@ void torus_surface_no_uv(const struct torus *s, vec3 p, surface *out)
 void torus_surface(const struct torus *s, vec3 p, surface *out)
 {
     double q[3];
-    torus_point(s, p, out, q);
+    torus_nearest(s, p, &out->p, &out->n, q);
     double rho = sqrt(q[0] * q[0] + q[2] * q[2]);
     out->u = 0.5f + (float)(atan2(q[0], q[2]) * (0.5 / M_PI));
     out->v = 0.5f + (float)(atan2(q[1], rho - s->major) * (0.5 / M_PI));

@@ -38,10 +38,43 @@ static vec3 bump(const trace_ctx *ctx, const scene_hit *hit, const surface *sf,
     return v3_is_finite(n) ? n : sf->n;
 }
 
+/* shade_prepare_surface below for an untextured, unbumped hit on an
+ * unturned plane or on a torus turned by a fixed transform (bench/tori.awk's
+ * ground and ten thousand tori): the same floats, with the point and
+ * normal kept in registers instead of passing through a surface in memory,
+ * whose parts were read back in other widths than they were written in,
+ * which stalled the reads. */
+static bool plain_surface(const scene *s, const ray *r, const scene_hit *hit, const material *m,
+                          vec3 d, shade_point *out)
+{
+    const object *o = &s->objects[hit->object];
+    if (material_uses_uv(m))
+        return false;
+    vec3 base = v3_mul(m->color, v3s(1.0f));
+    if (o->shape.kind == SHAPE_PLANE && o->xform < 0) {
+        const struct plane *pl = &o->shape.plane;
+        vec3 p = ray_at(r, hit->h.t);
+        facing(out, m, d, plane_onto(pl, p, v3_sub(p, pl->point)), pl->normal, pl->normal, base);
+        return true;
+    }
+    if (o->shape.kind != SHAPE_TORUS || o->xform < 0 || o->moving)
+        return false;
+    const xform *x = &s->xforms[o->xform];
+    ray lr = {mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax, r->time};
+    vec3 p, n;
+    double q[3];
+    torus_nearest(&o->shape.torus, ray_at(&lr, hit->h.t), &p, &n, q);
+    n = v3_norm(xform_normal(x, n));
+    facing(out, m, d, mat4_point(&x->fwd, p), n, n, base);
+    return true;
+}
+
 void shade_prepare_surface(trace_ctx *ctx, const ray *r, const scene_hit *hit, const material *m,
                            vec3 d, shade_point *out)
 {
     const scene *s = ctx->scene;
+    if (plain_surface(s, r, hit, m, d, out))
+        return;
     surface sf;
     scene_surface_inline(s, r, hit, &sf);
     vec3 base = v3_mul(m->color, sf.color); /* a mesh's vertex colours, else 1 */
