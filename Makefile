@@ -11,7 +11,7 @@
 BUILD    ?= build
 SAN      ?= 0
 CC       ?= cc
-PKGS     := yaml-0.1 stb assimp spng libjpeg libdeflate
+PKGS     := yaml-0.1 stb assimp spng libjpeg libdeflate libisal
 # assimp is opened when a mesh is first imported (src/load/assimp_load.c):
 # compiled against its headers, not linked
 LINK_PKGS := $(filter-out assimp,$(PKGS))

@@ -348,15 +348,41 @@ Test(png_strips, many_strips_read_back_exactly)
     cr_expect_eq(round_trip(2000, rows * 3 + 1, 3, 8), 4);
 }
 
-/* Noisy strips and smooth ones, compressed at different levels, in one
- * stream; bands of half a strip and of several make strips of each kind
- * and strips that mix them. */
+/* Noisy strips and smooth ones, compressed by igzip and by libdeflate, in
+ * one stream; bands of half a strip and of several make strips of each
+ * kind and strips that mix them. */
 Test(png_strips, noisy_and_smooth_strips_read_back_exactly)
 {
     int w = 900, h = 2000, rows = png_strip_rows(w, h, 3, 8);
     cr_expect_gt(round_trip_pixels(w, h, 3, 8, banded(w, h, 3, rows / 2)), 8);
     cr_expect_gt(round_trip_pixels(w, h, 3, 8, banded(w, h, 3, rows * 3)), 8);
     cr_expect_gt(round_trip_pixels(w, h, 4, 8, banded(w, h, 4, 1)), 8);
+}
+
+/* Noisy strips are joined as igzip ends them (a full flush: an empty
+ * stored block, 00 00 ff ff, on a byte boundary), not left to the whole
+ * image's compression again, which has no such marks. The noise is of
+ * four values, so that it compresses (incompressible noise would end in
+ * a stored block, already on a boundary, and so without the mark). */
+Test(png_strips, noisy_strips_are_joined_as_they_are)
+{
+    int w = 900, h = 2000, rows = png_strip_rows(w, h, 3, 8);
+    int strips = (h + rows - 1) / rows;
+    uint8_t *px = malloc((size_t)w * 3 * (size_t)h);
+    cr_assert_not_null(px);
+    uint32_t seed = 5;
+    for (size_t i = 0; i < (size_t)w * 3 * (size_t)h; i++) /* every other row noise */
+        px[i] = i / ((size_t)w * 3) % 2 ? (uint8_t)(rng_next(&seed) & 3) : (uint8_t)(i % 2700 / 7);
+    bytebuf b = {0};
+    glint_error err = {0};
+    cr_assert_eq(png_encode_pixels(w, h, 3, 8, px, 2, &b, &err), GLINT_OK, "%s", err.msg);
+    int marks = 0;
+    for (size_t i = 0; i + 4 <= b.len; i++)
+        marks += memcmp(b.data + i, "\x00\x00\xff\xff", 4) == 0;
+    cr_assert_geq(marks, strips - 1, "%d strips but %d flush marks", strips, marks);
+    cr_assert_lt(b.len, (size_t)w * (size_t)h * 3); /* and compressed, not stored */
+    bytes_free(&b);
+    free(px);
 }
 
 Test(png_strips, strips_are_cut_by_size_alone)

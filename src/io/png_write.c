@@ -2,11 +2,13 @@
  * filters section 9, CRC annex D); zlib's wrapper: RFC 1950.
  *
  * Every row gets one fixed filter, Up, and the rows are compressed by
- * libdeflate at level 2 (1 for noisy strips, PNG_NOISY_LEVEL): on
- * rendered images about 5 times faster than libpng's defaults (zlib
- * level 6, adaptive filters) for files about 1.16 times their size.
- * ISA-L's igzip, which can flush, is faster still but its files come out
- * 1.34-1.5 times libpng's whatever the filter (bench/README.md, row 5).
+ * libdeflate at level 2: on rendered images about 5 times faster than
+ * libpng's defaults (zlib level 6, adaptive filters) for files about 1.16
+ * times their size. ISA-L's igzip is faster still, but on such smooth
+ * images its files come out 1.34-1.5 times libpng's whatever the filter
+ * (bench/README.md, row 5); on noisy strips, where matches are few and
+ * short, it costs a third of libdeflate's time for streams 2% larger, and
+ * it compresses those (PNG_NOISY_LEVEL).
  *
  * The work is spread over threads in strips of whole rows, cut by the
  * image's size alone (png_strip_rows), so the file is the same for any
@@ -27,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <isa-l/igzip_lib.h>
 #include <libdeflate.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -45,15 +48,17 @@
  * fast as 1 with files a few percent smaller; higher levels cost more
  * time than they save bytes. But on noisy strips (one sample per pixel,
  * fine detail: less than PNG_FAST_ZEROS of the filtered bytes are zero,
- * the rows above no longer foretelling the rows below) level 2's longer
- * search for matches finds few and costs more: level 1 compresses them in
- * about three quarters of the time for streams 2-8% larger (bench row 8's
- * tori: 0.7 of the time, 2.2% larger). Smooth strips, where level 1 is
- * slower, keep level 2 (row 5's image is all smooth strips). The choice
- * rests on the strip's bytes alone, so the file is still the same for any
+ * the rows above no longer foretelling the rows below) a longer search
+ * for matches finds few and costs more: there ISA-L's igzip at its level
+ * 2 takes a third of the time of libdeflate's fastest level for streams
+ * 2% larger (bench row 8's tori: 10.6 ms against 30.1 for the whole
+ * image on one thread, 2,350,475 bytes against 2,303,830). Smooth strips
+ * keep libdeflate (row 5's image is all smooth strips). The choice rests
+ * on the strip's bytes alone, so the file is still the same for any
  * number of threads. */
 #define PNG_DEFLATE_LEVEL 2
-#define PNG_NOISY_LEVEL 1
+#define PNG_NOISY_LEVEL 2
+#define PNG_NOISY_BUF ISAL_DEF_LVL2_DEFAULT
 #define PNG_FAST_ZEROS 0.75
 
 /* Raw bytes in a strip: enough that a fresh start costs little, few
@@ -223,12 +228,13 @@ typedef struct png_job {
     atomic_int nomem; /* a thread could not get its memory */
 } png_job;
 
-/* A thread's own memory: its compressor, one for noisy strips once it
- * meets one, a strip's rows as PNG wants them before compression (each
- * row a filter-type byte, then its samples), made again for each strip it
- * takes (so they stay in the cache), and two more rows. */
+/* A thread's own memory: its compressor, igzip's working memory for noisy
+ * strips once it meets one, a strip's rows as PNG wants them before
+ * compression (each row a filter-type byte, then its samples), made again
+ * for each strip it takes (so they stay in the cache), and two more rows. */
 typedef struct strip_tools {
-    struct libdeflate_compressor *c, *noisy;
+    struct libdeflate_compressor *c;
+    uint8_t *noisy;
     uint8_t *rows, *above;
     uint16_t *tmp;
 } strip_tools;
@@ -244,7 +250,7 @@ static bool tools_get(strip_tools *t, const png_job *j, int rows)
 static void tools_free(strip_tools *t)
 {
     libdeflate_free_compressor(t->c);
-    libdeflate_free_compressor(t->noisy);
+    free(t->noisy);
     free(t->rows);
     free(t->above);
     free(t->tmp);
@@ -271,15 +277,33 @@ static size_t strip_rows(const png_job *j, const strip *s, strip_tools *t)
     return zeros + filter_up(t->rows + 1, t->above, n);
 }
 
-/* The compressor for a strip of n raw bytes of which `zeros` filtered
- * samples are zero (PNG_DEFLATE_LEVEL); NULL when memory runs out. */
-static struct libdeflate_compressor *strip_compressor(strip_tools *t, size_t n, size_t zeros)
+/* A noisy strip's n filtered bytes by igzip (PNG_NOISY_LEVEL): ended by a
+ * full flush, on a byte boundary and not final, so that the next strip's
+ * stream follows it as it is; the image's last strip final. Not joined
+ * should igzip fail, which leaves the whole image to compress_whole. */
+static bool strip_compress_noisy(strip *s, strip_tools *t, size_t n, bool last)
 {
-    if ((double)zeros >= PNG_FAST_ZEROS * (double)n)
-        return t->c;
-    if (!t->noisy)
-        t->noisy = libdeflate_alloc_compressor(PNG_NOISY_LEVEL);
-    return t->noisy;
+    size_t cap = n + n / 8 + 1024; /* stored blocks, the worst, add 5 bytes in 65535 */
+    if ((!t->noisy && !(t->noisy = malloc(PNG_NOISY_BUF))) || !(s->z = malloc(cap)))
+        return false;
+    /* igzip leaves its hash of the last strip in the buffer and would find
+     * matches through it: cleared, so that a strip's stream does not hang
+     * on which strips its thread took before */
+    memset(t->noisy, 0, PNG_NOISY_BUF);
+    struct isal_zstream zs;
+    isal_deflate_stateless_init(&zs);
+    zs.level = PNG_NOISY_LEVEL;
+    zs.level_buf = t->noisy;
+    zs.level_buf_size = PNG_NOISY_BUF;
+    zs.next_in = t->rows;
+    zs.avail_in = (uint32_t)n;
+    zs.next_out = s->z;
+    zs.avail_out = (uint32_t)cap;
+    zs.end_of_stream = last;
+    zs.flush = last ? NO_FLUSH : FULL_FLUSH;
+    s->joined = n <= UINT32_MAX / 2 && isal_deflate_stateless(&zs) == COMP_OK;
+    s->zlen = s->joined ? zs.total_out : 0;
+    return true;
 }
 
 /* Compresses the strip's filtered rows, `zeros` of them zero; false
@@ -288,15 +312,15 @@ static bool strip_compress(png_job *j, strip *s, strip_tools *t, size_t zeros)
 {
     size_t n = (size_t)(s->y1 - s->y0) * j->stride;
     s->adler = libdeflate_adler32(1, t->rows, n);
-    struct libdeflate_compressor *c = strip_compressor(t, n, zeros);
-    if (!c)
-        return false;
-    size_t bound = libdeflate_deflate_compress_bound(c, n);
+    bool last = s == &j->strips[j->nstrips - 1];
+    if ((double)zeros < PNG_FAST_ZEROS * (double)n)
+        return strip_compress_noisy(s, t, n, last);
+    size_t bound = libdeflate_deflate_compress_bound(t->c, n);
     s->z = malloc(bound + DEFLATE_UNFINAL_EXTRA);
     if (!s->z)
         return false;
-    s->zlen = libdeflate_deflate_compress(c, t->rows, n, s->z, bound);
-    if (s == &j->strips[j->nstrips - 1]) {
+    s->zlen = libdeflate_deflate_compress(t->c, t->rows, n, s->z, bound);
+    if (last) {
         s->joined = s->zlen > 0;
         return true;
     }
