@@ -153,13 +153,13 @@ $(LIB_OBJ): CFLAGS += $(LIB_CFLAGS)
 
 # Profile-guided optimisation of the optimised build (PGO=1, the default;
 # `make PGO=0 BUILD=build/quick` builds without it, in a folder of its own
-# so that the two kinds of object never mix). The library and the commands are first
-# built instrumented into $(BUILD)/pgo (PGO=generate), which renders the
-# training set (scripts/pgo-train: the built-in scene and every
-# scenes/*.yaml, small, on one thread); the counts that run leaves are put
-# beside the objects here (<object>.gcda), which are then compiled with
-# them. Floats are worked out the same either way: only where the code
-# branches, inlines and is laid out changes. A source newer than the
+# so that the two kinds of object never mix). The library and the commands
+# are first built instrumented into $(BUILD)/pgo (PGO=generate), which
+# renders the training set (scripts/pgo-train: the built-in scene and
+# every scenes/*.yaml, small, on one thread); the counts that run leaves
+# are put beside the objects here (<object>.gcda), which are then compiled
+# with them. Floats are worked out the same either way: only where the
+# code branches, inlines and is laid out changes. A source newer than the
 # profile starts the round again.
 PGO ?= 1
 PGO_OBJ := $(LIB_OBJ) $(APP_OBJ) $(CLI_OBJ)
