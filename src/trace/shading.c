@@ -70,9 +70,10 @@ static bool plain_surface(const scene *s, const ray *r, const scene_hit *hit, co
 }
 
 void shade_prepare_surface(trace_ctx *ctx, const ray *r, const scene_hit *hit, const material *m,
-                           vec3 d, shade_point *out)
+                           shade_point *out)
 {
     const scene *s = ctx->scene;
+    vec3 d = v3_norm(r->d);
     if (plain_surface(s, r, hit, m, d, out))
         return;
     surface sf;

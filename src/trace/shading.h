@@ -39,10 +39,12 @@ __attribute__((always_inline)) static inline void facing(shade_point *out, const
         out->n = out->ng;
 }
 
-/* shade_prepare past its commonest case, for material m and unit
- * direction d (shading.c). */
+/* shade_prepare past its commonest case, for material m (shading.c). The
+ * ray's unit direction is worked out there again rather than passed: a
+ * vec3 argument was stored in two widths and read back in a third, which
+ * stalled the read. */
 void shade_prepare_surface(trace_ctx *ctx, const ray *r, const scene_hit *hit, const material *m,
-                           vec3 d, shade_point *out);
+                           shade_point *out);
 
 /* The shading point of a hit. Inline for its commonest case, an
  * untextured, unturned sphere, whose surface then stays in registers
@@ -55,14 +57,13 @@ __attribute__((always_inline)) static inline void shade_prepare(trace_ctx *ctx, 
     const scene *s = ctx->scene;
     const material *m = scene_hit_material(s, hit);
     const object *o = &s->objects[hit->object];
-    vec3 d = v3_norm(r->d);
     if (o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(m)) {
         surface plain;
         sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), &plain);
-        facing(out, m, d, plain.p, plain.n, plain.ng, v3_mul(m->color, v3s(1.0f)));
+        facing(out, m, v3_norm(r->d), plain.p, plain.n, plain.ng, v3_mul(m->color, v3s(1.0f)));
         return;
     }
-    shade_prepare_surface(ctx, r, hit, m, d, out);
+    shade_prepare_surface(ctx, r, hit, m, out);
 }
 
 /* What is seen through the segment of r from its origin to t (INFINITY
