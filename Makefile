@@ -151,30 +151,34 @@ endif
 LIB_CFLAGS := -fPIC -fvisibility=hidden
 $(LIB_OBJ): CFLAGS += $(LIB_CFLAGS)
 
-# Profile-guided optimisation of the optimised build (PGO=1, the default;
-# `make PGO=0 BUILD=build/quick` builds without it, in a folder of its own
-# so that the two kinds of object never mix). The library and the commands
-# are first built instrumented into $(BUILD)/pgo (PGO=generate), which
-# renders the training set (scripts/pgo-train: the built-in scene and
-# every scenes/*.yaml, small, on one thread); the counts that run leaves
-# are put beside the objects here (<object>.gcda), which are then compiled
-# with them. Floats are worked out the same either way: only where the
-# code branches, inlines and is laid out changes. A source newer than the
-# profile starts the round again.
-PGO ?= 1
+# Profile-guided optimisation of the optimised build (PGO=1, the default
+# with GCC; `make PGO=0 BUILD=build/quick` builds without it, in a folder
+# of its own so that the two kinds of object never mix). The library and
+# the commands are first built instrumented into $(BUILD)/pgo
+# (PGO=generate), which renders the training set (scripts/pgo-train: the
+# built-in scene and every scenes/*.yaml, small, on one thread); the
+# counts that run leaves are put beside the objects here (<object>.gcda),
+# which are then compiled with them. Floats are worked out the same either
+# way: only where the code branches, inlines and is laid out changes. A
+# source or scene newer than the profile starts the round again.
+ifeq ($(origin PGO),undefined)
+PGO := $(if $(shell $(CC) --version 2>/dev/null | grep -i clang),0,1)
+endif
 PGO_OBJ := $(LIB_OBJ) $(APP_OBJ) $(CLI_OBJ)
+# (a static function's counts are found by its number in its file, not
+# by a name made from the object's path, which differs between the rounds)
+PGO_IDS := --param=profile-func-internal-id=1
 ifeq ($(SAN)$(PGO),0generate)
-CFLAGS  += -fprofile-generate -fprofile-update=single
+CFLAGS  += -fprofile-generate -fprofile-update=single $(PGO_IDS)
 LDFLAGS += -fprofile-generate
+$(PGO_OBJ): Makefile # counts made with other flags would not fit
 else ifeq ($(SAN),0)
 ifneq ($(PGO),0)
-# (-w: the instrumented round has just compiled every source with all the
-# warnings; this one would add GCC's notes on functions the training left
-# without counts)
-$(PGO_OBJ): CFLAGS += -fprofile-use -fprofile-partial-training -w
+$(PGO_OBJ): CFLAGS += -fprofile-use -fprofile-partial-training $(PGO_IDS) -Wno-missing-profile
 $(PGO_OBJ): $(BUILD)/pgo.stamp
 $(BUILD)/pgo.stamp: $(LIB_SRC) $(APP_SRC) $(CLI_SRC) $(shell find src include -name '*.h') \
-                    scenes/*.yaml scripts/pgo-train scenes/textures/flag.png scenes/textures/globe.png
+                    $(shell find scenes -type f) scripts/pgo-train \
+                    scenes/textures/flag.png scenes/textures/globe.png
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/pgo PGO=generate $(BUILD)/pgo/glint
 	scripts/pgo-train $(BUILD)/pgo $(BUILD)
 	@touch $@

@@ -16,14 +16,15 @@
  * counter; each turns its strip's film rows into samples, filters them
  * (the row above the strip's first is made again, for the filter, into a
  * row of the thread's own) and compresses them into a raw deflate stream
- * of their own. Every stream but the last is then walked to its final
- * block, made non-final and brought to a byte boundary with an empty
- * stored block (deflate_join.h, as pigz does with zlib), and the streams,
+ * of their own. Every libdeflate stream but the last is then walked to
+ * its final block, made non-final and brought to a byte boundary with an
+ * empty stored block (deflate_join.h, as pigz does with zlib); an igzip
+ * stream (a noisy strip) already ends so, by a full flush. The streams,
  * in order, make the one zlib stream of the IDAT chunks, with the Adler-32
  * of the whole combined from the strips'. A strip's stream refers to
  * nothing before it (a zlib full flush): a few hundred bytes more on a
- * 1080p image. Should a walk not find what it should, the rows, already
- * filtered, are compressed again as one stream. */
+ * 1080p image. Should a walk not find what it should, or igzip fail, the
+ * rows, already filtered, are compressed again as one stream. */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -52,7 +53,7 @@
  * for matches finds few and costs more: there ISA-L's igzip at its level
  * 2 takes a third of the time of libdeflate's fastest level for streams
  * 2% larger (bench row 8's tori: 10.6 ms against 30.1 for the whole
- * image on one thread, 2,350,475 bytes against 2,303,830). Smooth strips
+ * image on one thread, a file of 2,346,298 bytes against 2,303,366). Smooth strips
  * keep libdeflate (row 5's image is all smooth strips). The choice rests
  * on the strip's bytes alone, so the file is still the same for any
  * number of threads. */
@@ -286,11 +287,10 @@ static bool strip_compress_noisy(strip *s, strip_tools *t, size_t n, bool last)
     size_t cap = n + n / 8 + 1024; /* stored blocks, the worst, add 5 bytes in 65535 */
     if ((!t->noisy && !(t->noisy = malloc(PNG_NOISY_BUF))) || !(s->z = malloc(cap)))
         return false;
-    /* igzip leaves its hash of the last strip in the buffer and would find
-     * matches through it: cleared, so that a strip's stream does not hang
-     * on which strips its thread took before */
-    memset(t->noisy, 0, PNG_NOISY_BUF);
-    struct isal_zstream zs;
+    /* (the init leaves some fields, hist_bits among them, as they were:
+     * zeroed first, the window is the default 32 KiB and the stream
+     * depends on the strip alone) */
+    struct isal_zstream zs = {0};
     isal_deflate_stateless_init(&zs);
     zs.level = PNG_NOISY_LEVEL;
     zs.level_buf = t->noisy;
