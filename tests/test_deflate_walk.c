@@ -13,6 +13,7 @@
 
 #include <libdeflate.h>
 
+#include "core/rng.h"
 #include "io/deflate_join.h"
 
 /* ---- the reference -------------------------------------------------------- */
@@ -199,22 +200,14 @@ static bool agree(const uint8_t *z, size_t n, size_t expect, const char *what)
     return got;
 }
 
-static uint32_t rng_next(uint32_t *s)
-{
-    *s ^= *s << 13;
-    *s ^= *s >> 17;
-    *s ^= *s << 5;
-    return *s;
-}
-
 /* Bytes of one kind: noise, rendered-like rows, skewed values (a value k
  * about twice as rare as k - 1, which gives codes of every length up to
  * 15), or long runs. */
 static void fill(uint8_t *p, size_t n, int kind, uint32_t seed)
 {
-    uint32_t s = seed * 2654435761u + 7;
+    rng s = rng_seed(seed, 7);
     for (size_t i = 0; i < n; i++) {
-        uint32_t r = rng_next(&s);
+        uint32_t r = rng_u32(&s);
         switch (kind) {
         case 0:
             p[i] = (uint8_t)r;
@@ -269,7 +262,7 @@ Test(deflate_walk, agrees_on_libdeflate_streams_and_their_near_misses)
 Test(deflate_walk, agrees_on_streams_with_bits_flipped)
 {
     static uint8_t data[40000];
-    uint32_t s = 5;
+    rng s = rng_seed(5, 0);
     for (int kind = 0; kind < 4; kind++)
         for (int level = 1; level <= 6; level += 5) {
             fill(data, sizeof data, kind, (uint32_t)(kind + level));
@@ -280,7 +273,7 @@ Test(deflate_walk, agrees_on_streams_with_bits_flipped)
             for (int i = 0; i < 1500; i++) {
                 memcpy(copy, z, zn);
                 for (int f = 0; f < 1 + i % 3; f++)
-                    copy[rng_next(&s) % zn] ^= (uint8_t)(1u << rng_next(&s) % 8);
+                    copy[rng_u32(&s) % zn] ^= (uint8_t)(1u << rng_u32(&s) % 8);
                 agree(copy, zn, sizeof data, "flipped");
             }
             free(copy);
@@ -291,13 +284,13 @@ Test(deflate_walk, agrees_on_streams_with_bits_flipped)
 Test(deflate_walk, agrees_on_random_bytes)
 {
     uint8_t z[600];
-    uint32_t s = 11;
+    rng s = rng_seed(11, 0);
     for (int i = 0; i < 20000; i++) {
-        size_t n = 1 + rng_next(&s) % sizeof z;
+        size_t n = 1 + rng_u32(&s) % sizeof z;
         for (size_t k = 0; k < n; k++)
-            z[k] = (uint8_t)rng_next(&s);
+            z[k] = (uint8_t)rng_u32(&s);
         z[0] = (uint8_t)((z[0] & ~6u) | (i % 3 == 0 ? 2u : 4u)); /* fixed or dynamic codes */
-        agree(z, n, rng_next(&s) % 3000, "random");
+        agree(z, n, rng_u32(&s) % 3000, "random");
     }
 }
 

@@ -16,6 +16,7 @@
 #include <libdeflate.h>
 #include <spng.h>
 
+#include "core/rng.h"
 #include "io/codec.h"
 #include "io/deflate_join.h"
 #include "io/image.h"
@@ -30,21 +31,13 @@ TestSuite(png_strips, .init = make_dir, .fini = remove_dir);
 
 /* ---- test data ------------------------------------------------------------ */
 
-static uint32_t rng_next(uint32_t *s)
-{
-    *s ^= *s << 13;
-    *s ^= *s >> 17;
-    *s ^= *s << 5;
-    return *s;
-}
-
 /* n bytes of one of several kinds: runs, noise, a smooth ramp with a
  * little noise (like a render), text-like bytes, or a mix in patches. */
 static void fill(uint8_t *p, size_t n, int kind, uint32_t seed)
 {
-    uint32_t s = seed * 2654435761u + 1;
+    rng s = rng_seed(seed, 1);
     for (size_t i = 0; i < n; i++) {
-        uint32_t r = rng_next(&s);
+        uint32_t r = rng_u32(&s);
         int k = kind == 4 ? (int)(i / 3000 % 4) : kind;
         switch (k) {
         case 0:
@@ -203,12 +196,12 @@ Test(png_strips, corrupted_streams_end_the_walk)
     fill(data, sizeof data, 4, 3);
     size_t zn;
     uint8_t *z = compress(c, data, sizeof data, &zn);
-    uint32_t s = 99;
+    rng s = rng_seed(99, 0);
     for (int i = 0; i < 2000; i++) {
         uint8_t *copy = malloc(zn + DEFLATE_UNFINAL_EXTRA);
         memcpy(copy, z, zn);
         for (int k = 0; k < 1 + i % 3; k++)
-            copy[rng_next(&s) % zn] ^= (uint8_t)(1u << rng_next(&s) % 8);
+            copy[rng_u32(&s) % zn] ^= (uint8_t)(1u << rng_u32(&s) % 8);
         deflate_ends e;
         if (deflate_walk(copy, zn, sizeof data, &e)) {
             cr_assert_eq((e.end + 7) / 8, zn);
@@ -262,10 +255,10 @@ static void *samples(int w, int h, int channels, int bits, uint32_t seed)
     size_t n = (size_t)w * (size_t)h * (size_t)channels;
     uint8_t *p = malloc(n * (size_t)(bits / 8));
     cr_assert_not_null(p);
-    uint32_t s = seed + 1;
+    rng s = rng_seed(seed, 2);
     for (size_t i = 0; i < n; i++) {
         size_t x = i / (size_t)channels % (size_t)w, y = i / (size_t)channels / (size_t)w;
-        uint32_t v = (x / 40 + y / 30) % 3 == 0 ? rng_next(&s) : (uint32_t)(x * 3 + y * 5 + i % 3);
+        uint32_t v = (x / 40 + y / 30) % 3 == 0 ? rng_u32(&s) : (uint32_t)(x * 3 + y * 5 + i % 3);
         if (bits == 16)
             ((uint16_t *)(void *)p)[i] = (uint16_t)(v * 2654435761u >> 16);
         else
@@ -282,10 +275,10 @@ static void *banded(int w, int h, int channels, int band)
     size_t row = (size_t)w * (size_t)channels;
     uint8_t *p = malloc(row * (size_t)h);
     cr_assert_not_null(p);
-    uint32_t s = 17;
+    rng s = rng_seed(17, 0);
     for (int y = 0; y < h; y++)
         for (size_t i = 0; i < row; i++)
-            p[(size_t)y * row + i] = y / band % 2 ? (uint8_t)rng_next(&s) : (uint8_t)(i / 7);
+            p[(size_t)y * row + i] = y / band % 2 ? (uint8_t)rng_u32(&s) : (uint8_t)(i / 7);
     return p;
 }
 
@@ -370,9 +363,9 @@ Test(png_strips, noisy_strips_are_joined_as_they_are)
     int strips = (h + rows - 1) / rows;
     uint8_t *px = malloc((size_t)w * 3 * (size_t)h);
     cr_assert_not_null(px);
-    uint32_t seed = 5;
+    rng g = rng_seed(5, 0);
     for (size_t i = 0; i < (size_t)w * 3 * (size_t)h; i++) /* every other row noise */
-        px[i] = i / ((size_t)w * 3) % 2 ? (uint8_t)(rng_next(&seed) & 3) : (uint8_t)(i % 2700 / 7);
+        px[i] = i / ((size_t)w * 3) % 2 ? (uint8_t)(rng_u32(&g) & 3) : (uint8_t)(i % 2700 / 7);
     bytebuf b = {0};
     glint_error err = {0};
     cr_assert_eq(png_encode_pixels(w, h, 3, 8, px, 2, &b, &err), GLINT_OK, "%s", err.msg);
