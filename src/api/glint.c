@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "api/check.h"
+#include "core/array.h"
 #include "core/error.h"
 #include "io/image_write.h"
 #include "load/load.h"
@@ -251,7 +252,7 @@ glint_rc glint_film_alloc(glint_film *film, int width, int height, glint_error *
         (uint64_t)width * (uint64_t)height > SETTINGS_MAX_PIXELS)
         return api_bad(err, __func__, "film size %dx%d is out of range (1 to %d per side)", width,
                        height, SETTINGS_MAX_SIDE);
-    float *rgb = calloc((size_t)width * (size_t)height * 3, sizeof *rgb);
+    float *rgb = array_calloc_big((size_t)width * (size_t)height * 3 * sizeof *rgb);
     if (!rgb)
         return err_nomem(err);
     *film = (glint_film){width, height, rgb, NULL};

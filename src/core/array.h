@@ -29,4 +29,10 @@ static inline bool array_reserve(void **items, size_t *cap, size_t need, size_t 
  * with free(). */
 void *array_alloc_big(size_t n);
 
+/* n zeroed bytes for a large array touched a little at a time (a film):
+ * the whole 2 MiB pages inside it in transparent huge pages where the
+ * kernel offers them, one page fault per 2 MiB. NULL when memory runs
+ * out; free with free(). */
+void *array_calloc_big(size_t n);
+
 #endif

@@ -13,6 +13,7 @@
 #include <jpeglib.h>
 
 #include "codec.h"
+#include "core/array.h"
 #include "core/error.h"
 #include "image.h"
 
@@ -95,7 +96,7 @@ glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *
         return err_set(err, GLINT_ERR_INPUT, "%s: JPEG colour space is not supported", name);
     }
     size_t w = cinfo.output_width, h = cinfo.output_height;
-    px = malloc(w * h * 3);
+    px = array_calloc_big(w * h * 3);
     if (!px) {
         jpeg_destroy_decompress(&cinfo);
         return err_nomem(err);

@@ -4,6 +4,7 @@
 #include <spng.h>
 
 #include "codec.h"
+#include "core/array.h"
 #include "core/error.h"
 #include "image.h"
 
@@ -53,7 +54,7 @@ glint_rc png_decode(const uint8_t *data, size_t size, const char *name, image *o
         rc = spng_failure(e, name, err);
         goto out;
     }
-    px = malloc(len);
+    px = array_calloc_big(len);
     if (!px) {
         rc = err_nomem(err);
         goto out;

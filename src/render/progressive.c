@@ -2,6 +2,7 @@
 
 #include <stdlib.h>
 
+#include "core/array.h"
 #include "core/error.h"
 #include "render/render.h"
 
@@ -11,7 +12,7 @@ glint_rc progressive_alloc(glint_accum *a, int width, int height, glint_error *e
                         NULL, NULL};
     a->tile_samples = calloc((size_t)a->ntiles, sizeof *a->tile_samples);
     a->tile_div = calloc((size_t)a->ntiles, sizeof *a->tile_div);
-    a->sum = calloc((size_t)width * (size_t)height * 3, sizeof *a->sum);
+    a->sum = array_calloc_big((size_t)width * (size_t)height * 3 * sizeof *a->sum);
     a->cover = calloc((size_t)width * (size_t)height, sizeof *a->cover);
     if (!a->tile_samples || !a->tile_div || !a->sum || !a->cover) {
         progressive_free(a);

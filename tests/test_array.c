@@ -1,0 +1,55 @@
+/* core/array: growth keeps what the array holds, and big zeroed blocks
+ * (films, decoded images) are zero however the allocator last used their
+ * memory, whether or not the kernel takes the huge-page advice. */
+#include <criterion/criterion.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/array.h"
+
+static bool all_zero(const unsigned char *p, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (p[i])
+            return false;
+    return true;
+}
+
+Test(array, calloc_big_is_zero_after_dirty_reuse)
+{
+    /* Freed dirty blocks of these sizes are what malloc hands out next
+     * (after the first free of a mapped block, glibc serves blocks that big
+     * from its heap), so a block that skipped the zeroing shows it. */
+    const size_t sizes[] = {1, 4096, 100000, ((size_t)3 << 20) + 17, (size_t)25 << 20};
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) {
+        size_t n = sizes[k];
+        for (int round = 0; round < 3; round++) {
+            unsigned char *dirty = malloc(n);
+            cr_assert_not_null(dirty);
+            memset(dirty, 0xA5, n);
+            free(dirty);
+            unsigned char *p = array_calloc_big(n);
+            cr_assert_not_null(p, "size %zu", n);
+            cr_assert(all_zero(p, n), "a block of %zu bytes is not all zero", n);
+            p[0] = 1, p[n - 1] = 2; /* writable from end to end */
+            free(p);
+        }
+    }
+}
+
+Test(array, grow_past_huge_pages_keeps_the_items)
+{
+    uint32_t *items = NULL;
+    size_t cap = 0;
+    const size_t n = (size_t)3 << 20; /* 12 MiB of items, grown by doubling */
+    for (size_t i = 0; i < n; i++) {
+        cr_assert(array_reserve((void **)&items, &cap, i + 1, sizeof *items));
+        items[i] = (uint32_t)(i * 2654435761u);
+    }
+    cr_assert_geq(cap, n);
+    for (size_t i = 0; i < n; i++)
+        if (items[i] != (uint32_t)(i * 2654435761u))
+            cr_assert_fail("item %zu changed in growth", i);
+    free(items);
+}
