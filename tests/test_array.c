@@ -38,7 +38,7 @@ Test(array, calloc_big_is_zero_after_dirty_reuse)
     }
 }
 
-Test(array, grow_past_huge_pages_keeps_the_items)
+Test(array, grow_to_millions_keeps_the_items)
 {
     uint32_t *items = NULL;
     size_t cap = 0;

@@ -57,7 +57,6 @@ bool array_grow(void **items, size_t *cap, size_t need, size_t elem)
     void *q = realloc(*items, ncap * elem);
     if (!q)
         return false;
-    advise_huge(q, ncap * elem);
     *items = q;
     *cap = ncap;
     return true;
