@@ -10,24 +10,6 @@
 
 #define HUGE_PAGE ((size_t)2 << 20)
 
-/* Asks for the pages of the block p of n bytes, one from malloc, to be
- * transparent huge pages where whole ones fit, when it spans any: a block
- * this big is a mapping of its own, and a virtual machine may trap the
- * first touch of every 4 KiB page (about 10 us each on some). Advice only:
- * failure changes nothing. */
-static void advise_huge(void *p, size_t n)
-{
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    const uintptr_t page = 4096;
-    uintptr_t lo = (uintptr_t)p & ~(page - 1);
-    uintptr_t hi = ((uintptr_t)p + n + page - 1) & ~(page - 1);
-    if (p && n >= HUGE_PAGE)
-        madvise((void *)lo, hi - lo, MADV_HUGEPAGE);
-#else
-    (void)p, (void)n;
-#endif
-}
-
 int array_push(void **items, int *n, int *cap, size_t elem)
 {
     if (*n == *cap) {
@@ -77,14 +59,21 @@ void *array_alloc_big(size_t n)
 
 void *array_calloc_big(size_t n)
 {
-    void *p = calloc(1, n ? n : 1);
-    advise_huge(p, n);
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    /* and mapped at once (Linux 5.14 on; advice likewise) */
-    if (p && n >= HUGE_PAGE) {
-        uintptr_t lo = (uintptr_t)p & ~(uintptr_t)4095;
-        madvise((void *)lo, (uintptr_t)p + n - lo, MADV_POPULATE_WRITE);
-    }
+    if (n < HUGE_PAGE / 8 || n > SIZE_MAX - HUGE_PAGE)
+        return calloc(1, n ? n : 1);
+    /* Whole huge pages, aligned, so that none of it is left in 4 KiB
+     * pages, mapped at once: a virtual machine may trap the first touch of
+     * every 4 KiB page (about 10 us each on some: 70 ms for a 1080p film
+     * touched by its render, 4 ms for a 1024x512 texture decoded). */
+    size_t whole = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
+    void *p = aligned_alloc(HUGE_PAGE, whole);
+    if (!p)
+        return NULL;
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    madvise(p, whole, MADV_HUGEPAGE); /* advice only: failure changes nothing */
+#if defined(MADV_POPULATE_WRITE)
+    madvise(p, whole, MADV_POPULATE_WRITE); /* likewise (Linux 5.14 on) */
 #endif
-    return p;
+#endif
+    return memset(p, 0, n);
 }

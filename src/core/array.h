@@ -29,10 +29,11 @@ static inline bool array_reserve(void **items, size_t *cap, size_t need, size_t 
  * with free(). */
 void *array_alloc_big(size_t n);
 
-/* n zeroed bytes for a large array touched a little at a time (a film):
- * the whole 2 MiB pages inside it in transparent huge pages where the
- * kernel offers them, one page fault per 2 MiB. NULL when memory runs
- * out; free with free(). */
+/* n zeroed bytes for a large array that will be written in full (a film,
+ * a decoded image): from 256 KiB up, whole 2 MiB pages, aligned, in
+ * transparent huge pages where the kernel offers them and mapped before
+ * they are returned, so that writing them takes no page fault per 4 KiB.
+ * NULL when memory runs out; free with free(). */
 void *array_calloc_big(size_t n);
 
 #endif
