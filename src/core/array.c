@@ -10,13 +10,51 @@
 
 #define HUGE_PAGE ((size_t)2 << 20)
 
+/* n bytes in whole 2 MiB pages, aligned, in transparent huge pages where
+ * the kernel offers them and mapped at once (advice only: failure changes
+ * nothing); not zeroed. n from HUGE_PAGE / 8 up. */
+static void *alloc_huge(size_t n)
+{
+    if (n > SIZE_MAX - HUGE_PAGE)
+        return NULL;
+    size_t whole = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
+    void *p = aligned_alloc(HUGE_PAGE, whole);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (p) {
+        madvise(p, whole, MADV_HUGEPAGE);
+#if defined(MADV_POPULATE_WRITE)
+        madvise(p, whole, MADV_POPULATE_WRITE); /* Linux 5.14 on */
+#endif
+    }
+#endif
+    return p;
+}
+
+/* *items (old bytes used of it) moved to a block of n bytes. A block
+ * of 2 MiB or more is copied into huge pages (alloc_huge) rather than
+ * grown by realloc: a virtual machine may trap the first touch of every
+ * 4 KiB page (about 10 us each on some), and realloc would leave the
+ * growth in such pages (advised huge, realloc's remapping split them,
+ * which cost more). */
+static void *regrow(void *items, size_t old, size_t n)
+{
+    if (n < HUGE_PAGE)
+        return realloc(items, n);
+    void *q = alloc_huge(n);
+    if (q && old)
+        memcpy(q, items, old);
+    if (q)
+        free(items);
+    return q;
+}
+
 int array_push(void **items, int *n, int *cap, size_t elem)
 {
     if (*n == *cap) {
         if (*cap > INT_MAX / 2)
             return -1;
         int ncap = *cap ? *cap * 2 : 8;
-        void *p = realloc(*items, (size_t)ncap * elem);
+        void *p = regrow(*items, (size_t)*n * elem, (size_t)ncap * elem);
         if (!p)
             return -1;
         *items = p;
@@ -36,7 +74,7 @@ bool array_grow(void **items, size_t *cap, size_t need, size_t elem)
             return false;
         ncap *= 2;
     }
-    void *q = realloc(*items, ncap * elem);
+    void *q = regrow(*items, *cap * elem, ncap * elem);
     if (!q)
         return false;
     *items = q;
@@ -59,21 +97,10 @@ void *array_alloc_big(size_t n)
 
 void *array_calloc_big(size_t n)
 {
-    if (n < HUGE_PAGE / 8 || n > SIZE_MAX - HUGE_PAGE)
+    if (n < HUGE_PAGE / 8)
         return calloc(1, n ? n : 1);
-    /* Whole huge pages, aligned, so that none of it is left in 4 KiB
-     * pages, mapped at once: a virtual machine may trap the first touch of
-     * every 4 KiB page (about 10 us each on some: 70 ms for a 1080p film
-     * touched by its render, 4 ms for a 1024x512 texture decoded). */
-    size_t whole = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
-    void *p = aligned_alloc(HUGE_PAGE, whole);
-    if (!p)
-        return NULL;
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    madvise(p, whole, MADV_HUGEPAGE); /* advice only: failure changes nothing */
-#if defined(MADV_POPULATE_WRITE)
-    madvise(p, whole, MADV_POPULATE_WRITE); /* likewise (Linux 5.14 on) */
-#endif
-#endif
-    return memset(p, 0, n);
+    /* mapped before it is written (a 1080p film touched by its render had
+     * 70 ms of page faults, a 1024x512 texture decoded 4 ms) */
+    void *p = alloc_huge(n);
+    return p ? memset(p, 0, n) : NULL;
 }
