@@ -53,3 +53,22 @@ Test(array, grow_to_millions_keeps_the_items)
             cr_assert_fail("item %zu changed in growth", i);
     free(items);
 }
+
+Test(array, realloc_keeps_the_bytes_in_use_across_huge_pages)
+{
+    /* small to small, small to huge, huge to bigger huge */
+    const size_t sizes[] = {1000, 100000, (size_t)5 << 20, (size_t)9 << 20};
+    unsigned char *p = NULL;
+    size_t used = 0;
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) {
+        unsigned char *q = array_realloc(p, used, sizes[k]);
+        cr_assert_not_null(q, "size %zu", sizes[k]);
+        for (size_t i = 0; i < used; i++)
+            if (q[i] != (unsigned char)(i * 7 + 3))
+                cr_assert_fail("byte %zu lost growing to %zu", i, sizes[k]);
+        for (size_t i = used; i < sizes[k]; i++)
+            q[i] = (unsigned char)(i * 7 + 3);
+        p = q, used = sizes[k];
+    }
+    free(p);
+}

@@ -30,13 +30,7 @@ static void *alloc_huge(size_t n)
     return p;
 }
 
-/* *items (old bytes used of it) moved to a block of n bytes. A block
- * of 2 MiB or more is copied into huge pages (alloc_huge) rather than
- * grown by realloc: a virtual machine may trap the first touch of every
- * 4 KiB page (about 10 us each on some), and realloc would leave the
- * growth in such pages (advised huge, realloc's remapping split them,
- * which cost more). */
-static void *regrow(void *items, size_t old, size_t n)
+void *array_realloc(void *items, size_t old, size_t n)
 {
     if (n < HUGE_PAGE)
         return realloc(items, n);
@@ -54,7 +48,7 @@ int array_push(void **items, int *n, int *cap, size_t elem)
         if (*cap > INT_MAX / 2)
             return -1;
         int ncap = *cap ? *cap * 2 : 8;
-        void *p = regrow(*items, (size_t)*n * elem, (size_t)ncap * elem);
+        void *p = array_realloc(*items, (size_t)*n * elem, (size_t)ncap * elem);
         if (!p)
             return -1;
         *items = p;
@@ -74,7 +68,7 @@ bool array_grow(void **items, size_t *cap, size_t need, size_t elem)
             return false;
         ncap *= 2;
     }
-    void *q = regrow(*items, *cap * elem, ncap * elem);
+    void *q = array_realloc(*items, *cap * elem, ncap * elem);
     if (!q)
         return false;
     *items = q;

@@ -6,6 +6,15 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+/* realloc for a block of which the first `old` bytes are in use: from
+ * 2 MiB up the block is copied into whole huge pages mapped at once
+ * rather than grown in place. A virtual machine may trap the first touch
+ * of every 4 KiB page (about 10 us each on some), and growth left in such
+ * pages cost more than the copy (advised huge, realloc's remapping split
+ * them, which cost more still). NULL when memory runs out, the block
+ * untouched; the result is freed with free(). */
+void *array_realloc(void *items, size_t old, size_t n);
+
 /* Makes room for one more element of size elem in *items (count *n, capacity
  * *cap) and returns its index, or -1 when memory runs out (the array is left
  * unchanged). The new element is zeroed. */

@@ -429,7 +429,7 @@ static glint_rc read_fd(int fd, char **data, size_t *size, glint_error *err)
         /* One byte past the limit tells a file of exactly the limit from a larger one. */
         size_t ncap = cap * 2 > (size_t)LOAD_MAX_FILE_BYTES + 1 ? (size_t)LOAD_MAX_FILE_BYTES + 1
                                                                 : cap * 2;
-        char *bigger = realloc(buf, ncap);
+        char *bigger = array_realloc(buf, n, ncap);
         if (!bigger) {
             free(buf);
             return err_nomem(err);
