@@ -16,6 +16,7 @@
 #endif
 
 #include "codec.h"
+#include "core/array.h"
 #include "core/error.h"
 
 /* ---- byte buffers and shared messages ----------------------------------- */
@@ -28,7 +29,7 @@ bool bytes_reserve(bytebuf *b, size_t n)
         size_t cap = b->cap ? b->cap : 4096;
         while (cap < b->len + n)
             cap *= 2;
-        uint8_t *p = realloc(b->data, cap);
+        uint8_t *p = array_realloc(b->data, b->len, cap);
         if (!p)
             return false;
         b->data = p;
