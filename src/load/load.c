@@ -401,11 +401,17 @@ glint_rc scene_load_file_threads(const char *path, int threads, scene **out, gli
     return rc;
 }
 
-/* Reads fd to its end, at most LOAD_MAX_FILE_BYTES. */
+/* Reads fd to its end, at most LOAD_MAX_FILE_BYTES. The text is freed with free(). */
 static glint_rc read_fd(int fd, char **data, size_t *size, glint_error *err)
 {
     size_t n = 0, cap = 1 << 16;
-    char *buf = malloc(cap);
+    /* a regular file in one block of its size and a byte (which the end's
+     * read of 0 needs), rather than doubled up to it */
+    struct stat st;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
+        cap = (uint64_t)st.st_size < LOAD_MAX_FILE_BYTES ? (size_t)st.st_size + 1
+                                                         : (size_t)LOAD_MAX_FILE_BYTES + 1;
+    char *buf = array_realloc(NULL, 0, cap);
     if (!buf)
         return err_nomem(err);
     for (;;) {

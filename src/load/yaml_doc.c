@@ -460,6 +460,27 @@ static glint_rc read_libyaml(builder *b, const char *text, size_t len)
 
 /* The plain subset by yaml_fast; any other text, and any text the tree
  * refuses (for libyaml's word on what comes first), again by libyaml. */
+/* Room made up front for the tree of a text of len bytes, from what
+ * scenes hold (a node for every 6 bytes of bench/tori.awk's scene, text
+ * for 0.8 of its bytes), up to 64 MiB an array: a big scene's arrays then
+ * start in huge pages instead of passing through 4 KiB ones on their way
+ * up (array_realloc). Only a hint: where memory runs short the arrays grow
+ * as they go. */
+static void reserve_for(ydoc *d, size_t len)
+{
+    const size_t most = (size_t)64 << 20;
+    size_t nodes = len / 5 + 16, kids = len / 5 + 16, text = len + 16;
+    nodes = nodes > most / sizeof *d->nodes ? most / sizeof *d->nodes : nodes;
+    nodes = nodes > YDOC_MAX_NODES ? YDOC_MAX_NODES : nodes;
+    kids = kids > most / sizeof *d->kids ? most / sizeof *d->kids : kids;
+    text = text > most ? most : text;
+    size_t cap = d->cap_nodes;
+    if (array_grow((void **)&d->nodes, &cap, nodes, sizeof *d->nodes))
+        d->cap_nodes = cap > YDOC_MAX_NODES ? YDOC_MAX_NODES : (uint32_t)cap;
+    array_grow((void **)&d->kids, &d->cap_kids, kids, sizeof *d->kids);
+    array_grow((void **)&d->text, &d->cap_text, text, 1);
+}
+
 glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
                     glint_error *err)
 {
@@ -469,6 +490,7 @@ glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
         if (!d)
             return err_nomem(err);
         d->root = YDOC_NONE;
+        reserve_for(d, len);
         builder b = {.d = d, .name = name, .src = text, .srclen = len, .err = err};
         rc = pass > 0 ? read_libyaml(&b, text, len)
              : yfast_read(text, len, take_fast, &b) == YFAST_DONE ? GLINT_OK : GLINT_ERR_INPUT;
