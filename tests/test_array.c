@@ -72,3 +72,18 @@ Test(array, realloc_keeps_the_bytes_in_use_across_huge_pages)
     }
     free(p);
 }
+
+Test(array, realloc_to_less_keeps_what_fits)
+{
+    size_t big = (size_t)5 << 20, less = (size_t)3 << 20;
+    unsigned char *p = array_realloc(NULL, 0, big);
+    cr_assert_not_null(p);
+    for (size_t i = 0; i < big; i++)
+        p[i] = (unsigned char)(i * 13 + 1);
+    unsigned char *q = array_realloc(p, big, less); /* more in use than the new block holds */
+    cr_assert_not_null(q);
+    for (size_t i = 0; i < less; i++)
+        if (q[i] != (unsigned char)(i * 13 + 1))
+            cr_assert_fail("byte %zu lost shrinking", i);
+    free(q);
+}

@@ -6,12 +6,13 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-/* realloc for a block of which the first `old` bytes are in use: from
- * 2 MiB up the block is copied into whole huge pages mapped at once
- * rather than grown in place. A virtual machine may trap the first touch
- * of every 4 KiB page (about 10 us each on some), and growth left in such
- * pages cost more than the copy (advised huge, realloc's remapping split
- * them, which cost more still). NULL when memory runs out, the block
+/* realloc for a block of which the first `old` bytes are in use (no more
+ * than the block holds; 0 when items is NULL): from 2 MiB up the block is
+ * copied into whole huge pages mapped at once rather than grown in place
+ * (at most min(old, n) bytes kept). A virtual machine may trap the first
+ * touch of every 4 KiB page (about 10 us each on some), and growth left in
+ * such pages cost more than the copy (advised huge, realloc's remapping
+ * split them, which cost more still). NULL when memory runs out, the block
  * untouched; the result is freed with free(). */
 void *array_realloc(void *items, size_t old, size_t n);
 
@@ -39,10 +40,10 @@ static inline bool array_reserve(void **items, size_t *cap, size_t need, size_t 
 void *array_alloc_big(size_t n);
 
 /* n zeroed bytes for a large array that will be written in full (a film,
- * a decoded image): from 256 KiB up, whole 2 MiB pages, aligned, in
- * transparent huge pages where the kernel offers them and mapped before
- * they are returned, so that writing them takes no page fault per 4 KiB.
- * NULL when memory runs out; free with free(). */
+ * a decoded image): from 1 MiB up, whole 2 MiB pages, aligned (so at most
+ * twice n), in transparent huge pages where the kernel offers them and
+ * mapped before they are returned, so that writing them takes no page
+ * fault per 4 KiB. NULL when memory runs out; free with free(). */
 void *array_calloc_big(size_t n);
 
 #endif

@@ -458,29 +458,41 @@ static glint_rc read_libyaml(builder *b, const char *text, size_t len)
     return rc;
 }
 
-/* The plain subset by yaml_fast; any other text, and any text the tree
- * refuses (for libyaml's word on what comes first), again by libyaml. */
-/* Room made up front for the tree of a text of len bytes, from what
+/* Room for n items of `elem` bytes in the empty array *items made up
+ * front, where that is 2 MiB or more (array_realloc: huge pages); the
+ * room made, or 0. */
+static size_t reserve(void **items, size_t n, size_t elem)
+{
+    if (n * elem < ((size_t)2 << 20))
+        return 0;
+    void *p = array_realloc(NULL, 0, n * elem);
+    if (!p)
+        return 0;
+    *items = p;
+    return n;
+}
+
+/* Room made up front for the tree of a big text of len bytes, from what
  * scenes hold (a node for every 6 bytes of bench/tori.awk's scene, text
- * for 0.8 of its bytes), up to 64 MiB an array: a big scene's arrays then
- * start in huge pages instead of passing through 4 KiB ones on their way
- * up (array_realloc). Only a hint: where memory runs short the arrays grow
- * as they go. */
+ * for 0.8 of its bytes): a node and a child index for every 5 bytes, text
+ * as long, each array at most 64 MiB. The arrays then start in huge pages
+ * instead of passing through 4 KiB ones on their way up. Only a hint: an
+ * array it leaves out, or that fills, grows as it goes. */
 static void reserve_for(ydoc *d, size_t len)
 {
     const size_t most = (size_t)64 << 20;
-    size_t nodes = len / 5 + 16, kids = len / 5 + 16, text = len + 16;
+    size_t nodes = len / 5, kids = len / 5, text = len;
     nodes = nodes > most / sizeof *d->nodes ? most / sizeof *d->nodes : nodes;
     nodes = nodes > YDOC_MAX_NODES ? YDOC_MAX_NODES : nodes;
     kids = kids > most / sizeof *d->kids ? most / sizeof *d->kids : kids;
     text = text > most ? most : text;
-    size_t cap = d->cap_nodes;
-    if (array_grow((void **)&d->nodes, &cap, nodes, sizeof *d->nodes))
-        d->cap_nodes = cap > YDOC_MAX_NODES ? YDOC_MAX_NODES : (uint32_t)cap;
-    array_grow((void **)&d->kids, &d->cap_kids, kids, sizeof *d->kids);
-    array_grow((void **)&d->text, &d->cap_text, text, 1);
+    d->cap_nodes = (uint32_t)reserve((void **)&d->nodes, nodes, sizeof *d->nodes);
+    d->cap_kids = reserve((void **)&d->kids, kids, sizeof *d->kids);
+    d->cap_text = reserve((void **)&d->text, text, 1);
 }
 
+/* The plain subset by yaml_fast; any other text, and any text the tree
+ * refuses (for libyaml's word on what comes first), again by libyaml. */
 glint_rc ydoc_parse(const char *text, size_t len, const char *name, ydoc **out,
                     glint_error *err)
 {
