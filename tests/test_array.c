@@ -56,8 +56,8 @@ Test(array, grow_to_millions_keeps_the_items)
 
 Test(array, realloc_keeps_the_bytes_in_use_across_huge_pages)
 {
-    /* small to small, small to huge, huge to bigger huge */
-    const size_t sizes[] = {1000, 100000, (size_t)5 << 20, (size_t)9 << 20};
+    /* small to small, small to huge (from 1 MiB), huge to bigger huge */
+    const size_t sizes[] = {1000, 100000, (size_t)3 << 19, (size_t)5 << 20, (size_t)9 << 20};
     unsigned char *p = NULL;
     size_t used = 0;
     for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) {

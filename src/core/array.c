@@ -13,7 +13,7 @@
 /* n bytes in whole 2 MiB pages, aligned, in transparent huge pages where
  * the kernel offers them and mapped at once (advice only: failure changes
  * nothing); not zeroed. Rounding up wastes at most a huge page, so the
- * callers take it from 1 MiB up (array_calloc_big) or 2 MiB (growth). */
+ * callers take it from 1 MiB up: at most twice the bytes asked for. */
 static void *alloc_huge(size_t n)
 {
     if (n > SIZE_MAX - HUGE_PAGE)
@@ -33,7 +33,7 @@ static void *alloc_huge(size_t n)
 
 void *array_realloc(void *items, size_t old, size_t n)
 {
-    if (n < HUGE_PAGE)
+    if (n < HUGE_PAGE / 2)
         return realloc(items, n);
     void *q = alloc_huge(n);
     if (q && items && old)
