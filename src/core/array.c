@@ -11,23 +11,25 @@
 #define HUGE_PAGE ((size_t)2 << 20)
 
 /* n bytes in whole 2 MiB pages, aligned, in transparent huge pages where
- * the kernel offers them and mapped at once (advice only: failure changes
- * nothing); not zeroed. Rounding up wastes at most a huge page, so the
- * callers take it from 1 MiB up: at most twice the bytes asked for. */
-static void *alloc_huge(size_t n)
+ * the kernel offers them, and with `map` mapped at once (advice only:
+ * failure changes nothing); not zeroed. Rounding up wastes at most a huge
+ * page, so the callers that map take it from 1 MiB up: at most twice the
+ * bytes asked for. */
+static void *alloc_huge(size_t n, bool map)
 {
     if (n > SIZE_MAX - HUGE_PAGE)
         return NULL;
     size_t whole = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
     void *p = aligned_alloc(HUGE_PAGE, whole);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (p) {
+    if (p)
         madvise(p, whole, MADV_HUGEPAGE);
 #if defined(MADV_POPULATE_WRITE)
+    if (p && map)
         madvise(p, whole, MADV_POPULATE_WRITE); /* Linux 5.14 on */
 #endif
-    }
 #endif
+    (void)map;
     return p;
 }
 
@@ -35,7 +37,7 @@ void *array_realloc(void *items, size_t old, size_t n)
 {
     if (n < HUGE_PAGE / 2)
         return realloc(items, n);
-    void *q = alloc_huge(n);
+    void *q = alloc_huge(n, true);
     if (q && items && old)
         memcpy(q, items, old < n ? old : n);
     if (q)
@@ -81,13 +83,7 @@ void *array_alloc_big(size_t n)
 {
     if (n < HUGE_PAGE || n > SIZE_MAX - HUGE_PAGE)
         return aligned_alloc(64, (n + 63) / 64 * 64);
-    size_t whole = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
-    void *p = aligned_alloc(HUGE_PAGE, whole);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (p)
-        madvise(p, whole, MADV_HUGEPAGE); /* advice only: failure changes nothing */
-#endif
-    return p;
+    return alloc_huge(n, false);
 }
 
 void *array_calloc_big(size_t n)
@@ -97,6 +93,6 @@ void *array_calloc_big(size_t n)
     /* mapped before it is written (a 1080p film touched by its render had
      * 70 ms of page faults, a 1024x512 texture decoded 4 ms); at most
      * twice the bytes asked for */
-    void *p = alloc_huge(n);
+    void *p = alloc_huge(n, true);
     return p ? memset(p, 0, n) : NULL;
 }

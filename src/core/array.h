@@ -9,11 +9,11 @@
 /* realloc for a block of which the first `old` bytes are in use (no more
  * than the block holds; 0 when items is NULL): from 1 MiB up the block is
  * copied into whole 2 MiB huge pages mapped at once (at most twice n)
- * rather than grown in place (at most min(old, n) bytes kept). A virtual machine may trap the first
- * touch of every 4 KiB page (about 10 us each on some), and growth left in
- * such pages cost more than the copy (advised huge, realloc's remapping
- * split them, which cost more still). NULL when memory runs out, the block
- * untouched; the result is freed with free(). */
+ * rather than grown in place, keeping min(old, n) bytes. A virtual machine
+ * may trap the first touch of every 4 KiB page (about 10 us each on some),
+ * and growth left in such pages cost more than the copy (advised huge,
+ * realloc's remapping split them, which cost more still). NULL when
+ * memory runs out, the block untouched; the result is freed with free(). */
 void *array_realloc(void *items, size_t old, size_t n);
 
 /* Makes room for one more element of size elem in *items (count *n, capacity

@@ -37,7 +37,6 @@
 #endif
 
 #include "codec.h"
-#include "core/array.h"
 #include "core/cpus.h"
 #include "core/error.h"
 #include "deflate_join.h"
@@ -244,7 +243,7 @@ typedef struct strip_tools {
 static bool tools_get(strip_tools *t, const png_job *j, int rows)
 {
     *t = (strip_tools){libdeflate_alloc_compressor(PNG_DEFLATE_LEVEL), NULL,
-                       array_calloc_big(j->stride * (size_t)rows), malloc(j->stride),
+                       malloc(j->stride * (size_t)rows), malloc(j->stride),
                        malloc((size_t)j->src->width * 4 * sizeof *t->tmp)};
     return t->c && t->rows && t->above && t->tmp;
 }
