@@ -13,8 +13,7 @@
 /* n bytes in whole 2 MiB pages, aligned, in transparent huge pages where
  * the kernel offers them, and with `map` mapped at once (advice only:
  * failure changes nothing); not zeroed. Rounding up wastes at most a huge
- * page, so the callers that map take it from 1 MiB up: at most twice the
- * bytes asked for. */
+ * page, so the callers that map take it from ARRAY_HUGE_FROM up. */
 static void *alloc_huge(size_t n, bool map)
 {
     if (n > SIZE_MAX - HUGE_PAGE)
@@ -35,7 +34,7 @@ static void *alloc_huge(size_t n, bool map)
 
 void *array_realloc(void *items, size_t old, size_t n)
 {
-    if (n < HUGE_PAGE / 2)
+    if (n < ARRAY_HUGE_FROM)
         return realloc(items, n);
     void *q = alloc_huge(n, true);
     if (q && items && old)
@@ -88,7 +87,7 @@ void *array_alloc_big(size_t n)
 
 void *array_calloc_big(size_t n)
 {
-    if (n < HUGE_PAGE / 2)
+    if (n < ARRAY_HUGE_FROM)
         return calloc(1, n ? n : 1);
     /* mapped before it is written (a 1080p film touched by its render had
      * 70 ms of page faults, a 1024x512 texture decoded 4 ms); at most

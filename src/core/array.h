@@ -6,6 +6,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+/* The size from which array_realloc and array_calloc_big take whole 2 MiB
+ * huge pages (so a block takes at most twice its bytes). */
+#define ARRAY_HUGE_FROM ((size_t)1 << 20)
+
 /* realloc for a block of which the first `old` bytes are in use (no more
  * than the block holds; 0 when items is NULL): from 1 MiB up the block is
  * copied into whole 2 MiB huge pages mapped at once (at most twice n)

@@ -459,11 +459,11 @@ static glint_rc read_libyaml(builder *b, const char *text, size_t len)
 }
 
 /* Room for n items of `elem` bytes in the empty array *items made up
- * front, where that is 1 MiB or more (array_realloc: huge pages); the
- * room made, or 0. */
+ * front, where array_realloc gives that in huge pages; the room made, or
+ * 0. */
 static size_t reserve(void **items, size_t n, size_t elem)
 {
-    if (n * elem < ((size_t)1 << 20))
+    if (n * elem < ARRAY_HUGE_FROM)
         return 0;
     void *p = array_realloc(NULL, 0, n * elem);
     if (!p)
