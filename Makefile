@@ -208,9 +208,9 @@ $(DIST_OBJ): CPPFLAGS += $(MPI_CFLAGS)
 
 # The library's allocations pass through tests/test_alloc.c, which makes
 # each fail in turn. The tests take the scheduler of glint-mpi too (it has
-# no MPI in it).
+# no MPI in it) and the programs' heap policy (src/cli/heap.c).
 TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
-$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/libglint.a
+$(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/obj/src/cli/heap.o $(BUILD)/libglint.a
 	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'

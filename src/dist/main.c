@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/heap.h"
 #include "cli/signals.h"
 #include "job.h"
 #include "options.h"
@@ -68,9 +69,11 @@ static glint_rc prepare(dist_job *job, glint_error *err)
         rc = glint_frame_path(o->output, 1, path, sizeof path, err);
     if (rc == GLINT_OK && job->rank == 0)
         rc = glint_output_check(o->frames ? path : o->output, &o->write, err);
-    if (rc == GLINT_OK)
+    if (rc == GLINT_OK) {
+        heap_ready(o->scene_path);
         rc = o->scene_path ? glint_scene_load_with(o->scene_path, &lo, &job->scene, err)
                            : glint_scene_builtin_with(&lo, &job->scene, err);
+    }
     if (rc == GLINT_OK)
         rc = dist_settings(job->scene, o, &job->settings, err);
     if (rc == GLINT_OK)

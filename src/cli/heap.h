@@ -1,0 +1,27 @@
+/* heap: the programs' use of the C library's heap (glibc malloc). A
+ * process's blocks are mapped by the kernel one 4 KiB page at a time, on
+ * first touch; on a virtual machine that traps each such touch this costs
+ * about 10-15 us a page (bench/README.md, "What limits the rows that
+ * miss"), which made the page faults of loading a scene of 11,000 objects
+ * (some 3,000) cost more than half of its load. So, before a scene is
+ * loaded:
+ *
+ * - blocks up to 32 MiB come from the heap, and the heap is not trimmed:
+ *   a block freed (a YAML tree, an image writer's buffers, a frame's film
+ *   in a sequence) is reused on pages already mapped, where by default
+ *   every block from 128 KiB up was a mapping of its own, fresh each time;
+ * - room in the heap, in proportion to the scene file's size, is mapped at
+ *   once (in huge pages where the kernel offers them): the loader's many
+ *   small blocks then land on mapped pages.
+ *
+ * A process policy, not the library's: it lives with the programs (glint,
+ * glint-mpi), and an embedder keeps its own. */
+#ifndef GLINT_CLI_HEAP_H
+#define GLINT_CLI_HEAP_H
+
+/* Readies the heap for loading the scene at path (NULL: the built-in
+ * scene; "-": standard input, whose size is not known). Advice only:
+ * nothing fails. */
+void heap_ready(const char *path);
+
+#endif
