@@ -39,23 +39,49 @@ Test(heap, big_blocks_come_from_the_heap)
     cr_assert(mapped_alone((size_t)64 << 20), "blocks past 32 MiB keep their own mapping");
 }
 
+/* A scene file of `mib` MiB in the test's folder. */
+static void scene_file(const char *path, int mib)
+{
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    for (int i = 0; i < mib * (1 << 20) / 16; i++) /* comment lines of 16 bytes */
+        fputs("# 0123456789abc\n", f);
+    cr_assert_eq(fclose(f), 0);
+}
+
+/* How much heap_ready(path) grows the heap by. */
+static size_t room_for(const char *path)
+{
+    size_t before = mallinfo2().arena;
+    heap_ready(path);
+    return mallinfo2().arena - before;
+}
+
 Test(heap, room_in_proportion_to_the_scene_file)
 {
     SKIP_SANITIZED();
     tmpdir_make("heap");
     char path[256];
     snprintf(path, sizeof path, "%s/big.yaml", dir);
-    FILE *f = fopen(path, "wb");
-    cr_assert_not_null(f);
-    for (int i = 0; i < (1 << 20) / 16; i++) /* 1 MiB of comment */
-        fputs("# 0123456789abc\n", f);
-    cr_assert_eq(fclose(f), 0);
-    size_t before = mallinfo2().arena;
-    heap_ready(path);
-    size_t room = mallinfo2().arena - before;
+    scene_file(path, 1);
+    size_t room = room_for(path);
     /* 12 MiB taken and given back: the heap keeps it */
     cr_assert(room >= (size_t)12 << 20, "the heap grew by %zu bytes", room);
     cr_assert(room < (size_t)16 << 20, "the heap grew by %zu bytes", room);
+    tmpdir_remove();
+}
+
+Test(heap, room_past_the_size_of_a_mapped_block)
+{
+    SKIP_SANITIZED();
+    tmpdir_make("heap");
+    char path[256];
+    snprintf(path, sizeof path, "%s/bigger.yaml", dir);
+    scene_file(path, 4);
+    /* 48 MiB, more than one block may take from the heap: kept all the same */
+    size_t room = room_for(path);
+    cr_assert(room >= (size_t)48 << 20, "the heap grew by %zu bytes", room);
+    cr_assert(room < (size_t)56 << 20, "the heap grew by %zu bytes", room);
     tmpdir_remove();
 }
 

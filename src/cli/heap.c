@@ -20,6 +20,8 @@
  * loaded), at most HEAP_ROOM_MAX. */
 #define HEAP_ROOM_PER_BYTE 12
 #define HEAP_ROOM_MAX ((size_t)256 << 20)
+/* The room is taken in pieces of this size (below HEAP_MMAP_FROM). */
+#define HEAP_PIECE ((size_t)16 << 20)
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -30,21 +32,31 @@
 #define HEAP_SANITIZED 1
 #endif
 
-/* Maps the whole huge pages of a block of n bytes taken from the heap and
- * gives it back: the heap keeps them (it is not trimmed). */
+/* Maps the whole huge pages of n bytes taken from the heap and gives them
+ * back: the heap keeps them (it is not trimmed). Taken in pieces below
+ * HEAP_MMAP_FROM, which would otherwise each be a mapping of their own
+ * and gone again when freed; side by side at the top of the heap, they
+ * join again into one free block. */
 static void map_room(size_t n)
 {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    char *p = malloc(n);
-    if (!p)
-        return;
-    uintptr_t a = ((uintptr_t)p + HEAP_HUGE - 1) & ~(uintptr_t)(HEAP_HUGE - 1);
-    uintptr_t e = ((uintptr_t)p + n) & ~(uintptr_t)(HEAP_HUGE - 1);
-    if (e > a) {
-        madvise((void *)a, e - a, MADV_HUGEPAGE);
-        madvise((void *)a, e - a, MADV_POPULATE_WRITE); /* Linux 5.14 on */
+    enum { PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 1 };
+    char *piece[PIECES];
+    int k = 0;
+    for (size_t left = n; left > 0 && k < PIECES; k++) {
+        size_t take = left < HEAP_PIECE ? left : HEAP_PIECE;
+        if (!(piece[k] = malloc(take)))
+            break;
+        left -= take;
+        uintptr_t a = ((uintptr_t)piece[k] + HEAP_HUGE - 1) & ~(uintptr_t)(HEAP_HUGE - 1);
+        uintptr_t e = ((uintptr_t)piece[k] + take) & ~(uintptr_t)(HEAP_HUGE - 1);
+        if (e > a) {
+            madvise((void *)a, e - a, MADV_HUGEPAGE);
+            madvise((void *)a, e - a, MADV_POPULATE_WRITE); /* Linux 5.14 on */
+        }
     }
-    free(p);
+    while (k-- > 0)
+        free(piece[k]);
 #else
     (void)n;
 #endif
