@@ -6,6 +6,7 @@
 
 #include "glint.h"
 #include "cli.h"
+#include "cli/heap.h"
 #include "cli/rerun.h"
 
 static const char usage_head[] =
@@ -53,6 +54,7 @@ int main(int argc, char **argv)
     if ((c.preview || c.preview_bench) && c.frames)
         return cli_usage_error(&glint_program, "--frames and --frame render to files; they do not "
                                                "go with -p or --preview-bench");
+    heap_ready(c.scene_path); /* once, on this thread, before the first load */
     code = c.preview || c.preview_bench ? preview_main(&c) : batch_main(&c);
     free(kept_argv); /* c pointed into it */
     return code;

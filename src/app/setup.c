@@ -1,5 +1,4 @@
 #include "cli.h"
-#include "cli/heap.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -33,7 +32,6 @@ glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
 {
     double t0 = cli_now();
     *scene = NULL;
-    heap_ready(c->scene_path);
     glint_load_options lo = {c->threads > 0 ? c->threads : 0}; /* -t bounds every thread */
     glint_rc rc = c->scene_path ? glint_scene_load_with(c->scene_path, &lo, scene, err)
                                 : glint_scene_builtin_with(&lo, scene, err);

@@ -3,25 +3,34 @@
  * first touch; on a virtual machine that traps each such touch this costs
  * about 10-15 us a page (bench/README.md, "What limits the rows that
  * miss"), which made the page faults of loading a scene of 11,000 objects
- * (some 3,000) cost more than half of its load. So, before a scene is
- * loaded:
+ * (some 3,000) cost more than half of its load. So, once, on the main
+ * thread, before the first scene is loaded:
  *
- * - blocks up to 32 MiB come from the heap, and the heap is not trimmed:
- *   a block freed (a YAML tree, an image writer's buffers, a frame's film
- *   in a sequence) is reused on pages already mapped, where by default
- *   every block from 128 KiB up was a mapping of its own, fresh each time;
- * - room in the heap, in proportion to the scene file's size, is mapped at
- *   once (in huge pages where the kernel offers them): the loader's many
- *   small blocks then land on mapped pages.
+ * - blocks up to 32 MiB come from the heap, and the main heap is trimmed
+ *   only when more than HEAP_TRIM_FROM of it is free at its top: a block
+ *   freed (a YAML tree, an image writer's buffers, a frame's film in a
+ *   sequence) is reused on pages already mapped, where by default every
+ *   block from 128 KiB up was a mapping of its own, fresh each time;
+ * - room in the main heap, twelve times the scene file's size and at most
+ *   256 MiB, is mapped at once (in huge pages where the kernel offers
+ *   them): the loader's many small blocks then land on mapped pages.
  *
- * A process policy, not the library's: it lives with the programs (glint,
- * glint-mpi), and an embedder keeps its own. */
+ * The process then keeps that memory until it ends. A process policy,
+ * not the library's: it lives with the programs (glint, glint-mpi), and
+ * an embedder keeps its own. */
 #ifndef GLINT_CLI_HEAP_H
 #define GLINT_CLI_HEAP_H
 
+#include <stdbool.h>
+
 /* Readies the heap for loading the scene at path (NULL: the built-in
- * scene; "-": standard input, whose size is not known). Advice only:
- * nothing fails. */
+ * scene; "-": standard input, whose size is not known). Call once, from
+ * the main thread (other threads allocate from heaps of their own, which
+ * glibc unmaps when they empty). Advice only: nothing fails. */
 void heap_ready(const char *path);
+
+/* Whether heap_ready does anything in this build: glibc's malloc, and no
+ * AddressSanitizer (whose allocator replaces it). */
+bool heap_policy_applies(void);
 
 #endif
