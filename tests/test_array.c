@@ -2,6 +2,9 @@
  * (films, decoded images) are zero however the allocator last used their
  * memory, whether or not the kernel takes the huge-page advice. */
 #include <criterion/criterion.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,4 +89,35 @@ Test(array, realloc_to_less_keeps_what_fits)
         if (q[i] != (unsigned char)(i * 13 + 1))
             cr_assert_fail("byte %zu lost shrinking", i);
     free(q);
+}
+
+Test(array, calloc_big_on_threads_is_zero_end_to_end)
+{
+    /* split among threads from 8 MiB up, whole huge pages each: sizes on
+     * either side of the split, uneven shares, more threads than pages */
+    const size_t sizes[] = {((size_t)8 << 20) - 1, (size_t)8 << 20, ((size_t)9 << 20) + 12345,
+                            ((size_t)25 << 20) + 17};
+    const int threads[] = {0, 1, 2, 3, 8};
+#if defined(__GLIBC__)
+    /* blocks this big from the heap, kept when freed, so that a freed one
+     * comes back dirty (each would otherwise be a fresh mapping, zero
+     * whatever we do) */
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++)
+        for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
+            size_t n = sizes[k];
+            /* the same block again, dirty: the allocator hands it back */
+            unsigned char *dirty = array_calloc_big_on(n, threads[t]);
+            cr_assert_not_null(dirty);
+            memset(dirty, 0xA5, n);
+            free(dirty);
+            unsigned char *p = array_calloc_big_on(n, threads[t]);
+            cr_assert_not_null(p, "size %zu, %d threads", n, threads[t]);
+            cr_assert(all_zero(p, n), "%zu bytes on %d threads are not all zero", n,
+                      threads[t]);
+            p[0] = 1, p[n - 1] = 2;
+            free(p);
+        }
 }

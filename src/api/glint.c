@@ -244,19 +244,28 @@ glint_rc glint_scene_set_frame(glint_scene *s, int frame, glint_error *err)
 
 /* ---- films and rendering ---------------------------------------------------- */
 
-glint_rc glint_film_alloc(glint_film *film, int width, int height, glint_error *err)
+/* glint_film_alloc, its pages mapped by up to `threads` threads (a render's
+ * count: array_calloc_big_on). */
+static glint_rc film_alloc(glint_film *film, int width, int height, int threads,
+                           glint_error *err)
 {
     if (!film)
-        return api_null(err, __func__, "film");
+        return api_null(err, "glint_film_alloc", "film");
     if (width < 1 || height < 1 || width > SETTINGS_MAX_SIDE || height > SETTINGS_MAX_SIDE ||
         (uint64_t)width * (uint64_t)height > SETTINGS_MAX_PIXELS)
-        return api_bad(err, __func__, "film size %dx%d is out of range (1 to %d per side)", width,
-                       height, SETTINGS_MAX_SIDE);
-    float *rgb = array_calloc_big((size_t)width * (size_t)height * 3 * sizeof *rgb);
+        return api_bad(err, "glint_film_alloc",
+                       "film size %dx%d is out of range (1 to %d per side)", width, height,
+                       SETTINGS_MAX_SIDE);
+    float *rgb = array_calloc_big_on((size_t)width * (size_t)height * 3 * sizeof *rgb, threads);
     if (!rgb)
         return err_nomem(err);
     *film = (glint_film){width, height, rgb, NULL};
     return GLINT_OK;
+}
+
+glint_rc glint_film_alloc(glint_film *film, int width, int height, glint_error *err)
+{
+    return film_alloc(film, width, height, 1, err);
 }
 
 void glint_film_free(glint_film *film) { render_film_free(film); }
@@ -282,7 +291,7 @@ glint_rc glint_render(const glint_scene *sc, const glint_settings *settings,
     glint_rc rc = render_settings(sc, &settings, &own, err);
     if (rc != GLINT_OK)
         return rc;
-    rc = glint_film_alloc(film, settings->width, settings->height, err);
+    rc = film_alloc(film, settings->width, settings->height, settings->threads, err);
     if (rc != GLINT_OK)
         return rc;
     if (settings->alpha) {

@@ -50,7 +50,8 @@ glint_rc resume_init(glint_resume *r, const scene *sc, const glint_settings *s, 
     r->fingerprint = resume_fingerprint(sc, s);
     r->ntiles = render_tile_count(s->width, s->height);
     r->done = calloc((size_t)r->ntiles, 1);
-    r->film.rgb = array_calloc_big((size_t)s->width * (size_t)s->height * 3 * sizeof(float));
+    r->film.rgb = array_calloc_big_on((size_t)s->width * (size_t)s->height * 3 * sizeof(float),
+                                      s->threads);
     if (s->alpha)
         r->film.alpha = calloc((size_t)s->width * (size_t)s->height, sizeof(float));
     if (!r->done || !r->film.rgb || (s->alpha && !r->film.alpha)) {
@@ -306,7 +307,8 @@ static glint_rc read_body(reader *rd, const char *path, glint_resume *r, glint_e
 {
     const glint_settings *s = &r->settings;
     r->done = calloc((size_t)r->ntiles, 1);
-    r->film.rgb = array_calloc_big((size_t)s->width * (size_t)s->height * 3 * sizeof(float));
+    r->film.rgb = array_calloc_big_on((size_t)s->width * (size_t)s->height * 3 * sizeof(float),
+                                      s->threads);
     if (s->alpha)
         r->film.alpha = calloc((size_t)s->width * (size_t)s->height, sizeof(float));
     if (!r->done || !r->film.rgb || (s->alpha && !r->film.alpha))
