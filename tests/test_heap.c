@@ -74,13 +74,19 @@ static long minor_faults(void)
     return u.ru_minflt;
 }
 
+/* That heap_ready for a scene file of `bytes` grows the heap by at least
+ * `mib` MiB and by less than `below` MiB. */
+static void expect_room(off_t bytes, size_t mib, size_t below)
+{
+    size_t room = room_for(bytes);
+    cr_assert(room >= mib << 20, "the heap grew by %zu bytes", room);
+    cr_assert(room < below << 20, "the heap grew by %zu bytes", room);
+}
+
 Test(heap, room_in_proportion_to_the_scene_file)
 {
     SKIP_UNLESS_APPLIES();
-    size_t room = room_for((off_t)1 << 20);
-    /* 12 MiB taken and given back: the heap keeps it */
-    cr_assert(room >= (size_t)12 << 20, "the heap grew by %zu bytes", room);
-    cr_assert(room < (size_t)16 << 20, "the heap grew by %zu bytes", room);
+    expect_room((off_t)1 << 20, 12, 16); /* 12 MiB taken and given back: the heap keeps it */
 }
 
 Test(heap, room_is_mapped)
@@ -114,10 +120,7 @@ Test(heap, room_is_mapped)
 Test(heap, room_at_its_cap_is_kept)
 {
     SKIP_UNLESS_APPLIES();
-    /* 30 MB would ask for 360 MiB: 256 MiB, all of it kept */
-    size_t room = room_for((off_t)30 << 20);
-    cr_assert(room >= (size_t)256 << 20, "the heap grew by %zu bytes", room);
-    cr_assert(room < (size_t)264 << 20, "the heap grew by %zu bytes", room);
+    expect_room((off_t)30 << 20, 256, 264); /* 30 MB would ask for 360 MiB: 256, all kept */
 }
 
 Test(heap, no_room_without_a_file_of_known_size)

@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "api/check.h"
-#include "core/array.h"
 #include "core/error.h"
 #include "io/image_write.h"
 #include "load/load.h"
@@ -244,8 +243,8 @@ glint_rc glint_scene_set_frame(glint_scene *s, int frame, glint_error *err)
 
 /* ---- films and rendering ---------------------------------------------------- */
 
-/* glint_film_alloc, its pages mapped by up to `threads` threads (a render's
- * count: array_calloc_big_on). */
+/* glint_film_alloc, its pages mapped by up to `threads` threads
+ * (render_film_rgb). */
 static glint_rc film_alloc(glint_film *film, int width, int height, int threads,
                            glint_error *err)
 {
@@ -256,7 +255,7 @@ static glint_rc film_alloc(glint_film *film, int width, int height, int threads,
         return api_bad(err, "glint_film_alloc",
                        "film size %dx%d is out of range (1 to %d per side)", width, height,
                        SETTINGS_MAX_SIDE);
-    float *rgb = array_calloc_big_on((size_t)width * (size_t)height * 3 * sizeof *rgb, threads);
+    float *rgb = render_film_rgb(width, height, threads);
     if (!rgb)
         return err_nomem(err);
     *film = (glint_film){width, height, rgb, NULL};

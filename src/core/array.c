@@ -106,8 +106,8 @@ static void *fill(void *arg)
     return NULL;
 }
 
-/* From this size a block is mapped by more than one thread, each taking
- * at least half of it. */
+/* From this size a block may be mapped by more than one thread, each
+ * taking at least two huge pages. */
 #define FILL_SPLIT_FROM ((size_t)8 << 20)
 #define FILL_MAX_THREADS 8
 
@@ -122,9 +122,11 @@ void *array_calloc_big_on(size_t n, int threads)
     if (!p)
         return NULL;
     size_t pages = (n + HUGE_PAGE - 1) / HUGE_PAGE;
-    int k = n < FILL_SPLIT_FROM ? 1 : cpus_threads(threads, FILL_MAX_THREADS);
-    if ((size_t)k > pages / 2)
-        k = (int)(pages / 2) > 0 ? (int)(pages / 2) : 1;
+    int k = 1;
+    if (n >= FILL_SPLIT_FROM) { /* at least 4 pages: two or more a thread */
+        k = cpus_threads(threads, FILL_MAX_THREADS);
+        k = (size_t)k > pages / 2 ? (int)(pages / 2) : k;
+    }
     fill_part part[FILL_MAX_THREADS];
     for (int i = 0; i < k; i++) { /* whole huge pages each, the bytes among them */
         size_t a = pages * (size_t)i / (size_t)k * HUGE_PAGE;

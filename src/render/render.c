@@ -8,6 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/array.h"
 #include "core/error.h"
 #include "io/image.h"
 #include "render/progressive.h"
@@ -580,6 +581,11 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     pthread_mutex_destroy(&j->lock);
     free(j);
     return rc;
+}
+
+float *render_film_rgb(int width, int height, int threads)
+{
+    return array_calloc_big_on((size_t)width * (size_t)height * 3 * sizeof(float), threads);
 }
 
 void render_film_free(glint_film *film)

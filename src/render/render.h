@@ -40,6 +40,11 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
                     const glint_callbacks *callbacks, const render_work *work, glint_film *film,
                     glint_stats *stats, glint_error *err);
 
+/* A film's width x height RGB pixels, zeroed, their pages mapped by up to
+ * `threads` threads (a render's count: array_calloc_big_on); NULL when
+ * memory runs out. Freed by render_film_free. */
+float *render_film_rgb(int width, int height, int threads);
+
 /* Frees a film's pixels and empties it; NULL is fine. */
 void render_film_free(glint_film *film);
 

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/array.h"
 #include "core/error.h"
 #include "io/file.h"
 #include "render/render.h"
@@ -50,8 +49,7 @@ glint_rc resume_init(glint_resume *r, const scene *sc, const glint_settings *s, 
     r->fingerprint = resume_fingerprint(sc, s);
     r->ntiles = render_tile_count(s->width, s->height);
     r->done = calloc((size_t)r->ntiles, 1);
-    r->film.rgb = array_calloc_big_on((size_t)s->width * (size_t)s->height * 3 * sizeof(float),
-                                      s->threads);
+    r->film.rgb = render_film_rgb(s->width, s->height, s->threads);
     if (s->alpha)
         r->film.alpha = calloc((size_t)s->width * (size_t)s->height, sizeof(float));
     if (!r->done || !r->film.rgb || (s->alpha && !r->film.alpha)) {
@@ -307,8 +305,7 @@ static glint_rc read_body(reader *rd, const char *path, glint_resume *r, glint_e
 {
     const glint_settings *s = &r->settings;
     r->done = calloc((size_t)r->ntiles, 1);
-    r->film.rgb = array_calloc_big_on((size_t)s->width * (size_t)s->height * 3 * sizeof(float),
-                                      s->threads);
+    r->film.rgb = render_film_rgb(s->width, s->height, s->threads);
     if (s->alpha)
         r->film.alpha = calloc((size_t)s->width * (size_t)s->height, sizeof(float));
     if (!r->done || !r->film.rgb || (s->alpha && !r->film.alpha))
