@@ -38,7 +38,7 @@ Test(heap, big_blocks_come_from_the_heap)
     SKIP_UNLESS_APPLIES();
     if (!mapped_alone((size_t)1 << 20)) /* GLIBC_TUNABLES may have changed the default */
         cr_skip_test("this process's malloc already serves 1 MiB from its heap");
-    heap_ready(NULL);
+    heap_ready(NULL, 0);
     cr_assert_not(mapped_alone((size_t)1 << 20));
     cr_assert_not(mapped_alone((size_t)31 << 20));
     cr_assert(mapped_alone((size_t)64 << 20), "blocks past 32 MiB keep their own mapping");
@@ -53,15 +53,17 @@ static void scene_file(const char *path, off_t bytes)
     cr_assert_eq(truncate(path, bytes), 0);
 }
 
-/* How much heap_ready for a scene file of `bytes` grows the heap by. */
-static size_t room_for(off_t bytes)
+/* How much heap_ready for a scene file of `bytes`, by a process of
+ * `threads` threads, grows the heap by, once its room is mapped. */
+static size_t room_for(off_t bytes, int threads)
 {
     tmpdir_make("heap");
     char path[256];
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
     scene_file(path, bytes);
     size_t before = mallinfo2().arena;
-    heap_ready(path);
+    heap_ready(path, threads);
+    heap_settle();
     size_t room = mallinfo2().arena - before;
     tmpdir_remove();
     return room;
@@ -78,7 +80,7 @@ static long minor_faults(void)
  * `mib` MiB and by less than `below` MiB. */
 static void expect_room(off_t bytes, size_t mib, size_t below)
 {
-    size_t room = room_for(bytes);
+    size_t room = room_for(bytes, 0);
     cr_assert(room >= mib << 20, "the heap grew by %zu bytes", room);
     cr_assert(room < below << 20, "the heap grew by %zu bytes", room);
 }
@@ -89,16 +91,17 @@ Test(heap, room_in_proportion_to_the_scene_file)
     expect_room((off_t)1 << 20, 12, 16); /* 12 MiB taken and given back: the heap keeps it */
 }
 
-Test(heap, room_is_mapped)
+/* That the room for a scene file of 4 MiB, readied by a process of
+ * `threads` threads, is mapped once heap_settle returns. */
+static void expect_room_mapped(int threads)
 {
-    SKIP_UNLESS_APPLIES();
     void *probe = mmap(NULL, 4096, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     cr_assert_neq(probe, MAP_FAILED);
     bool can_map = madvise(probe, 4096, MADV_POPULATE_WRITE) == 0;
     munmap(probe, 4096);
     if (!can_map)
         cr_skip_test("the kernel cannot map memory ahead (Linux 5.14 on)");
-    cr_assert_geq(room_for((off_t)4 << 20), (size_t)48 << 20);
+    cr_assert_geq(room_for((off_t)4 << 20, threads), (size_t)48 << 20);
     /* 32 MiB of small blocks (48 bytes, 64 with malloc's header), as a
      * loader takes them: 8,192 pages, but already mapped, so only the odd
      * fault of malloc's own */
@@ -117,6 +120,18 @@ Test(heap, room_is_mapped)
     cr_assert_lt(faults, 200, "%ld page faults carving the room", faults);
 }
 
+Test(heap, room_is_mapped_on_a_thread_of_its_own)
+{
+    SKIP_UNLESS_APPLIES();
+    expect_room_mapped(0);
+}
+
+Test(heap, room_is_mapped_in_place_on_one_thread)
+{
+    SKIP_UNLESS_APPLIES();
+    expect_room_mapped(1);
+}
+
 Test(heap, room_at_its_cap_is_kept)
 {
     SKIP_UNLESS_APPLIES();
@@ -127,9 +142,10 @@ Test(heap, no_room_without_a_file_of_known_size)
 {
     SKIP_UNLESS_APPLIES();
     size_t before = mallinfo2().arena;
-    heap_ready("-");
-    heap_ready("/nonexistent/scene.yaml");
-    heap_ready("/tmp"); /* a folder */
-    heap_ready(NULL);
+    heap_ready("-", 0);
+    heap_ready("/nonexistent/scene.yaml", 0);
+    heap_ready("/tmp", 0); /* a folder */
+    heap_ready(NULL, 0);
+    heap_settle();
     cr_assert_lt(mallinfo2().arena - before, (size_t)1 << 20);
 }

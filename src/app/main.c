@@ -54,7 +54,7 @@ int main(int argc, char **argv)
     if ((c.preview || c.preview_bench) && c.frames)
         return cli_usage_error(&glint_program, "--frames and --frame render to files; they do not "
                                                "go with -p or --preview-bench");
-    heap_ready(c.scene_path); /* once, on this thread, before the first load */
+    heap_ready(c.scene_path, c.threads); /* once, on this thread, before the first load */
     code = c.preview || c.preview_bench ? preview_main(&c) : batch_main(&c);
     free(kept_argv); /* c pointed into it */
     return code;

@@ -3,6 +3,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli/heap.h"
+
 void cli_warn(const glint_scene *scene, const char *path)
 {
     /* one line for each thing the scene's files left to say (dropped
@@ -35,6 +37,7 @@ glint_rc cli_load(const struct cli *c, glint_scene **scene, glint_settings *s,
     glint_load_options lo = {c->threads > 0 ? c->threads : 0}; /* -t bounds every thread */
     glint_rc rc = c->scene_path ? glint_scene_load_with(c->scene_path, &lo, scene, err)
                                 : glint_scene_builtin_with(&lo, scene, err);
+    heap_settle(); /* the heap's room (cli/heap.h), mapped meanwhile */
     if (rc == GLINT_OK)
         rc = glint_scene_settings(*scene, s, err);
     if (rc != GLINT_OK) {

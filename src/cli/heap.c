@@ -1,5 +1,7 @@
 #include "heap.h"
 
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -49,20 +51,44 @@ bool heap_policy_applies(void)
 }
 
 #if defined(HEAP_POLICY)
-/* Maps the pages of n bytes taken from the heap and gives them back: the
- * heap keeps them. Taken in pieces below HEAP_MMAP_FROM, which would
- * otherwise each be a mapping of their own and gone again when freed;
- * side by side at the top of the heap, they join again into one free
- * block. Each piece is mapped from its first whole 4 KiB page to its
- * last: the kernel puts whole huge pages where they fit, and small ones
- * at the ends. */
-static void map_room(size_t n)
+enum { ROOM_PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 1 };
+
+/* The room's pages still to be mapped, piece by piece, and the thread
+ * mapping them while the scene loads. */
+static struct {
+    char *at[ROOM_PIECES];
+    size_t bytes[ROOM_PIECES];
+    int n;
+    pthread_t mapper;
+    atomic_bool mapping; /* the mapper runs and nobody has joined it yet */
+} room;
+
+static void *map_pieces(void *unused)
 {
-    enum { PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 1 };
+    (void)unused;
+    for (int k = 0; k < room.n; k++)
+        madvise(room.at[k], room.bytes[k], MADV_POPULATE_WRITE); /* Linux 5.14 on */
+    return NULL;
+}
+
+/* Takes n bytes from the heap in pieces and gives them back: the heap
+ * keeps them. Taken in pieces below HEAP_MMAP_FROM, which would otherwise
+ * each be a mapping of their own and gone again when freed; side by side
+ * at the top of the heap, they join again into one free block. Each piece
+ * is marked for huge pages from its first whole 4 KiB page to its last
+ * (the kernel puts whole huge pages where they fit, small ones at the
+ * ends), and its pages are then mapped: on a thread of their own unless
+ * the process may use only one, so that the loader, which carves the room
+ * from its low end up, meanwhile parses (the mapper, also working
+ * upwards, keeps ahead of it: a page the loader reaches first it maps
+ * itself, once). */
+static void map_room(size_t n, int threads)
+{
     const uintptr_t page = 4096;
-    char *piece[PIECES];
+    char *piece[ROOM_PIECES];
     int k = 0;
-    for (size_t left = n; left > 0 && k < PIECES; k++) {
+    room.n = 0;
+    for (size_t left = n; left > 0 && k < ROOM_PIECES; k++) {
         size_t take = left < HEAP_PIECE ? left : HEAP_PIECE;
         if (!(piece[k] = malloc(take)))
             break;
@@ -71,28 +97,42 @@ static void map_room(size_t n)
         uintptr_t e = ((uintptr_t)piece[k] + take) & ~(page - 1);
         if (e > a) {
             madvise((void *)a, e - a, MADV_HUGEPAGE);
-            madvise((void *)a, e - a, MADV_POPULATE_WRITE); /* Linux 5.14 on */
+            room.at[room.n] = (char *)a;
+            room.bytes[room.n++] = e - a;
         }
     }
     while (k-- > 0)
         free(piece[k]);
+    if (threads != 1 && pthread_create(&room.mapper, NULL, map_pieces, NULL) == 0)
+        atomic_store(&room.mapping, true);
+    else
+        map_pieces(NULL);
 }
 #endif
 
-void heap_ready(const char *path)
+void heap_settle(void)
 {
 #if defined(HEAP_POLICY)
+    if (atomic_exchange(&room.mapping, false))
+        pthread_join(room.mapper, NULL);
+#endif
+}
+
+void heap_ready(const char *path, int threads)
+{
+#if defined(HEAP_POLICY)
+    heap_settle(); /* a room still being mapped stays as it is */
     mallopt(M_MMAP_THRESHOLD, (int)HEAP_MMAP_FROM);
     mallopt(M_TRIM_THRESHOLD, (int)HEAP_TRIM_FROM);
     struct stat st;
     if (!path || strcmp(path, "-") == 0 || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
         return;
     size_t bytes = (size_t)st.st_size;
-    size_t room = bytes > HEAP_ROOM_MAX / HEAP_ROOM_PER_BYTE ? HEAP_ROOM_MAX
-                                                             : bytes * HEAP_ROOM_PER_BYTE;
-    if (room >= ((size_t)4 << 20))
-        map_room(room);
+    size_t room_bytes = bytes > HEAP_ROOM_MAX / HEAP_ROOM_PER_BYTE ? HEAP_ROOM_MAX
+                                                                   : bytes * HEAP_ROOM_PER_BYTE;
+    if (room_bytes >= ((size_t)4 << 20))
+        map_room(room_bytes, threads);
 #else
-    (void)path;
+    (void)path, (void)threads;
 #endif
 }

@@ -12,8 +12,9 @@
  *   sequence) is reused on pages already mapped, where by default every
  *   block from 128 KiB up was a mapping of its own, fresh each time;
  * - room in the main heap, twelve times the scene file's size and at most
- *   256 MiB, is mapped at once (in huge pages where the kernel offers
- *   them): the loader's many small blocks then land on mapped pages.
+ *   256 MiB, is mapped (in huge pages where the kernel offers them) on a
+ *   thread of its own while the scene loads: the loader's many small
+ *   blocks then land on mapped pages.
  *
  * The process then keeps that memory until it ends. A process policy,
  * not the library's: it lives with the programs (glint, glint-mpi), and
@@ -24,10 +25,17 @@
 #include <stdbool.h>
 
 /* Readies the heap for loading the scene at path (NULL: the built-in
- * scene; "-": standard input, whose size is not known). Call once, from
- * the main thread (other threads allocate from heaps of their own, which
- * glibc unmaps when they empty). Advice only: nothing fails. */
-void heap_ready(const char *path);
+ * scene; "-": standard input, whose size is not known), by a process that
+ * may run `threads` threads (0: one a CPU; with 1 the room is mapped
+ * before this returns). Call once, from the main thread (other threads
+ * allocate from heaps of their own, which glibc unmaps when they empty).
+ * Advice only: nothing fails. */
+void heap_ready(const char *path, int threads);
+
+/* Waits until the room heap_ready maps is mapped: call it once the scene
+ * is loaded, so that the render's threads have the CPUs to themselves.
+ * From any thread, any number of times. */
+void heap_settle(void);
 
 /* Whether heap_ready does anything in this build: glibc's malloc, and no
  * AddressSanitizer (whose allocator replaces it). */

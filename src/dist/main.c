@@ -70,9 +70,10 @@ static glint_rc prepare(dist_job *job, glint_error *err)
     if (rc == GLINT_OK && job->rank == 0)
         rc = glint_output_check(o->frames ? path : o->output, &o->write, err);
     if (rc == GLINT_OK) {
-        heap_ready(o->scene_path);
+        heap_ready(o->scene_path, o->threads);
         rc = o->scene_path ? glint_scene_load_with(o->scene_path, &lo, &job->scene, err)
                            : glint_scene_builtin_with(&lo, &job->scene, err);
+        heap_settle();
     }
     if (rc == GLINT_OK)
         rc = dist_settings(job->scene, o, &job->settings, err);
