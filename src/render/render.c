@@ -16,6 +16,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "trace/whitted.h"
+#include "render/bands.h"
 #include "render/sampler.h"
 
 typedef struct job {
@@ -31,7 +32,7 @@ typedef struct job {
     bool packets; /* grid and jitter: camera rays eight at a time (scene_packets_pay) */
     int tx0, ty0, tiles_x; /* a region's first tile and its width in tiles */
     int items;             /* tiles to render */
-    atomic_int next_item;
+    bands *bands;          /* which thread renders which (render/bands.h) */
     atomic_int cancelled;
     atomic_int nomem; /* a thread could not get its scratch memory */
     double start;
@@ -463,9 +464,16 @@ static void render_tile(job *j, worker_state *w, int item, glint_rect r)
                                                          : pixels * (uint64_t)sampler_count(&j->smp));
 }
 
+/* A render thread's job and its own band of tiles. */
+typedef struct worker_arg {
+    job *j;
+    int band;
+} worker_arg;
+
 static void *worker(void *arg)
 {
-    job *j = arg;
+    const worker_arg *a = arg;
+    job *j = a->j;
     worker_state w = {{.scene = j->scene, .decode = j->decode,
                        .max_depth = j->settings->max_depth,
                        .bailout = (float)j->settings->adc_bailout, .weight = 1.0f},
@@ -487,8 +495,8 @@ static void *worker(void *arg)
             atomic_store(&j->cancelled, 1);
             break;
         }
-        int i = atomic_fetch_add(&j->next_item, 1);
-        if (i >= j->items)
+        int i = bands_take(j->bands, a->band);
+        if (i < 0)
             break;
         render_tile(j, &w, i, item_rect(j, i));
     }
@@ -526,16 +534,34 @@ static void job_run(job *j)
     int nthreads = j->settings->threads > 0 ? j->settings->threads : settings_default_threads();
     if (nthreads > j->items)
         nthreads = j->items > 0 ? j->items : 1;
-    pthread_t *th = calloc((size_t)nthreads, sizeof *th);
+    /* thread i renders band i; one that cannot be started leaves its
+     * band to the others */
+    struct runner {
+        pthread_t th;
+        worker_arg arg;
+    } *run = calloc((size_t)nthreads, sizeof *run);
+    if (!run)
+        nthreads = 1;
+    j->bands = bands_new(j->items, nthreads);
+    if (!j->bands) {
+        atomic_store(&j->nomem, 1);
+        atomic_store(&j->cancelled, 1);
+        free(run);
+        return;
+    }
     int started = 0;
-    if (th)
-        for (; started < nthreads - 1; started++)
-            if (pthread_create(&th[started], NULL, worker, j) != 0)
+    if (run)
+        for (; started < nthreads - 1; started++) {
+            run[started].arg = (worker_arg){j, started + 1};
+            if (pthread_create(&run[started].th, NULL, worker, &run[started].arg) != 0)
                 break;
-    worker(j);
+        }
+    worker(&(worker_arg){j, 0});
     for (int i = 0; i < started; i++)
-        pthread_join(th[i], NULL);
-    free(th);
+        pthread_join(run[i].th, NULL);
+    free(run);
+    bands_free(j->bands);
+    j->bands = NULL;
 }
 
 glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings,
@@ -563,7 +589,6 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     j->lattice = 2 << settings->adaptive_depth;
     j->packets = !sc->camera_moves && scene_packets_pay(sc);
     job_plan(j);
-    atomic_init(&j->next_item, 0);
     atomic_init(&j->cancelled, 0);
     atomic_init(&j->nomem, 0);
     pthread_mutex_init(&j->lock, NULL);
