@@ -52,9 +52,10 @@ void *array_calloc_big(size_t n);
 
 /* array_calloc_big with the pages of a block from 8 MiB up mapped and
  * cleared by up to `threads` threads at once (0: one per CPU, as
- * cpus_threads counts them), each taking whole huge pages: on a virtual
- * machine whose host gives memory back, mapping a 1080p film after
- * another program ended took 40-55 ms on one thread and 25-31 ms on two. */
+ * cpus_threads counts them), each taking the next huge page as it
+ * finishes one: on a virtual machine whose host gives memory back,
+ * mapping a 1080p film after another program ended took 40-55 ms on one
+ * thread and 25-31 ms on two. */
 void *array_calloc_big_on(size_t n, int threads);
 
 #endif
