@@ -8,7 +8,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "core/array.h"
 #include "core/error.h"
 #include "io/image.h"
 #include "render/progressive.h"
@@ -54,19 +53,6 @@ static double now_seconds(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-int render_tile_count(int width, int height)
-{
-    return ((width + RENDER_TILE - 1) / RENDER_TILE) * ((height + RENDER_TILE - 1) / RENDER_TILE);
-}
-
-glint_rect render_tile_rect(int width, int height, int tile)
-{
-    int tiles_x = (width + RENDER_TILE - 1) / RENDER_TILE;
-    int x0 = (tile % tiles_x) * RENDER_TILE, y0 = (tile / tiles_x) * RENDER_TILE;
-    return (glint_rect){x0, y0, x0 + RENDER_TILE < width ? x0 + RENDER_TILE : width,
-                        y0 + RENDER_TILE < height ? y0 + RENDER_TILE : height};
 }
 
 /* The pixels of work item i. */
@@ -606,20 +592,4 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     pthread_mutex_destroy(&j->lock);
     free(j);
     return rc;
-}
-
-float *render_film_rgb(int width, int height, int threads)
-{
-    return array_calloc_big_on((size_t)width * (size_t)height * 3 * sizeof(float), threads);
-}
-
-void render_film_free(glint_film *film)
-{
-    if (!film)
-        return;
-    free(film->rgb);
-    free(film->alpha);
-    film->rgb = NULL;
-    film->alpha = NULL;
-    film->width = film->height = 0;
 }

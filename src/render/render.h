@@ -1,9 +1,10 @@
 /* render: turns a built scene into film pixels. The work is a set of tiles
- * of the image's tile grid (RENDER_TILE pixels square, numbered row by row),
- * clipped to a region or listed one by one, handed out from a shared counter
- * to a pool of threads; each pixel depends only on its own position, so the
- * film is bit-identical for any thread count, tile order or split of the
- * image into regions. Front ends watch and stop it through glint_callbacks. */
+ * of the image's tile grid (RENDER_TILE pixels square, numbered row by row;
+ * film.c), clipped to a region or listed one by one, shared among a pool of
+ * threads in bands of consecutive tiles (bands.h); each pixel depends only
+ * on its own position, so the film is bit-identical for any thread count,
+ * tile order or split of the image into regions. Front ends watch and stop
+ * it through glint_callbacks. */
 #ifndef GLINT_RENDER_RENDER_H
 #define GLINT_RENDER_RENDER_H
 
