@@ -160,3 +160,43 @@ Test(cpus, a_load_runs_on_the_threads_it_is_given)
     cr_expect_eq(glint_scene_set_threads(s, 3, &err), GLINT_OK);
     glint_scene_free(s);
 }
+
+/* cpus_share: fn runs n times at once, once on the calling thread; each
+ * waits until all n have started, which only threads running together can
+ * do (n past the handles kept on the stack too). */
+typedef struct share_count {
+    atomic_int started, on_caller, gave_up;
+    int n;
+    pthread_t caller;
+} share_count;
+
+static void *share_fn(void *arg)
+{
+    share_count *c = arg;
+    atomic_fetch_add(&c->started, 1);
+    if (pthread_equal(pthread_self(), c->caller))
+        atomic_fetch_add(&c->on_caller, 1);
+    for (long spins = 0; atomic_load(&c->started) < c->n; spins++) {
+        if (spins > 20000000L) { /* seconds: some never started */
+            atomic_fetch_add(&c->gave_up, 1);
+            break;
+        }
+        sched_yield();
+    }
+    return NULL;
+}
+
+Test(cpus, share_runs_the_work_on_that_many_threads_at_once)
+{
+    static const int ns[] = {1, 2, 5, 40};
+    for (size_t i = 0; i < sizeof ns / sizeof *ns; i++) {
+        share_count c = {.n = ns[i], .caller = pthread_self()};
+        cpus_share(ns[i], share_fn, &c);
+        cr_assert_eq(atomic_load(&c.started), ns[i]);
+        cr_assert_eq(atomic_load(&c.on_caller), 1);
+        cr_assert_eq(atomic_load(&c.gave_up), 0);
+    }
+    share_count c = {.n = 1, .caller = pthread_self()};
+    cpus_share(0, share_fn, &c); /* fewer than one: once, here */
+    cr_assert_eq(atomic_load(&c.started), 1);
+}

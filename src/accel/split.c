@@ -1,11 +1,12 @@
 #include "split.h"
 
 #include <math.h>
-#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bvh.h"
+#include "core/cpus.h"
 
 /* The order median_split sorts by: the centre on axis (the float's bits
  * made to sort as integers, so NaN has a place too), then the index, which
@@ -188,17 +189,23 @@ static void bin_prims(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale, bin
 #define BIN_PAR_MIN 65536
 #define BIN_PAR_MAX 8
 
+/* The parts of [lo, lo + n), t of them, binned by whichever thread takes
+ * each next. */
 typedef struct bin_job {
     const split_ctx *b;
-    int lo, hi;
+    int lo, t;
+    long n;
     v4 cmin, scale;
-    bins *out;
+    bins *part[BIN_PAR_MAX];
+    atomic_int next;
 } bin_job;
 
 static void *bin_run(void *arg)
 {
     bin_job *j = arg;
-    bin_prims(j->b, j->lo, j->hi, j->cmin, j->scale, j->out);
+    for (int i; (i = atomic_fetch_add(&j->next, 1)) < j->t;)
+        bin_prims(j->b, j->lo + (int)(j->n * i / j->t), j->lo + (int)(j->n * (i + 1) / j->t),
+                  j->cmin, j->scale, j->part[i]);
     return NULL;
 }
 
@@ -206,23 +213,13 @@ static void bin_prims_par(const split_ctx *b, int lo, int hi, v4 cmin, v4 scale,
 {
     int t = b->threads < BIN_PAR_MAX ? b->threads : BIN_PAR_MAX;
     bins part[BIN_PAR_MAX];
-    bin_job job[BIN_PAR_MAX];
-    pthread_t th[BIN_PAR_MAX];
-    bool started[BIN_PAR_MAX] = {false};
-    long n = hi - lo;
+    bin_job j = {b, lo, t, hi - lo, cmin, scale, {NULL}, 0};
     for (int i = 0; i < t; i++) {
         part[i].nbins = out->nbins;
-        job[i] = (bin_job){b, lo + (int)(n * i / t), lo + (int)(n * (i + 1) / t), cmin, scale,
-                           i == 0 ? out : &part[i]};
-        if (i > 0)
-            started[i] = pthread_create(&th[i], NULL, bin_run, &job[i]) == 0;
+        j.part[i] = i == 0 ? out : &part[i];
     }
-    bin_run(&job[0]);
-    for (int i = 1; i < t; i++) {
-        if (started[i])
-            pthread_join(th[i], NULL);
-        else
-            bin_run(&job[i]);
+    cpus_share(t, bin_run, &j);
+    for (int i = 1; i < t; i++) { /* merged in order: the same floats however they ran */
         for (int a = 0; a < 3; a++)
             for (int k = 0; k < out->nbins; k++) {
                 box4 *o = &out->box[a][k], p = part[i].box[a][k];

@@ -1,7 +1,6 @@
 #include "wide.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -273,18 +272,10 @@ static bool wkids_par(wbuild *w, const wkid *kids, int nk, int threads, int32_t 
             pool.order[j] = pool.order[j - 1];
         pool.order[j] = of[i];
     }
-    pthread_t th[8];
-    bool started[8] = {false};
     int par = w->s.threads;
     w->s.threads = 1; /* the threads are busy with the kids */
-    int extra = ok ? (threads - 1 < pool.ntasks - 1 ? threads - 1 : pool.ntasks - 1) : 0;
-    for (int i = 0; i < extra; i++)
-        started[i] = pthread_create(&th[i], NULL, wpool_run, &pool) == 0;
     if (ok)
-        wpool_run(&pool);
-    for (int i = 0; i < extra; i++)
-        if (started[i])
-            pthread_join(th[i], NULL);
+        cpus_share(threads < pool.ntasks ? threads : pool.ntasks, wpool_run, &pool);
     w->s.threads = par;
     for (int i = 0; i < nk; i++)
         if (of[i] >= 0 && ok)

@@ -2,7 +2,6 @@
 #include "cpus.h"
 
 #include <limits.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -129,14 +128,7 @@ void *array_calloc_big_on(size_t n, int threads)
     fill_job f = {p, n, (n + HUGE_PAGE - 1) / HUGE_PAGE, 0};
     int k = n >= FILL_SPLIT_FROM ? cpus_threads(threads, FILL_MAX_THREADS) : 1;
     k = (size_t)k > f.pages ? (int)f.pages : k;
-    pthread_t th[FILL_MAX_THREADS];
-    int started = 0;
-    for (; started < k - 1; started++) /* one that cannot start leaves its pages to the others */
-        if (pthread_create(&th[started], NULL, fill, &f) != 0)
-            break;
-    fill(&f);
-    for (int i = 0; i < started; i++)
-        pthread_join(th[i], NULL);
+    cpus_share(k, fill, &f);
     return p;
 }
 

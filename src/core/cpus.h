@@ -12,4 +12,10 @@ int cpus_available(void);
 /* threads when it is positive, else cpus_available(); at most max. */
 int cpus_threads(int threads, int max);
 
+/* Runs fn(arg) on n threads at once (at least one), the calling thread
+ * among them, and returns when every one has returned: for work that the
+ * threads take from a shared queue, so that a thread that cannot be
+ * started leaves its share to the others. */
+void cpus_share(int n, void *(*fn)(void *), void *arg);
+
 #endif

@@ -25,7 +25,6 @@
  * nothing before it (a zlib full flush): a few hundred bytes more on a
  * 1080p image. Should a walk not find what it should, or igzip fail, the
  * rows, already filtered, are compressed again as one stream. */
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -369,14 +368,7 @@ static void run_strips(png_job *j, int threads)
     threads = cpus_threads(threads, PNG_MAX_THREADS);
     if (threads > j->nstrips)
         threads = j->nstrips;
-    pthread_t th[PNG_MAX_THREADS];
-    int started = 0;
-    for (; started < threads - 1; started++)
-        if (pthread_create(&th[started], NULL, strip_worker, j) != 0)
-            break;
-    strip_worker(j);
-    for (int i = 0; i < started; i++)
-        pthread_join(th[i], NULL);
+    cpus_share(threads, strip_worker, j);
 }
 
 /* ---- the file ------------------------------------------------------------------ */

@@ -3,7 +3,6 @@
  * inline in a material. */
 #include "loader.h"
 
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -106,14 +105,7 @@ static void decode_all(image_job *jobs, int n, int threads)
     atomic_init(&d.next, 0);
     threads = cpus_threads(threads, DECODE_THREADS);
     threads = threads < n ? threads : n;
-    pthread_t th[DECODE_THREADS];
-    int started = 0;
-    for (; started < threads - 1; started++)
-        if (pthread_create(&th[started], NULL, decode_worker, &d) != 0)
-            break;
-    decode_worker(&d);
-    for (int i = 0; i < started; i++)
-        pthread_join(th[i], NULL);
+    cpus_share(threads, decode_worker, &d);
 }
 
 glint_rc load_decode_images(loader *L, glint_rc rc)

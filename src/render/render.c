@@ -8,6 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/cpus.h"
 #include "core/error.h"
 #include "io/image.h"
 #include "render/progressive.h"
@@ -32,6 +33,7 @@ typedef struct job {
     int tx0, ty0, tiles_x; /* a region's first tile and its width in tiles */
     int items;             /* tiles to render */
     bands *bands;          /* which thread renders which (render/bands.h) */
+    atomic_int next_band;  /* the band of the next thread to start */
     atomic_int cancelled;
     atomic_int nomem; /* a thread could not get its scratch memory */
     double start;
@@ -450,16 +452,10 @@ static void render_tile(job *j, worker_state *w, int item, glint_rect r)
                                                          : pixels * (uint64_t)sampler_count(&j->smp));
 }
 
-/* A render thread's job and its own band of tiles. */
-typedef struct worker_arg {
-    job *j;
-    int band;
-} worker_arg;
-
 static void *worker(void *arg)
 {
-    const worker_arg *a = arg;
-    job *j = a->j;
+    job *j = arg;
+    int band = atomic_fetch_add(&j->next_band, 1); /* each its own */
     worker_state w = {{.scene = j->scene, .decode = j->decode,
                        .max_depth = j->settings->max_depth,
                        .bailout = (float)j->settings->adc_bailout, .weight = 1.0f},
@@ -481,7 +477,7 @@ static void *worker(void *arg)
             atomic_store(&j->cancelled, 1);
             break;
         }
-        int i = bands_take(j->bands, a->band);
+        int i = bands_take(j->bands, band);
         if (i < 0)
             break;
         render_tile(j, &w, i, item_rect(j, i));
@@ -520,32 +516,13 @@ static void job_run(job *j)
     int nthreads = j->settings->threads > 0 ? j->settings->threads : settings_default_threads();
     if (nthreads > j->items)
         nthreads = j->items > 0 ? j->items : 1;
-    /* thread i renders band i; one that cannot be started leaves its
-     * band to the others */
-    struct runner {
-        pthread_t th;
-        worker_arg arg;
-    } *run = calloc((size_t)nthreads, sizeof *run);
-    if (!run)
-        nthreads = 1;
     j->bands = bands_new(j->items, nthreads);
     if (!j->bands) {
         atomic_store(&j->nomem, 1);
         atomic_store(&j->cancelled, 1);
-        free(run);
         return;
     }
-    int started = 0;
-    if (run)
-        for (; started < nthreads - 1; started++) {
-            run[started].arg = (worker_arg){j, started + 1};
-            if (pthread_create(&run[started].th, NULL, worker, &run[started].arg) != 0)
-                break;
-        }
-    worker(&(worker_arg){j, 0});
-    for (int i = 0; i < started; i++)
-        pthread_join(run[i].th, NULL);
-    free(run);
+    cpus_share(nthreads, worker, j); /* a band whose thread did not start goes to the others */
     bands_free(j->bands);
     j->bands = NULL;
 }
@@ -577,6 +554,7 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
     job_plan(j);
     atomic_init(&j->cancelled, 0);
     atomic_init(&j->nomem, 0);
+    atomic_init(&j->next_band, 0);
     pthread_mutex_init(&j->lock, NULL);
     job_run(j);
     if (atomic_load(&j->nomem))
