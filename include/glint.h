@@ -674,10 +674,11 @@ GLINT_API glint_rc glint_render_region(const glint_scene *scene, const glint_set
 
 /* The image's tile grid: square tiles (16 pixels a side; the last row and
  * column may be cut short), numbered row by row from the top left. A whole
- * render on one thread renders them in this order; on several, each thread
- * renders its own run of consecutive tiles in this order (the image cut
- * into as many bands of rows), and one whose run is done takes the last
- * tile left of the longest other run. */
+ * render on one thread renders them in this order; on several, the tiles
+ * (of the image, the region or the list, in that order) are cut into one
+ * run of consecutive tiles a thread, each thread renders its own run in
+ * order, and one whose run is done takes the last tile left of the
+ * longest other run. */
 GLINT_API glint_rc glint_tile_count(const glint_settings *settings, int *count,
                                     glint_error *err);
 GLINT_API glint_rc glint_tile_rect(const glint_settings *settings, int tile, glint_rect *out,

@@ -132,6 +132,33 @@ Test(heap, room_is_mapped_in_place_on_one_thread)
     expect_room_mapped(1);
 }
 
+/* Blocks taken and written while the room is being mapped on the mapper's
+ * thread keep what was written in them. */
+Test(heap, blocks_written_while_the_room_is_mapped_keep_their_bytes)
+{
+    SKIP_UNLESS_APPLIES();
+    tmpdir_make("heap");
+    char path[256];
+    snprintf(path, sizeof path, "%s/scene.yaml", dir);
+    scene_file(path, (off_t)8 << 20); /* 96 MiB of room */
+    enum { COUNT = 1 << 20 };
+    static unsigned char *blocks[COUNT];
+    memset(blocks, 0, sizeof blocks);
+    heap_ready(path, 0);
+    for (int i = 0; i < COUNT; i++) {
+        blocks[i] = malloc(48);
+        cr_assert_not_null(blocks[i]);
+        memset(blocks[i], i & 0xff, 48);
+    }
+    heap_settle();
+    for (int i = 0; i < COUNT; i++) {
+        for (int b = 0; b < 48; b++)
+            cr_assert_eq(blocks[i][b], i & 0xff, "block %d byte %d", i, b);
+        free(blocks[i]);
+    }
+    tmpdir_remove();
+}
+
 Test(heap, room_at_its_cap_is_kept)
 {
     SKIP_UNLESS_APPLIES();

@@ -1,7 +1,6 @@
 #include "heap.h"
 
 #include <pthread.h>
-#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -13,6 +12,8 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+
+#include "glint.h"
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -60,8 +61,9 @@ static struct {
     size_t bytes[ROOM_PIECES];
     int n;
     pthread_t mapper;
-    atomic_bool mapping; /* the mapper runs and nobody has joined it yet */
-} room;
+    bool mapping; /* the mapper runs and nobody has joined it yet */
+    pthread_mutex_t lock; /* over mapper and mapping */
+} room = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
 static void *map_pieces(void *unused)
 {
@@ -77,11 +79,12 @@ static void *map_pieces(void *unused)
  * at the top of the heap, they join again into one free block. Each piece
  * is marked for huge pages from its first whole 4 KiB page to its last
  * (the kernel puts whole huge pages where they fit, small ones at the
- * ends), and its pages are then mapped: on a thread of their own unless
- * the process may use only one, so that the loader, which carves the room
- * from its low end up, meanwhile parses (the mapper, also working
- * upwards, keeps ahead of it: a page the loader reaches first it maps
- * itself, once). */
+ * ends), and its pages are then mapped: on a thread of their own beside
+ * the load (one thread more than -t asks for, for that long) unless the
+ * process may use only one CPU (-t 1, or one in its affinity mask), so
+ * that the loader, which carves the room from its low end up, meanwhile
+ * parses (the mapper, also working upwards, keeps ahead of it: a page the
+ * loader reaches first it maps itself, once). */
 static void map_room(size_t n, int threads)
 {
     const uintptr_t page = 4096;
@@ -103,9 +106,12 @@ static void map_room(size_t n, int threads)
     }
     while (k-- > 0)
         free(piece[k]);
-    if (threads != 1 && pthread_create(&room.mapper, NULL, map_pieces, NULL) == 0)
-        atomic_store(&room.mapping, true);
-    else
+    int cpus = threads > 0 ? threads : glint_default_threads();
+    pthread_mutex_lock(&room.lock);
+    bool started = cpus > 1 && pthread_create(&room.mapper, NULL, map_pieces, NULL) == 0;
+    room.mapping = started;
+    pthread_mutex_unlock(&room.lock);
+    if (!started)
         map_pieces(NULL);
 }
 #endif
@@ -113,8 +119,11 @@ static void map_room(size_t n, int threads)
 void heap_settle(void)
 {
 #if defined(HEAP_POLICY)
-    if (atomic_exchange(&room.mapping, false))
+    pthread_mutex_lock(&room.lock); /* a second caller waits for the first's join */
+    if (room.mapping)
         pthread_join(room.mapper, NULL);
+    room.mapping = false;
+    pthread_mutex_unlock(&room.lock);
 #endif
 }
 

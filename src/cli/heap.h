@@ -26,15 +26,15 @@
 
 /* Readies the heap for loading the scene at path (NULL: the built-in
  * scene; "-": standard input, whose size is not known), by a process that
- * may run `threads` threads (0: one a CPU; with 1 the room is mapped
- * before this returns). Call once, from the main thread (other threads
- * allocate from heaps of their own, which glibc unmaps when they empty).
- * Advice only: nothing fails. */
+ * may run `threads` threads (0: one a CPU; where that is one the room is
+ * mapped before this returns, else by one more thread meanwhile). Call
+ * once, from the main thread (other threads allocate from heaps of their
+ * own, which glibc unmaps when they empty). Advice only: nothing fails. */
 void heap_ready(const char *path, int threads);
 
 /* Waits until the room heap_ready maps is mapped: call it once the scene
  * is loaded, so that the render's threads have the CPUs to themselves.
- * From any thread, any number of times. */
+ * From any thread, any number of times: each returns once it is mapped. */
 void heap_settle(void);
 
 /* Whether heap_ready does anything in this build: glibc's malloc, and no

@@ -6,10 +6,11 @@
  * every item is rendered once and no thread waits while any is left.
  *
  * Two threads rendering neighbouring tiles of the same rows at the same
- * time cost each other (tests of the built-in scene at 1280x720: 17-20%
- * more CPU time than one thread for the same pixels, against 2-5% for two
- * threads rendering halves of the image apart; bench/README.md), and a
- * tile's pixels do not depend on the thread or the order. */
+ * time cost each other: the built-in scene at 1280x720 took 15-21% more
+ * CPU time on two threads taking tiles in turn than on one, against 1-6%
+ * for two threads rendering halves of the image apart, and 0-5% in bands
+ * (bench/README.md, third round of 2026-12-06). A tile's pixels do not
+ * depend on the thread or the order. */
 #ifndef GLINT_RENDER_BANDS_H
 #define GLINT_RENDER_BANDS_H
 
