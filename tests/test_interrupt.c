@@ -116,7 +116,7 @@ Test(interrupt, kill_from_outside_keeps_a_resume_file)
      * background) */
     int code = glint_run("true; timeout -s KILL 120",
                          "--progress -t 2 -r 1000x1000 -s 256 -o big.png 2> log & pid=$!; "
-                         "i=0; while ! grep -q Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
+                         "i=0; while ! grep -qs Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
                          "i=$((i+1)); done; kill -TERM $pid; wait $pid; c=$?; cat log; exit $c; :",
                          out, sizeof out);
     cr_expect_eq(code, 143, "%s", out);
