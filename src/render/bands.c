@@ -44,7 +44,7 @@ void bands_free(bands *b)
     free(b);
 }
 
-/* The front (or back) item of band i; -1 when it is empty. */
+/* The front (or back) item of band d; -1 when it is empty. */
 static int take_end(band *d, int back)
 {
     uint64_t v = atomic_load(&d->span);

@@ -5,6 +5,7 @@
 #ifndef GLINT_TRACE_LIGHT8_H
 #define GLINT_TRACE_LIGHT8_H
 
+#include "geom/mesh_packet.h" /* packet_lanes */
 #include "trace/light8_api.h"
 #include "trace/simd8.h"
 
@@ -57,10 +58,8 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
                       _mm256_cmp_ps(nv, _mm256_set1_ps(65536.0f), _CMP_LE_OQ)),
         _mm256_cmp_ps(nv, _mm256_cvtepi32_ps(k), _CMP_EQ_OQ));
     /* only the lanes of need: the others' shading points were never set */
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    __m256 used = _mm256_castsi256_ps(
-        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(need), bit), bit));
-    __m256 raise = _mm256_and_ps(used, _mm256_andnot_ps(faint, _mm256_and_ps(lit, whole)));
+    __m256 raise =
+        _mm256_and_ps(packet_lanes(need), _mm256_andnot_ps(faint, _mm256_and_ps(lit, whole)));
     k = _mm256_and_si256(k, _mm256_castps_si256(raise));
     __m256 p = _mm256_set1_ps(1.0f), b = rv;
     const __m256i one = _mm256_set1_epi32(1);
