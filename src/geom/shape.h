@@ -275,6 +275,9 @@ typedef struct torus_quartic {
 bool torus_solve(const torus_quartic *q, const ray *r, shape_hit *hit);
 /* torus_occluded's answer from the quartic (torus.c). */
 bool torus_blocks(const torus_quartic *q, const ray *r);
+/* Its first test, which needs no root: true when the ray is inside the
+ * tube where it crosses the torus's plane (then torus_blocks is true). */
+bool torus_blocks_at_once(const torus_quartic *q, const ray *r);
 /* torus_intersect against the rays of active, each up to its own tmax:
  * returns the rays hit, with hit[k] as torus_intersect sets it (the rest
  * of it zero). On the eight-wide paths (geom/shape8.h). */

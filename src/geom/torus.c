@@ -138,20 +138,24 @@ static bool dips_below(const torus_quartic *q, double x)
     return q->c[0] > m && roots_eval(q->c, 4, x) < -m;
 }
 
-/* torus_intersect's answer, without the root itself where it can: when
- * every t of the clipped segment rounds into (tmin, tmax), any root the
- * search would find counts, and a ray that is inside the tube where it
- * crosses the torus's plane (most shadow rays that a torus blocks) has
- * one. */
-bool torus_blocks(const torus_quartic *q, const ray *r)
+/* torus_intersect's answer, without the root itself where it can
+ * (torus_blocks_at_once): when every t of the clipped segment rounds into
+ * (tmin, tmax), any root the search would find counts, and a ray that is
+ * inside the tube where it crosses the torus's plane (most shadow rays
+ * that a torus blocks) has one. */
+bool torus_blocks_at_once(const torus_quartic *q, const ray *r)
 {
     double t1 = q->t0 + q->hi / q->len;
     if ((float)q->t0 > r->tmin && (float)(t1 + 1e-9 * fabs(t1)) < r->tmax && q->uy != 0.0) {
         double x = -q->py / q->uy;
-        if (x > 0.0 && x < q->hi && dips_below(q, x))
-            return true;
+        return x > 0.0 && x < q->hi && dips_below(q, x);
     }
-    return torus_solve(q, r, NULL);
+    return false;
+}
+
+bool torus_blocks(const torus_quartic *q, const ray *r)
+{
+    return torus_blocks_at_once(q, r) || torus_solve(q, r, NULL);
 }
 
 bool torus_occluded(const struct torus *s, const ray *r)

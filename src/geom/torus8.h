@@ -4,8 +4,13 @@
  * the box, the two cylinders, then the quartic about the entry point. Each
  * lane does the one-ray setup's operations in the same order (no fused
  * multiply-adds: ISO C contracts nothing), so its quartic is the same to
- * the bit; branches become masks. The roots are then found lane by lane
- * (torus_solve). For translation units compiled with AVX2 (geom/shape8.h). */
+ * the bit; branches become masks. The search for the first root then
+ * starts in the same registers (t8_first_root): the test that the quartic
+ * stays above zero, and the Newton steps of roots_quartic's commonest path,
+ * all lanes stepping together, which saves the mispredicted branches of
+ * one search after another (row 8 of bench/README.md). Lanes it leaves
+ * undecided, about one in twelve there, go to torus_solve one by one. For
+ * translation units compiled with AVX2 (geom/shape8.h). */
 #ifndef GLINT_GEOM_TORUS8_H
 #define GLINT_GEOM_TORUS8_H
 
@@ -46,6 +51,18 @@ static inline tk tk_andnot(tk a, tk b) { return (tk)(~a & b); } /* b without a *
 static inline int tk_bits(tk a) { return (int)a; }
 /* a ? b : c, lane by lane */
 static inline td t8_pick(tk a, td b, td c) { return _mm512_mask_blend_pd(a, c, b); }
+/* |a| with the sign of b */
+static inline td t8_copysign(td a, td b)
+{
+    __m512i sign = _mm512_castpd_si512(t8_k(-0.0));
+    return _mm512_castsi512_pd(_mm512_or_si512(_mm512_andnot_si512(sign, _mm512_castpd_si512(a)),
+                                               _mm512_and_si512(sign, _mm512_castpd_si512(b))));
+}
+static inline tk tk_or(tk a, tk b) { return a | b; }
+static inline tk tk_xor(tk a, tk b) { return a ^ b; }
+static inline bool tk_any(tk a) { return a != 0; }
+/* the lanes of bits (from bit 0) */
+static inline tk tk_lanes(int bits) { return (tk)bits; }
 #else
 #define TORUS_LANES 4
 typedef __m256d td;
@@ -67,6 +84,20 @@ static inline tk tk_andnot(tk a, tk b) { return _mm256_andnot_pd(a, b); } /* b w
 static inline int tk_bits(tk a) { return _mm256_movemask_pd(a); }
 /* a ? b : c, lane by lane */
 static inline td t8_pick(tk a, td b, td c) { return _mm256_blendv_pd(c, b, a); }
+/* |a| with the sign of b */
+static inline td t8_copysign(td a, td b)
+{
+    return _mm256_or_pd(_mm256_andnot_pd(t8_k(-0.0), a), _mm256_and_pd(t8_k(-0.0), b));
+}
+static inline tk tk_or(tk a, tk b) { return _mm256_or_pd(a, b); }
+static inline tk tk_xor(tk a, tk b) { return _mm256_xor_pd(a, b); }
+static inline bool tk_any(tk a) { return !_mm256_testz_pd(a, a); }
+static inline tk tk_lanes(int bits)
+{
+    const __m256i bit = _mm256_setr_epi64x(1, 2, 4, 8);
+    return _mm256_castsi256_pd(
+        _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_set1_epi64x(bits), bit), bit));
+}
 #endif
 
 /* (a0 * b0 + a1 * b1) + a2 * b2 */
@@ -118,10 +149,109 @@ static inline tk t8_cylinders(const td *o, const td *d, td t0, td t1, double inn
     return tk_and(keep, t8_cmp(ev, t8_k(outer), _CMP_NGT_UQ));
 }
 
+/* Where the search for a lane's first root got to in registers
+ * (t8_first_root): no root at all, or the root x[k]; the other lanes are
+ * left to torus_solve. */
+typedef struct torus_first {
+    int miss, root;
+    double x[8];
+} torus_first;
+
+/* roots_eval lane by lane (Horner's rule) */
+static inline td t8_eval(const td *c, int degree, td x)
+{
+    td v = c[degree];
+    for (int i = degree - 1; i >= 0; i--)
+        v = t8_add(t8_mul(v, x), c[i]);
+    return v;
+}
+
+/* torus_solve's first steps for the lanes of `lanes` (of the group from
+ * lane base) with the quartic c[0] + ... + c[3] x^3 + x^4 on (0, hi):
+ * roots_quartic_above, then roots_quartic(c, 0, hi, .., 1) where it
+ * takes convex_first's path (core/roots.c), with the same doubles in the
+ * same order lane by lane, the lanes stepping together and each leaving
+ * the loop where convex_first returns. Lanes whose search leaves that path
+ * (the general search, a bracket, a root rounded onto 0) are in neither
+ * out->miss nor out->root. */
+static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_first *out)
+{
+    const td zero = t8_zero(), one = t8_k(1.0);
+    const td c[5] = {cq[0], cq[1], cq[2], cq[3], one}; /* torus_quartic's c[4] */
+    td h2 = t8_mul(hi, hi);
+    td a[5] = {c[0], t8_mul(c[1], hi), t8_mul(c[2], h2), t8_mul(t8_mul(c[3], h2), hi),
+               t8_mul(t8_mul(c[4], h2), h2)};
+    td size = t8_abs(a[0]);
+    for (int i = 1; i < 5; i++)
+        size = t8_add(size, t8_abs(a[i]));
+    td m = t8_mul(t8_k(1e-9), size);
+    td b[5] = {a[0], t8_add(a[0], t8_mul(t8_k(0.25), a[1])),
+               t8_add(t8_add(a[0], t8_mul(t8_k(0.5), a[1])), t8_mul(a[2], t8_k(1.0 / 6.0))),
+               t8_add(t8_add(t8_add(a[0], t8_mul(t8_k(0.75), a[1])), t8_mul(t8_k(0.5), a[2])),
+                      t8_mul(t8_k(0.25), a[3])),
+               t8_add(t8_add(t8_add(t8_add(a[0], a[1]), a[2]), a[3]), a[4])};
+    tk above = tk_and(lanes, t8_cmp(hi, t8_k(1e-4), _CMP_GE_OQ));
+    for (int i = 0; i < 5; i++)
+        above = tk_and(above, t8_cmp(b[i], m, _CMP_GT_OQ));
+    /* the derivatives, and the first turning point of p' in (0, hi) (the
+     * roots of p'' by roots_quadratic) */
+    td dc[4] = {c[1], t8_mul(t8_k(2.0), c[2]), t8_mul(t8_k(3.0), c[3]), t8_mul(t8_k(4.0), c[4])};
+    td ddc[3] = {dc[1], t8_mul(t8_k(2.0), dc[2]), t8_mul(t8_k(3.0), dc[3])};
+    td disc = t8_sub(t8_mul(ddc[1], ddc[1]), t8_mul(t8_mul(t8_k(4.0), ddc[2]), ddc[0]));
+    tk real = t8_cmp(disc, zero, _CMP_NLT_UQ);
+    td q = t8_mul(t8_k(-0.5), t8_add(ddc[1], t8_copysign(t8_sqrt(disc), ddc[1])));
+    td r0 = t8_div(q, ddc[2]), r1 = t8_div(ddc[0], q);
+    tk two = t8_cmp(q, zero, _CMP_NEQ_UQ);
+    tk swap = tk_and(two, t8_cmp(r0, r1, _CMP_GT_OQ));
+    td lo_r = t8_pick(swap, r1, r0), hi_r = t8_pick(swap, r0, r1);
+    tk in0 = tk_and(real, tk_and(t8_cmp(lo_r, zero, _CMP_GT_OQ), t8_cmp(lo_r, hi, _CMP_LT_OQ)));
+    tk in1 = tk_and(tk_and(real, two),
+                    tk_and(t8_cmp(hi_r, zero, _CMP_GT_OQ), t8_cmp(hi_r, hi, _CMP_LT_OQ)));
+    tk bends = tk_or(in0, in1);
+    td e = t8_pick(in0, lo_r, t8_pick(in1, hi_r, hi));
+    /* convex_first from 0 where p falls there and bends towards zero */
+    td f = t8_eval(c, 4, zero), x = zero, found = zero;
+    tk act = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
+    act = tk_and(act, t8_cmp(f, zero, _CMP_NEQ_UQ));
+    act = tk_andnot(tk_xor(t8_cmp(f, zero, _CMP_GT_OQ),
+                           t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ)),
+                    act);
+    td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one);
+    tk none = tk_andnot(act, act), root = none;
+    td df = t8_eval(dc, 3, x);
+    for (int it = 0; it < 60 && tk_any(act); it++) {
+        tk stop = tk_and(act, t8_cmp(t8_mul(sgn, df), zero, _CMP_NLT_UQ));
+        none = tk_or(none, stop);
+        act = tk_andnot(stop, act);
+        td nx = t8_sub(x, t8_div(f, df));
+        stop = tk_and(act, t8_cmp(nx, e, _CMP_NLT_UQ));
+        none = tk_or(none, stop);
+        act = tk_andnot(stop, act);
+        td anx = t8_abs(nx);
+        td scale = t8_pick(t8_cmp(anx, one, _CMP_GT_OQ), anx, one);
+        tk conv = tk_and(act, t8_cmp(t8_abs(t8_sub(nx, x)), t8_mul(t8_k(1e-9), scale),
+                                     _CMP_LE_OQ));
+        act = tk_andnot(conv, act);
+        conv = tk_and(conv, t8_cmp(nx, zero, _CMP_GT_OQ)); /* else rounded onto 0 */
+        td nf = t8_eval(c, 4, nx), ndf = t8_eval(dc, 3, nx); /* p' at the next step's x */
+        tk hit = tk_or(conv, tk_and(act, t8_cmp(nf, zero, _CMP_EQ_OQ)));
+        root = tk_or(root, hit);
+        found = t8_pick(hit, nx, found);
+        act = tk_andnot(hit, act);
+        act = tk_andnot(t8_cmp(t8_mul(sgn, nf), zero, _CMP_LT_OQ), act); /* bracketed */
+        x = t8_pick(act, nx, x);
+        f = t8_pick(act, nf, f);
+        df = t8_pick(act, ndf, df);
+    }
+    out->miss |= tk_bits(tk_or(above, tk_andnot(bends, none))) << base;
+    out->root |= tk_bits(root) << base;
+    t8_store(out->x + base, found);
+}
+
 /* Lanes base .. base + TORUS_LANES - 1 of r (those in active, from bit
  * 0): the ones whose segment survives, with q[0 ..) set for them. */
 static inline int torus_lanes_setup(const struct torus *s, const ray8 *r, int base, int active,
-                                    torus_quartic *q)
+                                    torus_quartic *q, torus_first *first)
 {
     if (!active)
         return 0;
@@ -156,13 +286,16 @@ static inline int torus_lanes_setup(const struct torus *s, const ray8 *r, int ba
                   t8_mul(t8_k(2.0 * k), t8_add(t8_mul(p[0], u[0]), t8_mul(p[2], u[2]))));
     c[0] = t8_sub(t8_mul(beta, beta),
                   t8_mul(t8_k(k), t8_add(t8_mul(p[0], p[0]), t8_mul(p[2], p[2]))));
+    td hi = t8_mul(t8_sub(t1, t0), len);
+    if (first)
+        t8_first_root(c, hi, tk_lanes(live), base, first);
     double cv[4][TORUS_LANES], t0v[TORUS_LANES], lenv[TORUS_LANES], hiv[TORUS_LANES];
     double pyv[TORUS_LANES], uyv[TORUS_LANES];
     for (int i = 0; i < 4; i++)
         t8_store(cv[i], c[i]);
     t8_store(t0v, t0);
     t8_store(lenv, len);
-    t8_store(hiv, t8_mul(t8_sub(t1, t0), len));
+    t8_store(hiv, hi);
     t8_store(pyv, p[1]);
     t8_store(uyv, u[1]);
     for (int m = live; m; m &= m - 1) {
@@ -173,28 +306,49 @@ static inline int torus_lanes_setup(const struct torus *s, const ray8 *r, int ba
     return live;
 }
 
-/* torus_lanes_setup for the eight lanes: those whose segment survives. */
-static inline int torus8_setup(const struct torus *s, const ray8 *r, int active, torus_quartic q[8])
+/* torus_lanes_setup for the eight lanes: those whose segment survives;
+ * with first, the search for each one's first root begun (t8_first_root). */
+static inline int torus8_setup(const struct torus *s, const ray8 *r, int active, torus_quartic q[8],
+                               torus_first *first)
 {
 #if TORUS_LANES == 8
-    return torus_lanes_setup(s, r, 0, active, q);
+    return torus_lanes_setup(s, r, 0, active, q, first);
 #else
-    return torus_lanes_setup(s, r, 0, active & 15, q) |
-           torus_lanes_setup(s, r, 4, active >> 4 & 15, q + 4) << 4;
+    return torus_lanes_setup(s, r, 0, active & 15, q, first) |
+           torus_lanes_setup(s, r, 4, active >> 4 & 15, q + 4, first) << 4;
 #endif
+}
+
+/* Whether lane k's ray r meets its torus within its range: from where
+ * t8_first_root left it, or by torus_solve (into hit unless NULL). */
+static inline bool torus8_lane(const torus_first *f, int k, const torus_quartic *q, const ray *r,
+                               shape_hit *hit)
+{
+    if (f->miss >> k & 1)
+        return false;
+    if (f->root >> k & 1) {
+        float t = (float)(q->t0 + f->x[k] / q->len);
+        if (ray_in_range(r, t)) {
+            if (hit)
+                hit->t = t; /* part 0 */
+            return true;
+        }
+    }
+    return torus_solve(q, r, hit);
 }
 
 /* torus_intersect against the rays of active, each within its own range. */
 static inline int torus8_hit(const struct torus *s, const ray8 *r, int active, shape_hit *hit)
 {
     torus_quartic q[8];
-    int live = torus8_setup(s, r, active, q);
+    torus_first first = {0, 0, {0}};
+    int live = torus8_setup(s, r, active, q, &first);
     int found = 0;
     for (int m = live; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
         hit[k] = (shape_hit){0};
-        if (torus_solve(&q[k], &one, &hit[k]))
+        if (torus8_lane(&first, k, &q[k], &one, &hit[k]))
             found |= 1 << k;
     }
     return found;
@@ -204,11 +358,13 @@ static inline int torus8_hit(const struct torus *s, const ray8 *r, int active, s
 static inline int torus8_occluded(const struct torus *s, const ray8 *r, int active)
 {
     torus_quartic q[8];
+    torus_first first = {0, 0, {0}};
     int blocked = 0;
-    for (int m = torus8_setup(s, r, active, q); m; m &= m - 1) {
+    for (int m = torus8_setup(s, r, active, q, &first); m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
-        blocked |= torus_blocks(&q[k], &one) << k;
+        blocked |= (torus_blocks_at_once(&q[k], &one) ||
+                     torus8_lane(&first, k, &q[k], &one, NULL)) << k;
     }
     return blocked;
 }
