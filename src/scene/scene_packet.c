@@ -159,14 +159,23 @@ static int packet_solid(const scene *s, const shape *sh, const ray8 *q, int acti
     return torus8_on_path(s, &sh->torus, q, active, h);
 }
 
-/* Object i against the rays of active, each searched up to best[k]: three
- * or more at once where tests_eight says so, else ray by ray. */
+/* Whether a packet's rays of `active` meet object o together rather than
+ * ray by ray: three or more, or any number for a torus, whose packet test
+ * also searches its lanes' roots together (geom/torus8.h), which one ray's
+ * test at a time does not make up for. */
+static bool packet_worth(const object *o, int active)
+{
+    return ray8_three_or_more(active) || o->shape.kind == SHAPE_TORUS;
+}
+
+/* Object i against the rays of active, each searched up to best[k]: at
+ * once where tests_eight and packet_worth say so, else ray by ray. */
 int scene_packet_object(const scene *s, int i, const ray8 *r, int active, float best[8],
                         scene_hit hit[8])
 {
     const object *o = &s->objects[i];
     int found = 0;
-    if (ray8_three_or_more(active) && tests_eight(o)) {
+    if (packet_worth(o, active) && tests_eight(o)) {
         shape_kind kind = o->shape.kind;
         ray8 lr;
         const ray8 *q = r;
@@ -252,7 +261,7 @@ void scene_shadow8_object(const scene *s, int i, const ray8 *r, int active, int 
     const object *o = &s->objects[i];
     int met = -1;
     shape_kind kind = o->shape.kind;
-    if (ray8_three_or_more(active) && !o->moving &&
+    if (packet_worth(o, active) && !o->moving &&
         (kind == SHAPE_TORUS || kind == SHAPE_CSG || shape_tests_eight(kind))) {
         ray8 lr;
         const ray8 *q = r;
