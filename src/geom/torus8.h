@@ -193,10 +193,21 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_
     tk above = tk_and(lanes, t8_cmp(hi, t8_k(1e-4), _CMP_GE_OQ));
     for (int i = 0; i < 5; i++)
         above = tk_and(above, t8_cmp(b[i], m, _CMP_GT_OQ));
-    /* the derivatives, and the first turning point of p' in (0, hi) (the
-     * roots of p'' by roots_quadratic) */
+    /* the derivatives; convex_first from 0 where p falls there and bends
+     * towards zero */
     td dc[4] = {c[1], t8_mul(t8_k(2.0), c[2]), t8_mul(t8_k(3.0), c[3]), t8_mul(t8_k(4.0), c[4])};
     td ddc[3] = {dc[1], t8_mul(t8_k(2.0), dc[2]), t8_mul(t8_k(3.0), dc[3])};
+    td f = t8_eval(c, 4, zero), x = zero, found = zero;
+    tk act = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
+    act = tk_and(act, t8_cmp(f, zero, _CMP_NEQ_UQ));
+    act = tk_andnot(tk_xor(t8_cmp(f, zero, _CMP_GT_OQ),
+                           t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ)),
+                    act);
+    out->miss |= tk_bits(above) << base;
+    if (!tk_any(act))
+        return;
+    /* the first turning point of p' in (0, hi): the roots of p'' by
+     * roots_quadratic */
     td disc = t8_sub(t8_mul(ddc[1], ddc[1]), t8_mul(t8_mul(t8_k(4.0), ddc[2]), ddc[0]));
     tk real = t8_cmp(disc, zero, _CMP_NLT_UQ);
     td q = t8_mul(t8_k(-0.5), t8_add(ddc[1], t8_copysign(t8_sqrt(disc), ddc[1])));
@@ -209,13 +220,6 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_
                     tk_and(t8_cmp(hi_r, zero, _CMP_GT_OQ), t8_cmp(hi_r, hi, _CMP_LT_OQ)));
     tk bends = tk_or(in0, in1);
     td e = t8_pick(in0, lo_r, t8_pick(in1, hi_r, hi));
-    /* convex_first from 0 where p falls there and bends towards zero */
-    td f = t8_eval(c, 4, zero), x = zero, found = zero;
-    tk act = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
-    act = tk_and(act, t8_cmp(f, zero, _CMP_NEQ_UQ));
-    act = tk_andnot(tk_xor(t8_cmp(f, zero, _CMP_GT_OQ),
-                           t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ)),
-                    act);
     td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one);
     tk none = tk_andnot(act, act), root = none;
     td df = t8_eval(dc, 3, x);
@@ -243,7 +247,7 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_
         f = t8_pick(act, nf, f);
         df = t8_pick(act, ndf, df);
     }
-    out->miss |= tk_bits(tk_or(above, tk_andnot(bends, none))) << base;
+    out->miss |= tk_bits(tk_andnot(bends, none)) << base;
     out->root |= tk_bits(root) << base;
     t8_store(out->x + base, found);
 }
