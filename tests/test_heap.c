@@ -53,20 +53,49 @@ static void scene_file(const char *path, off_t bytes)
     cr_assert_eq(truncate(path, bytes), 0);
 }
 
+/* This process's resident bytes (/proc/self/statm). */
+static size_t resident(void)
+{
+    FILE *f = fopen("/proc/self/statm", "r");
+    cr_assert_not_null(f);
+    unsigned long size = 0, pages = 0;
+    cr_assert_eq(fscanf(f, "%lu %lu", &size, &pages), 2);
+    fclose(f);
+    return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
+}
+
+/* Waits, for up to a minute, until the process holds `grown` bytes more
+ * than `before` (a mapper thread at work): a load that takes longer than
+ * the mapping. */
+static void wait_resident(size_t before, size_t grown)
+{
+    for (int i = 0; i < 6000 && resident() < before + grown; i++)
+        usleep(10000);
+    cr_assert_geq(resident(), before + grown, "the room was not mapped within a minute");
+}
+
 /* How much heap_ready for a scene file of `bytes`, by a process of
- * `threads` threads, grows the heap by, once its room is mapped. */
-static size_t room_for(off_t bytes, int threads)
+ * `threads` threads, grows the heap by; with `mapped`, once the mapping
+ * had had time to finish before heap_settle stopped it. */
+static size_t room_for_mapped(off_t bytes, int threads, bool mapped)
 {
     tmpdir_make("heap");
     char path[256];
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
     scene_file(path, bytes);
-    size_t before = mallinfo2().arena;
+    size_t before = mallinfo2().arena, held = resident();
     heap_ready(path, threads);
-    heap_settle();
     size_t room = mallinfo2().arena - before;
+    if (mapped)
+        wait_resident(held, room - room / 16);
+    heap_settle();
     tmpdir_remove();
     return room;
+}
+
+static size_t room_for(off_t bytes, int threads)
+{
+    return room_for_mapped(bytes, threads, false);
 }
 
 static long minor_faults(void)
@@ -92,7 +121,8 @@ Test(heap, room_in_proportion_to_the_scene_file)
 }
 
 /* That the room for a scene file of 4 MiB, readied by a process of
- * `threads` threads, is mapped once heap_settle returns. */
+ * `threads` threads, is mapped once heap_settle returns after a load that
+ * took longer than the mapping. */
 static void expect_room_mapped(int threads)
 {
     void *probe = mmap(NULL, 4096, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -101,7 +131,7 @@ static void expect_room_mapped(int threads)
     munmap(probe, 4096);
     if (!can_map)
         cr_skip_test("the kernel cannot map memory ahead (Linux 5.14 on)");
-    cr_assert_geq(room_for((off_t)4 << 20, threads), (size_t)48 << 20);
+    cr_assert_geq(room_for_mapped((off_t)4 << 20, threads, true), (size_t)48 << 20);
     /* 32 MiB of small blocks (48 bytes, 64 with malloc's header), as a
      * loader takes them: 8,192 pages, but already mapped, so only the odd
      * fault of malloc's own */
@@ -157,6 +187,35 @@ Test(heap, blocks_written_while_the_room_is_mapped_keep_their_bytes)
         free(blocks[i]);
     }
     tmpdir_remove();
+}
+
+/* A load done before the mapper is: heap_settle stops it, and the rest
+ * of the room is mapped as it is touched, with what is written kept. */
+Test(heap, room_left_unmapped_when_the_load_is_done_first)
+{
+    SKIP_UNLESS_APPLIES();
+    tmpdir_make("heap");
+    char path[256];
+    snprintf(path, sizeof path, "%s/scene.yaml", dir);
+    scene_file(path, (off_t)20 << 20); /* 240 MiB of room */
+    size_t held = resident();
+    heap_ready(path, 0);
+    heap_settle();
+    size_t after = resident();
+    enum { COUNT = 1 << 22 }; /* 256 MiB of 48-byte blocks, past the room */
+    static unsigned char *blocks[COUNT];
+    for (int i = 0; i < COUNT; i++) {
+        blocks[i] = malloc(48);
+        cr_assert_not_null(blocks[i]);
+        memset(blocks[i], i & 0xff, 48);
+    }
+    for (int i = 0; i < COUNT; i += 4099)
+        for (int b = 0; b < 48; b++)
+            cr_assert_eq(blocks[i][b], i & 0xff, "block %d byte %d", i, b);
+    for (int i = 0; i < COUNT; i++)
+        free(blocks[i]);
+    tmpdir_remove();
+    cr_assert_lt(after, held + ((size_t)240 << 20), "all of the room was mapped before it stopped");
 }
 
 Test(heap, room_at_its_cap_is_kept)

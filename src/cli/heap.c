@@ -1,6 +1,7 @@
 #include "heap.h"
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -37,6 +38,9 @@
 #define HEAP_ROOM_MAX ((size_t)256 << 20)
 /* The room is taken in pieces of this size (below HEAP_MMAP_FROM). */
 #define HEAP_PIECE ((size_t)16 << 20)
+/* The mapper maps this much at a time (a huge page), and stops between
+ * two when the load is done (heap_settle). */
+#define HEAP_STEP ((uintptr_t)2 << 20)
 /* The main heap gives memory back only past this much free at its top:
  * twice the most room, which with glibc's slack is never trimmed away
  * as soon as it is freed. */
@@ -62,14 +66,22 @@ static struct {
     int n;
     pthread_t mapper;
     bool mapping; /* the mapper runs and nobody has joined it yet */
+    atomic_bool stop; /* the load is done: map no more */
     pthread_mutex_t lock; /* over mapper and mapping */
 } room = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
 static void *map_pieces(void *unused)
 {
     (void)unused;
-    for (int k = 0; k < room.n; k++)
-        madvise(room.at[k], room.bytes[k], MADV_POPULATE_WRITE); /* Linux 5.14 on */
+    for (int k = 0; k < room.n; k++) {
+        char *at = room.at[k], *end = at + room.bytes[k];
+        while (at < end && !atomic_load_explicit(&room.stop, memory_order_relaxed)) {
+            char *next = (char *)(((uintptr_t)at + HEAP_STEP) & ~(HEAP_STEP - 1));
+            next = next < end ? next : end;
+            madvise(at, (size_t)(next - at), MADV_POPULATE_WRITE); /* Linux 5.14 on */
+            at = next;
+        }
+    }
     return NULL;
 }
 
@@ -84,7 +96,11 @@ static void *map_pieces(void *unused)
  * process may use only one CPU (-t 1, or one in its affinity mask), so
  * that the loader, which carves the room from its low end up, meanwhile
  * parses (the mapper, also working upwards, keeps ahead of it: a page the
- * loader reaches first it maps itself, once). */
+ * loader reaches first it maps itself, once). The mapper stops once the
+ * load is done (heap_settle): where mapping runs slower than the load (on
+ * a virtual machine whose host has taken its memory back, 1-2 ms a MiB),
+ * the rest of the room is left to be mapped if and when it is touched,
+ * instead of the render waiting for all of it. */
 static void map_room(size_t n, int threads)
 {
     const uintptr_t page = 4096;
@@ -108,6 +124,7 @@ static void map_room(size_t n, int threads)
         free(piece[k]);
     int cpus = threads > 0 ? threads : glint_default_threads();
     pthread_mutex_lock(&room.lock);
+    atomic_store_explicit(&room.stop, false, memory_order_relaxed);
     bool started = cpus > 1 && pthread_create(&room.mapper, NULL, map_pieces, NULL) == 0;
     room.mapping = started;
     pthread_mutex_unlock(&room.lock);
@@ -120,6 +137,7 @@ void heap_settle(void)
 {
 #if defined(HEAP_POLICY)
     pthread_mutex_lock(&room.lock); /* a second caller waits for the first's join */
+    atomic_store_explicit(&room.stop, true, memory_order_relaxed);
     if (room.mapping)
         pthread_join(room.mapper, NULL);
     room.mapping = false;

@@ -32,9 +32,11 @@
  * own, which glibc unmaps when they empty). Advice only: nothing fails. */
 void heap_ready(const char *path, int threads);
 
-/* Waits until the room heap_ready maps is mapped: call it once the scene
- * is loaded, so that the render's threads have the CPUs to themselves.
- * From any thread, any number of times: each returns once it is mapped. */
+/* Stops the mapping of the room heap_ready maps and waits for its thread
+ * (within one huge page's mapping); pages it had not reached yet are
+ * mapped when first touched. Call it once the scene is loaded, so that the
+ * render's threads have the CPUs to themselves. From any thread, any
+ * number of times: each returns once the mapping has stopped. */
 void heap_settle(void);
 
 /* Whether heap_ready does anything in this build: glibc's malloc, and no
