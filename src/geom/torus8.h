@@ -1,7 +1,7 @@
 /* torus8: the torus's setup (torus.c) against a packet's rays in vector
- * registers, all eight lanes of doubles at once with AVX-512 and four at a
- * time with AVX2: the line against the ball,
- * the box, the two cylinders, then the quartic about the entry point. Each
+ * registers, all eight lanes of doubles at once (one AVX-512 register, or
+ * two AVX ones side by side): the line against the ball, the box, the two
+ * cylinders, then the quartic about the entry point. Each
  * lane does the one-ray setup's operations in the same order (no fused
  * multiply-adds: ISO C contracts nothing), so its quartic is the same to
  * the bit; branches become masks. The search for the first root then
@@ -18,11 +18,10 @@
 #include "core/ray.h"
 #include "geom/shape.h"
 
-/* A group of lanes in one register of doubles: all eight with AVX-512,
- * four at a time with AVX2; td is the register, tk the lanes a comparison
- * keeps (a mask register, or a register of all-ones lanes). */
+/* The eight lanes' doubles: td holds them (one AVX-512 register, or two
+ * AVX ones), tk the lanes a comparison keeps (a mask register, or
+ * registers of all-ones lanes). */
 #if defined(__AVX512F__)
-#define TORUS_LANES 8
 typedef __m512d td;
 typedef __mmask8 tk;
 static inline td t8_load(const float *p) { return _mm512_cvtps_pd(_mm256_loadu_ps(p)); }
@@ -64,39 +63,62 @@ static inline bool tk_any(tk a) { return a != 0; }
 /* the lanes of bits (from bit 0) */
 static inline tk tk_lanes(int bits) { return (tk)bits; }
 #else
-#define TORUS_LANES 4
-typedef __m256d td;
-typedef __m256d tk;
-static inline td t8_load(const float *p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
-static inline td t8_add(td a, td b) { return _mm256_add_pd(a, b); }
-static inline td t8_sub(td a, td b) { return _mm256_sub_pd(a, b); }
-static inline td t8_mul(td a, td b) { return _mm256_mul_pd(a, b); }
-static inline td t8_div(td a, td b) { return _mm256_div_pd(a, b); }
-static inline td t8_sqrt(td a) { return _mm256_sqrt_pd(a); }
-static inline td t8_k(double v) { return _mm256_set1_pd(v); }
-static inline td t8_zero(void) { return _mm256_setzero_pd(); }
-static inline td t8_abs(td a) { return _mm256_andnot_pd(t8_k(-0.0), a); }
-static inline td t8_neg(td a) { return _mm256_xor_pd(a, t8_k(-0.0)); }
-static inline void t8_store(double *p, td a) { _mm256_storeu_pd(p, a); }
-#define t8_cmp(a, b, pred) _mm256_cmp_pd((a), (b), (pred))
-static inline tk tk_and(tk a, tk b) { return _mm256_and_pd(a, b); }
-static inline tk tk_andnot(tk a, tk b) { return _mm256_andnot_pd(a, b); } /* b without a */
-static inline int tk_bits(tk a) { return _mm256_movemask_pd(a); }
+/* Two AVX registers side by side, lanes 0-3 and 4-7: the two halves'
+ * operations are independent, so each step of one overlaps the other's. */
+typedef struct td {
+    __m256d lo, hi;
+} td;
+typedef td tk;
+#define T8_BOTH(f, a, b) ((td){f((a).lo, (b).lo), f((a).hi, (b).hi)})
+static inline td t8_load(const float *p)
+{
+    return (td){_mm256_cvtps_pd(_mm_loadu_ps(p)), _mm256_cvtps_pd(_mm_loadu_ps(p + 4))};
+}
+static inline td t8_add(td a, td b) { return T8_BOTH(_mm256_add_pd, a, b); }
+static inline td t8_sub(td a, td b) { return T8_BOTH(_mm256_sub_pd, a, b); }
+static inline td t8_mul(td a, td b) { return T8_BOTH(_mm256_mul_pd, a, b); }
+static inline td t8_div(td a, td b) { return T8_BOTH(_mm256_div_pd, a, b); }
+static inline td t8_sqrt(td a) { return (td){_mm256_sqrt_pd(a.lo), _mm256_sqrt_pd(a.hi)}; }
+static inline td t8_k(double v) { return (td){_mm256_set1_pd(v), _mm256_set1_pd(v)}; }
+static inline td t8_zero(void) { return (td){_mm256_setzero_pd(), _mm256_setzero_pd()}; }
+static inline td t8_abs(td a) { return T8_BOTH(_mm256_andnot_pd, t8_k(-0.0), a); }
+static inline td t8_neg(td a) { return T8_BOTH(_mm256_xor_pd, a, t8_k(-0.0)); }
+static inline void t8_store(double *p, td a)
+{
+    _mm256_storeu_pd(p, a.lo);
+    _mm256_storeu_pd(p + 4, a.hi);
+}
+#define t8_cmp(a, b, pred)                                                                     \
+    ((tk){_mm256_cmp_pd((a).lo, (b).lo, (pred)), _mm256_cmp_pd((a).hi, (b).hi, (pred))})
+static inline tk tk_and(tk a, tk b) { return T8_BOTH(_mm256_and_pd, a, b); }
+static inline tk tk_andnot(tk a, tk b) { return T8_BOTH(_mm256_andnot_pd, a, b); } /* b without a */
+static inline int tk_bits(tk a)
+{
+    return _mm256_movemask_pd(a.lo) | _mm256_movemask_pd(a.hi) << 4;
+}
 /* a ? b : c, lane by lane */
-static inline td t8_pick(tk a, td b, td c) { return _mm256_blendv_pd(c, b, a); }
+static inline td t8_pick(tk a, td b, td c)
+{
+    return (td){_mm256_blendv_pd(c.lo, b.lo, a.lo), _mm256_blendv_pd(c.hi, b.hi, a.hi)};
+}
 /* |a| with the sign of b */
 static inline td t8_copysign(td a, td b)
 {
-    return _mm256_or_pd(_mm256_andnot_pd(t8_k(-0.0), a), _mm256_and_pd(t8_k(-0.0), b));
+    return T8_BOTH(_mm256_or_pd, t8_abs(a), T8_BOTH(_mm256_and_pd, t8_k(-0.0), b));
 }
-static inline tk tk_or(tk a, tk b) { return _mm256_or_pd(a, b); }
-static inline tk tk_xor(tk a, tk b) { return _mm256_xor_pd(a, b); }
-static inline bool tk_any(tk a) { return !_mm256_testz_pd(a, a); }
+static inline tk tk_or(tk a, tk b) { return T8_BOTH(_mm256_or_pd, a, b); }
+static inline tk tk_xor(tk a, tk b) { return T8_BOTH(_mm256_xor_pd, a, b); }
+static inline bool tk_any(tk a)
+{
+    __m256d m = _mm256_or_pd(a.lo, a.hi);
+    return !_mm256_testz_pd(m, m);
+}
 static inline tk tk_lanes(int bits)
 {
     const __m256i bit = _mm256_setr_epi64x(1, 2, 4, 8);
-    return _mm256_castsi256_pd(
-        _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_set1_epi64x(bits), bit), bit));
+    __m256i lo = _mm256_set1_epi64x(bits & 15), hi = _mm256_set1_epi64x(bits >> 4 & 15);
+    return (tk){_mm256_castsi256_pd(_mm256_cmpeq_epi64(_mm256_and_si256(lo, bit), bit)),
+                _mm256_castsi256_pd(_mm256_cmpeq_epi64(_mm256_and_si256(hi, bit), bit))};
 }
 #endif
 
@@ -166,15 +188,14 @@ static inline td t8_eval(const td *c, int degree, td x)
     return v;
 }
 
-/* torus_solve's first steps for the lanes of `lanes` (of the group from
- * lane base) with the quartic c[0] + ... + c[3] x^3 + x^4 on (0, hi):
+/* torus_solve's first steps for the lanes of `lanes` with the quartic c[0] + ... + c[3] x^3 + x^4 on (0, hi):
  * roots_quartic_above, then roots_quartic(c, 0, hi, .., 1) where it
  * takes convex_first's path (core/roots.c), with the same doubles in the
  * same order lane by lane, the lanes stepping together and each leaving
  * the loop where convex_first returns. Lanes whose search leaves that path
  * (the general search, a bracket, a root rounded onto 0) are in neither
  * out->miss nor out->root. */
-static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_first *out)
+static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out)
 {
     const td zero = t8_zero(), one = t8_k(1.0);
     const td c[5] = {cq[0], cq[1], cq[2], cq[3], one}; /* torus_quartic's c[4] */
@@ -203,7 +224,7 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_
     act = tk_andnot(tk_xor(t8_cmp(f, zero, _CMP_GT_OQ),
                            t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ)),
                     act);
-    out->miss |= tk_bits(above) << base;
+    out->miss |= tk_bits(above);
     if (!tk_any(act))
         return;
     /* the first turning point of p' in (0, hi): the roots of p'' by
@@ -247,27 +268,28 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, int base, torus_
         f = t8_pick(act, nf, f);
         df = t8_pick(act, ndf, df);
     }
-    out->miss |= tk_bits(tk_andnot(bends, none)) << base;
-    out->root |= tk_bits(root) << base;
-    t8_store(out->x + base, found);
+    out->miss |= tk_bits(tk_andnot(bends, none));
+    out->root |= tk_bits(root);
+    t8_store(out->x, found);
 }
 
-/* Lanes base .. base + TORUS_LANES - 1 of r (those in active, from bit
- * 0): the ones whose segment survives, with q[0 ..) set for them. */
-static inline int torus_lanes_setup(const struct torus *s, const ray8 *r, int base, int active,
-                                    torus_quartic *q, torus_first *first)
+/* The rays of active against the torus's bounds: those whose segment
+ * survives, with q[k] set for them; with first, the search for each one's
+ * first root begun (t8_first_root). */
+static inline int torus8_setup(const struct torus *s, const ray8 *r, int active, torus_quartic *q,
+                               torus_first *first)
 {
     if (!active)
         return 0;
     double R = s->major, rm = s->minor;
     double ext[3] = {1.01 * (R + rm), 1.01 * rm, 1.01 * (R + rm)};
-    td o[3] = {t8_sub(t8_load(r->ox + base), t8_k(s->center.x)),
-               t8_sub(t8_load(r->oy + base), t8_k(s->center.y)),
-               t8_sub(t8_load(r->oz + base), t8_k(s->center.z))};
-    td d[3] = {t8_load(r->dx + base), t8_load(r->dy + base), t8_load(r->dz + base)};
+    td o[3] = {t8_sub(t8_load(r->ox), t8_k(s->center.x)),
+               t8_sub(t8_load(r->oy), t8_k(s->center.y)),
+               t8_sub(t8_load(r->oz), t8_k(s->center.z))};
+    td d[3] = {t8_load(r->dx), t8_load(r->dy), t8_load(r->dz)};
     td dd = t8_dot(d, d), od = t8_dot(o, d), oo = t8_dot(o, o);
     tk keep = t8_cmp(t8_mul(od, od), t8_mul(dd, t8_sub(oo, t8_k(ext[0] * ext[0]))), _CMP_NLT_UQ);
-    td t0 = t8_load(r->tmin + base), t1 = t8_load(r->tmax + base);
+    td t0 = t8_load(r->tmin), t1 = t8_load(r->tmax);
     t8_clip(o, d, ext, &t0, &t1, &keep);
     double inner = R > rm ? (R - rm) * (R - rm) * 0.999 : 0.0, outer = (R + rm) * (R + rm) * 1.001;
     keep = t8_cylinders(o, d, t0, t1, inner, outer, keep);
@@ -292,9 +314,9 @@ static inline int torus_lanes_setup(const struct torus *s, const ray8 *r, int ba
                   t8_mul(t8_k(k), t8_add(t8_mul(p[0], p[0]), t8_mul(p[2], p[2]))));
     td hi = t8_mul(t8_sub(t1, t0), len);
     if (first)
-        t8_first_root(c, hi, tk_lanes(live), base, first);
-    double cv[4][TORUS_LANES], t0v[TORUS_LANES], lenv[TORUS_LANES], hiv[TORUS_LANES];
-    double pyv[TORUS_LANES], uyv[TORUS_LANES];
+        t8_first_root(c, hi, tk_lanes(live), first);
+    double cv[4][8], t0v[8], lenv[8], hiv[8];
+    double pyv[8], uyv[8];
     for (int i = 0; i < 4; i++)
         t8_store(cv[i], c[i]);
     t8_store(t0v, t0);
@@ -308,19 +330,6 @@ static inline int torus_lanes_setup(const struct torus *s, const ray8 *r, int ba
                                t0v[j], lenv[j], hiv[j], pyv[j], uyv[j]};
     }
     return live;
-}
-
-/* torus_lanes_setup for the eight lanes: those whose segment survives;
- * with first, the search for each one's first root begun (t8_first_root). */
-static inline int torus8_setup(const struct torus *s, const ray8 *r, int active, torus_quartic q[8],
-                               torus_first *first)
-{
-#if TORUS_LANES == 8
-    return torus_lanes_setup(s, r, 0, active, q, first);
-#else
-    return torus_lanes_setup(s, r, 0, active & 15, q, first) |
-           torus_lanes_setup(s, r, 4, active >> 4 & 15, q + 4, first) << 4;
-#endif
 }
 
 /* Whether lane k's ray r meets its torus within its range: from where
