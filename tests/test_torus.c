@@ -15,11 +15,15 @@
  * and those rays are counted and bounded instead. Every hit point, once
  * torus_surface has put it on the surface, lies within 1e-5 of the size of
  * the true surface. Also: the roots finder's own tests, known hits, normals
- * and (u, v), crossings against the reference's roots. */
+ * and (u, v), crossings against the reference's roots; and the eight-lane
+ * kernels (torus8_hit_<isa>, torus8_occluded_<isa>) against the one-ray
+ * functions, to the bit, on random packets. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <string.h>
 
+#include "accel/isa.h"
+#include "core/ray.h"
 #include "core/rng.h"
 #include "core/roots.h"
 #include "geom/shape.h"
@@ -327,4 +331,283 @@ Test(torus, agrees_with_a_slow_reference_on_a_million_rays, .timeout = 600)
     cr_expect_gt(tl.hits, tl.rays / 3, "not vacuous: many rays hit");
     cr_expect_leq(tl.ill, tl.rays / 1000, "at most 0.1%% of rays are too close to call");
     cr_expect_eq(tl.self_hits, 0, "no ray leaving the surface meets it again at once");
+}
+
+/* ---- the eight-lane kernels against the one-ray path ---------------------- */
+
+/* torus8_hit_<isa> and torus8_occluded_<isa> (torus8.h: the setup and the
+ * start of the root search in vector registers, t8_first_root) against
+ * torus_intersect and torus_occluded, lane by lane and to the bit, on
+ * every eight-wide path this CPU runs: random tori (thin, ordinary, fat,
+ * and with the tube wider than the ring, R < r; small and large; near the
+ * origin and far from it), packets of rays of every kind below in random
+ * lanes with a random active mask, and ranges that cut just before, at and
+ * just after the ray's first crossing at either end. */
+
+typedef int (*torus8_hit_fn)(const struct torus *, const ray8 *, int, shape_hit *);
+typedef int (*torus8_occluded_fn)(const struct torus *, const ray8 *, int);
+
+/* The eight-wide kernels this CPU runs: how many, into the arrays. */
+static int torus8_kernels(torus8_hit_fn hit[2], torus8_occluded_fn occluded[2],
+                          const char *name[2])
+{
+    int n = 0;
+#if defined(GLINT_WIDE_KERNELS)
+    if (accel_isa_best() >= ACCEL_AVX2)
+        hit[n] = torus8_hit_avx2, occluded[n] = torus8_occluded_avx2, name[n++] = "avx2";
+    if (accel_isa_best() >= ACCEL_AVX512)
+        hit[n] = torus8_hit_avx512, occluded[n] = torus8_occluded_avx512, name[n++] = "avx512";
+#endif
+    (void)hit, (void)occluded, (void)name;
+    return n;
+}
+
+static float uni(rng *g, float lo, float hi) { return lo + (hi - lo) * rng_float(g); }
+
+/* 10^lo .. 10^hi, uniform in the exponent */
+static float decades(rng *g, float lo, float hi) { return powf(10.0f, uni(g, lo, hi)); }
+
+static struct torus stress_torus(rng *g)
+{
+    float major = decades(g, -1.5f, 1.3f), ratio;
+    switch (rng_u32(g) % 5) {
+    case 0: /* thin */
+        ratio = decades(g, -3.0f, -1.3f);
+        break;
+    case 1: /* fat: the hole almost or just closed (a horn torus, R = r, which a ray
+             * down the axis touches at the centre with a root of order four) */
+        ratio = rng_u32(g) % 4 == 0 ? 1.0f : uni(g, 0.9f, 1.0f);
+        break;
+    case 2: /* the tube wider than the ring (R < r): no hole */
+        ratio = uni(g, 1.0f, 4.0f);
+        break;
+    default:
+        ratio = uni(g, 0.05f, 0.9f);
+        break;
+    }
+    float spread = rng_u32(g) % 8 == 0 ? 500.0f : 4.0f;
+    vec3 c = rng_u32(g) % 8 == 0 ? v3s(0.0f)
+                                  : v3(uni(g, -spread, spread), uni(g, -spread, spread),
+                                       uni(g, -spread, spread));
+    return (struct torus){c, major, major * ratio};
+}
+
+/* A ray of class k at torus t, before its range is set (tmin 0, tmax
+ * infinite). */
+static ray stress_ray(rng *g, const struct torus *t, int k)
+{
+    float R = t->major, r = t->minor, size = R + r, tau = 2.0f * (float)M_PI;
+    vec3 n, p = surface_point(t, tau * rng_float(g), tau * rng_float(g), &n);
+    vec3 aim = v3_add(t->center, v3(uni(g, -size, size), uni(g, -r, r), uni(g, -size, size)));
+    vec3 o, d;
+    switch (k) {
+    case 0: /* from near by, at the box */
+        o = v3_madd(t->center, rng_unit_dir(g), size * uni(g, 1.05f, 5.0f));
+        d = v3_sub(aim, o);
+        break;
+    case 1: /* from far away */
+        o = v3_madd(t->center, rng_unit_dir(g), size * decades(g, 2.0f, 5.0f));
+        d = v3_norm(v3_sub(aim, o));
+        break;
+    case 2: { /* from inside the tube */
+        vec3 m = surface_point(t, tau * rng_float(g), tau * rng_float(g), &n);
+        o = v3_madd(m, n, -r * uni(g, 0.0f, 0.999f));
+        d = rng_unit_dir(g);
+        break;
+    }
+    case 3: { /* grazing: along a tangent, a hair inside, on or outside */
+        vec3 tang = v3_norm(v3_cross(n, rng_unit_dir(g)));
+        static const float off[4] = {1e-3f, 1e-5f, 1e-7f, 0.0f};
+        p = v3_madd(p, n, r * off[rng_u32(g) % 4] * (rng_u32(g) % 2 ? 1.0f : -1.0f));
+        o = v3_madd(p, tang, -size * uni(g, 0.1f, 3.0f));
+        d = tang;
+        break;
+    }
+    case 4: { /* leaving the surface, as secondary rays do */
+        d = rng_unit_dir(g);
+        o = ray_offset(p, n, d);
+        break;
+    }
+    case 5: { /* parallel to the axis: down it, through the tube, or past it */
+        float rho = rng_u32(g) % 3 == 0 ? 0.0f : uni(g, 0.0f, 1.2f * size);
+        float phi = tau * rng_float(g), side = rng_u32(g) % 2 ? 1.0f : -1.0f;
+        o = v3_add(t->center,
+                   v3(rho * sinf(phi), side * size * uni(g, 1.1f, 3.0f), rho * cosf(phi)));
+        d = v3(0.0f, -side, 0.0f);
+        if (rng_u32(g) % 4 == 0) /* nearly */
+            d = v3_add(d, v3(1e-4f * uni(g, -1, 1), 0.0f, 1e-4f * uni(g, -1, 1)));
+        break;
+    }
+    case 6: { /* one or two components of the direction zero */
+        o = v3_madd(t->center, rng_unit_dir(g), size * uni(g, 0.5f, 4.0f));
+        d = v3_sub(aim, o);
+        int zero = 1 + (int)(rng_u32(g) % 6); /* bits: the axes made 0 */
+        if (zero & 1)
+            d.x = rng_u32(g) % 2 ? 0.0f : -0.0f;
+        if (zero & 2)
+            d.y = rng_u32(g) % 2 ? 0.0f : -0.0f;
+        if (zero & 4)
+            d.z = rng_u32(g) % 2 ? 0.0f : -0.0f;
+        if (v3_is_zero(d))
+            d.y = 1.0f;
+        break;
+    }
+    default: { /* in the torus's plane or beside it, dy 0 */
+        float y = rng_u32(g) % 4 == 0 ? 0.0f : r * uni(g, -1.1f, 1.1f);
+        o = v3_madd(t->center, v3_norm(v3(uni(g, -1, 1), 0.0f, uni(g, -1, 1))),
+                    size * uni(g, 0.0f, 3.0f));
+        o.y = t->center.y + y;
+        d = v3_sub(aim, o);
+        d.y = 0.0f;
+        if (v3_is_zero(d))
+            d.x = 1.0f;
+        break;
+    }
+    }
+    if (rng_u32(g) % 3 == 0) /* not unit length */
+        d = v3_scale(d, decades(g, -2.0f, 2.0f));
+    return ray_make(o, d, INFINITY);
+}
+
+/* Its range: (0, inf) as it is, or one that cuts near the first crossing
+ * after the ray's start (found by torus_intersect), or an arbitrary one. */
+static void stress_range(rng *g, const struct torus *t, ray *r)
+{
+    shape_hit h;
+    float first = torus_intersect(t, r, &h) ? h.t : -1.0f;
+    float far = 4.0f * (v3_len(v3_sub(r->o, t->center)) + t->major + t->minor) /
+                fmaxf(v3_len(r->d), 1e-30f);
+    switch (rng_u32(g) % 8) {
+    case 0: /* tmax at the crossing, a float before it or after it, or half way */
+        if (first > 0) {
+            float c[4] = {first, nextafterf(first, 0.0f), nextafterf(first, INFINITY),
+                          0.5f * first};
+            r->tmax = c[rng_u32(g) % 4];
+        }
+        break;
+    case 1: /* tmin there: the search must look past that root */
+        if (first > 0) {
+            float c[4] = {first, nextafterf(first, 0.0f), nextafterf(first, INFINITY),
+                          first * (1.0f + 1e-4f)};
+            r->tmin = c[rng_u32(g) % 4];
+        }
+        break;
+    case 2: /* a short piece round it, hi under 1e-4 */
+        if (first > 0) {
+            float w = first * decades(g, -7.0f, -4.0f);
+            r->tmin = first - w * rng_float(g);
+            r->tmax = r->tmin + w;
+        }
+        break;
+    case 3: /* arbitrary */
+        r->tmin = far * 0.5f * rng_float(g) * rng_float(g);
+        r->tmax = rng_u32(g) % 2 ? INFINITY : r->tmin + far * rng_float(g);
+        break;
+    case 4:
+        r->tmax = far * rng_float(g);
+        break;
+    default:
+        break;
+    }
+}
+
+/* 1.6 million rays, each through four kernels: about a second in the
+ * optimised build and two or three under the sanitizers, so both run
+ * them all. */
+#define STRESS_PACKETS 200000
+
+/* A lane's ray, for a message. */
+#define LANE_FMT "o (%a, %a, %a) d (%a, %a, %a) tmin %a tmax %a"
+#define LANE_ARGS(r)                                                                           \
+    (double)(r).o.x, (double)(r).o.y, (double)(r).o.z, (double)(r).d.x, (double)(r).d.y,      \
+        (double)(r).d.z, (double)(r).tmin, (double)(r).tmax
+#define TORUS_FMT "torus centre (%a, %a, %a) R %a r %a"
+#define TORUS_ARGS(t)                                                                          \
+    (double)(t).center.x, (double)(t).center.y, (double)(t).center.z, (double)(t).major,       \
+        (double)(t).minor
+
+Test(torus, packets_match_one_ray_at_a_time_to_the_bit_on_every_path, .timeout = 120)
+{
+    torus8_hit_fn hit8[2];
+    torus8_occluded_fn occluded8[2];
+    const char *name[2];
+    int kernels = torus8_kernels(hit8, occluded8, name);
+    if (!kernels)
+        cr_skip_test("no eight-wide kernels on this CPU");
+    rng g = rng_seed(8128, 5);
+    long lanes = 0, hits = 0, blocked = 0, cut = 0, kinds[8] = {0};
+    for (long i = 0; i < STRESS_PACKETS; i++) {
+        struct torus t = stress_torus(&g);
+        ray rays[8];
+        for (int k = 0; k < 8; k++) {
+            int kind = (int)(rng_u32(&g) % 8);
+            rays[k] = stress_ray(&g, &t, kind);
+            stress_range(&g, &t, &rays[k]);
+            kinds[kind]++;
+        }
+        int active = (int)(rng_u32(&g) % 256);
+        ray8 p;
+        if (active && rng_u32(&g) % 2) {
+            ray8_pack(&p, rays, active); /* idle lanes repeat an active one */
+        } else {
+            for (int k = 0; k < 8; k++) /* idle lanes hold rays of their own */
+                ray8_put(&p, k, &rays[k]);
+        }
+        /* the one-ray answers, from the packet's own rays */
+        int want_hit = 0, want_blocked = 0;
+        shape_hit want[8];
+        for (int m = active; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            ray r = ray8_get(&p, k);
+            want[k] = (shape_hit){0};
+            want_hit |= torus_intersect(&t, &r, &want[k]) << k;
+            want_blocked |= torus_occluded(&t, &r) << k;
+            lanes++;
+            cut += !(want_hit >> k & 1) && r.tmax < INFINITY;
+        }
+        hits += ray8_count(want_hit);
+        blocked += ray8_count(want_blocked);
+        for (int j = 0; j < kernels; j++) {
+            shape_hit got[8];
+            memset(got, 0xa5, sizeof got);
+            int got_hit = hit8[j](&t, &p, active, got);
+            int got_blocked = occluded8[j](&t, &p, active);
+            for (int k = 0; k < 8; k++) {
+                if (!(active >> k & 1))
+                    continue;
+                ray r = ray8_get(&p, k);
+                bool h = got_hit >> k & 1, b = got_blocked >> k & 1;
+                cr_assert_eq(h, want_hit >> k & 1,
+                             "%s, packet %ld lane %d (active %#x): torus8_hit %s, torus_intersect "
+                             "%s; " TORUS_FMT "; " LANE_FMT,
+                             name[j], i, k, (unsigned)active, h ? "hits" : "misses",
+                             h ? "misses" : "hits", TORUS_ARGS(t), LANE_ARGS(r));
+                cr_assert_eq(b, want_blocked >> k & 1,
+                             "%s, packet %ld lane %d (active %#x): torus8_occluded %d, "
+                             "torus_occluded %d; " TORUS_FMT "; " LANE_FMT,
+                             name[j], i, k, (unsigned)active, b, !b, TORUS_ARGS(t), LANE_ARGS(r));
+                if (!h)
+                    continue;
+                cr_assert(memcmp(&got[k].t, &want[k].t, sizeof got[k].t) == 0,
+                          "%s, packet %ld lane %d: t %a, torus_intersect's %a; " TORUS_FMT
+                          "; " LANE_FMT,
+                          name[j], i, k, (double)got[k].t, (double)want[k].t, TORUS_ARGS(t),
+                          LANE_ARGS(r));
+                cr_assert(got[k].part == 0 && got[k].b1 == 0.0f && got[k].b2 == 0.0f &&
+                              got[k].leaf == 0,
+                          "%s, packet %ld lane %d: part %d b1 %g b2 %g leaf %d", name[j], i, k,
+                          got[k].part, (double)got[k].b1, (double)got[k].b2, got[k].leaf);
+            }
+            cr_assert_eq(got_hit & ~active, 0, "%s, packet %ld: hits outside active", name[j], i);
+            cr_assert_eq(got_blocked & ~active, 0, "%s, packet %ld: blocked outside active",
+                         name[j], i);
+        }
+    }
+    cr_log_info("torus packets: %ld lanes on %d paths, %ld hits, %ld blocked, %ld missed with a "
+                "finite tmax",
+                lanes, kernels, hits, blocked, cut);
+    for (int k = 0; k < 8; k++)
+        cr_expect_gt(kinds[k], STRESS_PACKETS / 2, "rays of kind %d: %ld", k, kinds[k]);
+    cr_expect_gt(hits, lanes / 5, "not vacuous: many lanes hit (%ld of %ld)", hits, lanes);
+    cr_expect_gt(lanes - hits, lanes / 5, "and many miss");
 }
