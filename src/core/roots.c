@@ -150,7 +150,8 @@ static int convex_first(const double *c, const double *dc, double lo, double e, 
  * time, in order, and each piece between two of them is searched as soon
  * as its end is known, so asking for the first root alone skips the
  * turning points beyond it; and for the first root alone, when the
- * quartic bends towards zero from lo on, convex_first needs none. */
+ * quartic bends towards zero from lo on, or from its first inflection
+ * after bending away from zero up to it, convex_first needs none. */
 int roots_quartic(const double c[5], double lo, double hi, double out[4], int max)
 {
     if (c[4] == 0.0) {
@@ -166,10 +167,23 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
     int nbend = roots_quadratic(ddc, lo, hi, bend), n = 0;
     double x0 = lo, f0 = roots_eval(c, 4, lo);  /* start of the quartic's piece */
     double y0 = lo, g0 = roots_eval(dc, 3, lo); /* start of the cubic's */
-    if (max == 1 && f0 != 0.0 && (f0 > 0.0) == (roots_eval(ddc, 2, lo) > 0.0)) {
-        int k = convex_first(c, dc, lo, nbend > 0 ? bend[0] : hi, f0, out);
-        if (k > 0 || (k == 0 && nbend == 0))
-            return k;
+    if (max == 1 && f0 != 0.0) {
+        if ((f0 > 0.0) == (roots_eval(ddc, 2, lo) > 0.0)) {
+            int k = convex_first(c, dc, lo, nbend > 0 ? bend[0] : hi, f0, out);
+            if (k > 0 || (k == 0 && nbend == 0))
+                return k;
+        } else if (nbend > 0) {
+            /* p bends away from zero up to its first inflection bend[0]
+             * (sign f0 p is concave there), so it keeps its sign on [lo,
+             * bend[0]] if it has it at bend[0]; from there it bends
+             * towards zero, up to the next inflection */
+            double fb = roots_eval(c, 4, bend[0]);
+            if (fb != 0.0 && (fb > 0.0) == (f0 > 0.0)) {
+                int k = convex_first(c, dc, bend[0], nbend > 1 ? bend[1] : hi, fb, out);
+                if (k > 0 || (k == 0 && nbend == 1))
+                    return k;
+            }
+        }
     }
     for (int i = 0; i <= nbend; i++) {
         double y1 = i < nbend ? bend[i] : hi, g1 = roots_eval(dc, 3, y1);

@@ -8,8 +8,9 @@
  * method kept inside the bracket (a step that would leave it bisects
  * instead). So no root that crosses zero is lost, however close two roots
  * are, and each comes out to full double precision (the first root alone,
- * when the quartic bends towards it from lo on, by a Newton search that
- * stops at a step under 1e-9: also full precision at a simple root,
+ * when the quartic bends towards it from lo on, or from its first
+ * inflection after bending away from it up to there, by a Newton search
+ * that stops at a step under 1e-9: also full precision at a simple root,
  * within about 1e-9 at a double one). A root where the
  * polynomial only touches zero (a tangent ray) is not reported.
  *

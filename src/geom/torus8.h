@@ -214,21 +214,21 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     tk above = tk_and(lanes, t8_cmp(hi, t8_k(1e-4), _CMP_GE_OQ));
     for (int i = 0; i < 5; i++)
         above = tk_and(above, t8_cmp(b[i], m, _CMP_GT_OQ));
-    /* the derivatives; convex_first from 0 where p falls there and bends
-     * towards zero */
+    /* the derivatives; convex_first from 0 where p bends towards zero
+     * there (cvx), or from p's first inflection where it bends away from
+     * zero up to it (cave) */
     td dc[4] = {c[1], t8_mul(t8_k(2.0), c[2]), t8_mul(t8_k(3.0), c[3]), t8_mul(t8_k(4.0), c[4])};
     td ddc[3] = {dc[1], t8_mul(t8_k(2.0), dc[2]), t8_mul(t8_k(3.0), dc[3])};
-    td f = t8_eval(c, 4, zero), x = zero, found = zero;
-    tk act = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
-    act = tk_and(act, t8_cmp(f, zero, _CMP_NEQ_UQ));
-    act = tk_andnot(tk_xor(t8_cmp(f, zero, _CMP_GT_OQ),
-                           t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ)),
-                    act);
+    td f0 = t8_eval(c, 4, zero), found = zero;
+    tk some = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
+    some = tk_and(some, t8_cmp(f0, zero, _CMP_NEQ_UQ));
+    tk pos = t8_cmp(f0, zero, _CMP_GT_OQ);
+    tk away = tk_xor(pos, t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ));
+    tk cvx = tk_andnot(away, some), cave = tk_and(away, some);
     out->miss |= tk_bits(above);
-    if (!tk_any(act))
+    if (!tk_any(some))
         return;
-    /* the first turning point of p' in (0, hi): the roots of p'' by
-     * roots_quadratic */
+    /* p's inflections in (0, hi): the roots of p'' by roots_quadratic */
     td disc = t8_sub(t8_mul(ddc[1], ddc[1]), t8_mul(t8_mul(t8_k(4.0), ddc[2]), ddc[0]));
     tk real = t8_cmp(disc, zero, _CMP_NLT_UQ);
     td q = t8_mul(t8_k(-0.5), t8_add(ddc[1], t8_copysign(t8_sqrt(disc), ddc[1])));
@@ -239,9 +239,21 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     tk in0 = tk_and(real, tk_and(t8_cmp(lo_r, zero, _CMP_GT_OQ), t8_cmp(lo_r, hi, _CMP_LT_OQ)));
     tk in1 = tk_and(tk_and(real, two),
                     tk_and(t8_cmp(hi_r, zero, _CMP_GT_OQ), t8_cmp(hi_r, hi, _CMP_LT_OQ)));
-    tk bends = tk_or(in0, in1);
-    td e = t8_pick(in0, lo_r, t8_pick(in1, hi_r, hi));
-    td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one);
+    tk bends = tk_or(in0, in1), both = tk_and(in0, in1);
+    td bend = t8_pick(in0, lo_r, t8_pick(in1, hi_r, hi)); /* the first, or hi */
+    /* where p bends away from zero, it keeps its sign up to the inflection
+     * if it has it there */
+    td fb = t8_eval(c, 4, bend);
+    cave = tk_and(cave, tk_and(bends, t8_cmp(fb, zero, _CMP_NEQ_UQ)));
+    cave = tk_andnot(tk_xor(t8_cmp(fb, zero, _CMP_GT_OQ), pos), cave);
+    tk act = tk_or(cvx, cave);
+    if (!tk_any(act))
+        return;
+    td x = t8_pick(cave, bend, zero), from = x, f = t8_pick(cave, fb, f0);
+    td e = t8_pick(cave, t8_pick(both, hi_r, hi), bend);
+    /* no root past the search's end either: no more inflections */
+    tk last = tk_or(tk_andnot(bends, cvx), tk_andnot(both, cave));
+    td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one); /* of p where it starts */
     tk none = tk_andnot(act, act), root = none;
     td df = t8_eval(dc, 3, x);
     for (int it = 0; it < 60 && tk_any(act); it++) {
@@ -257,7 +269,7 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
         tk conv = tk_and(act, t8_cmp(t8_abs(t8_sub(nx, x)), t8_mul(t8_k(1e-9), scale),
                                      _CMP_LE_OQ));
         act = tk_andnot(conv, act);
-        conv = tk_and(conv, t8_cmp(nx, zero, _CMP_GT_OQ)); /* else rounded onto 0 */
+        conv = tk_and(conv, t8_cmp(nx, from, _CMP_GT_OQ)); /* else rounded onto its start */
         td nf = t8_eval(c, 4, nx), ndf = t8_eval(dc, 3, nx); /* p' at the next step's x */
         tk hit = tk_or(conv, tk_and(act, t8_cmp(nf, zero, _CMP_EQ_OQ)));
         root = tk_or(root, hit);
@@ -268,7 +280,7 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
         f = t8_pick(act, nf, f);
         df = t8_pick(act, ndf, df);
     }
-    out->miss |= tk_bits(tk_andnot(bends, none));
+    out->miss |= tk_bits(tk_and(last, none));
     out->root |= tk_bits(root);
     t8_store(out->x, found);
 }
