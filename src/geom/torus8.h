@@ -301,6 +301,8 @@ static inline int torus8_setup(const struct torus *s, const ray8 *r, int active,
     td d[3] = {t8_load(r->dx), t8_load(r->dy), t8_load(r->dz)};
     td dd = t8_dot(d, d), od = t8_dot(o, d), oo = t8_dot(o, o);
     tk keep = t8_cmp(t8_mul(od, od), t8_mul(dd, t8_sub(oo, t8_k(ext[0] * ext[0]))), _CMP_NLT_UQ);
+    if (!(active & tk_bits(keep))) /* every ray passes by the ball: 18% of row 8's packets */
+        return 0;
     td t0 = t8_load(r->tmin), t1 = t8_load(r->tmax);
     t8_clip(o, d, ext, &t0, &t1, &keep);
     double inner = R > rm ? (R - rm) * (R - rm) * 0.999 : 0.0, outer = (R + rm) * (R + rm) * 1.001;
