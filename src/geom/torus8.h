@@ -6,10 +6,12 @@
  * multiply-adds: ISO C contracts nothing), so its quartic is the same to
  * the bit; branches become masks. The search for the first root then
  * starts in the same registers (t8_first_root): the test that the quartic
- * stays above zero, and the Newton steps of roots_quartic's commonest path,
- * all lanes stepping together, which saves the mispredicted branches of
- * one search after another (row 8 of bench/README.md). Lanes it leaves
- * undecided, about one in twelve there, go to torus_solve one by one. For
+ * stays above zero, and the Newton steps of roots_quartic's commonest
+ * paths (from the entry, or from the first inflection), all lanes
+ * stepping together instead of one search after another, each with its
+ * own data-dependent loop (row 8 of bench/README.md: as many instructions,
+ * 9% less time). Lanes it leaves undecided, about one in twenty-five
+ * there, go to torus_solve one by one. For
  * translation units compiled with AVX2 (geom/shape8.h). */
 #ifndef GLINT_GEOM_TORUS8_H
 #define GLINT_GEOM_TORUS8_H
