@@ -190,17 +190,10 @@ static inline td t8_eval(const td *c, int degree, td x)
     return v;
 }
 
-/* torus_solve's first steps for the lanes of `lanes` with the quartic c[0] + ... + c[3] x^3 + x^4 on (0, hi):
- * roots_quartic_above, then roots_quartic(c, 0, hi, .., 1) where it
- * takes convex_first's path (core/roots.c), with the same doubles in the
- * same order lane by lane, the lanes stepping together and each leaving
- * the loop where convex_first returns. Lanes whose search leaves that path
- * (the general search, a bracket, a root rounded onto 0) are in neither
- * out->miss nor out->root. */
-static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out)
+/* roots_quartic_above (core/roots.h) for the lanes of `lanes`: those whose
+ * quartic c provably stays above zero on [0, hi]. */
+static inline tk t8_above(const td *c, td hi, tk lanes)
 {
-    const td zero = t8_zero(), one = t8_k(1.0);
-    const td c[5] = {cq[0], cq[1], cq[2], cq[3], one}; /* torus_quartic's c[4] */
     td h2 = t8_mul(hi, hi);
     td a[5] = {c[0], t8_mul(c[1], hi), t8_mul(c[2], h2), t8_mul(t8_mul(c[3], h2), hi),
                t8_mul(t8_mul(c[4], h2), h2)};
@@ -216,6 +209,21 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     tk above = tk_and(lanes, t8_cmp(hi, t8_k(1e-4), _CMP_GE_OQ));
     for (int i = 0; i < 5; i++)
         above = tk_and(above, t8_cmp(b[i], m, _CMP_GT_OQ));
+    return above;
+}
+
+/* torus_solve's first steps for the lanes of `lanes` with the quartic c[0] + ... + c[3] x^3 + x^4 on (0, hi):
+ * roots_quartic_above, then roots_quartic(c, 0, hi, .., 1) where it
+ * takes convex_first's path (core/roots.c), with the same doubles in the
+ * same order lane by lane, the lanes stepping together and each leaving
+ * the loop where convex_first returns. Lanes whose search leaves that path
+ * (the general search, a bracket, a root rounded onto 0) are in neither
+ * out->miss nor out->root. */
+static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out)
+{
+    const td zero = t8_zero(), one = t8_k(1.0);
+    const td c[5] = {cq[0], cq[1], cq[2], cq[3], one}; /* torus_quartic's c[4] */
+    tk above = t8_above(c, hi, lanes);
     /* the derivatives; convex_first from 0 where p bends towards zero
      * there (cvx), or from p's first inflection where it bends away from
      * zero up to it (cave) */
