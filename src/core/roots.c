@@ -168,15 +168,17 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
     double x0 = lo, f0 = roots_eval(c, 4, lo);  /* start of the quartic's piece */
     double y0 = lo, g0 = roots_eval(dc, 3, lo); /* start of the cubic's */
     if (max == 1 && f0 != 0.0) {
-        if ((f0 > 0.0) == (roots_eval(ddc, 2, lo) > 0.0)) {
+        double pp = roots_eval(ddc, 2, lo);
+        if ((f0 > 0.0) == (pp > 0.0)) {
             int k = convex_first(c, dc, lo, nbend > 0 ? bend[0] : hi, f0, out);
             if (k > 0 || (k == 0 && nbend == 0))
                 return k;
-        } else if (nbend > 0) {
+        } else if (nbend > 0 && pp != 0.0) {
             /* p bends away from zero up to its first inflection bend[0]
-             * (sign f0 p is concave there), so it keeps its sign on [lo,
-             * bend[0]] if it has it at bend[0]; from there it bends
-             * towards zero, up to the next inflection */
+             * (sign f0 p is concave there: p'' has the other sign at lo,
+             * not 0), so it keeps its sign on [lo, bend[0]] if it has it
+             * at bend[0]; from there it bends towards zero, up to the next
+             * inflection */
             double fb = roots_eval(c, 4, bend[0]);
             if (fb != 0.0 && (fb > 0.0) == (f0 > 0.0)) {
                 int k = convex_first(c, dc, bend[0], nbend > 1 ? bend[1] : hi, fb, out);

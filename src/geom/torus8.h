@@ -233,8 +233,10 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     tk some = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
     some = tk_and(some, t8_cmp(f0, zero, _CMP_NEQ_UQ));
     tk pos = t8_cmp(f0, zero, _CMP_GT_OQ);
-    tk away = tk_xor(pos, t8_cmp(t8_eval(ddc, 2, zero), zero, _CMP_GT_OQ));
-    tk cvx = tk_andnot(away, some), cave = tk_and(away, some);
+    td pp = t8_eval(ddc, 2, zero);
+    tk away = tk_xor(pos, t8_cmp(pp, zero, _CMP_GT_OQ));
+    tk cvx = tk_andnot(away, some);
+    tk cave = tk_and(tk_and(away, some), t8_cmp(pp, zero, _CMP_NEQ_UQ)); /* p'' not 0 at 0 */
     out->miss |= tk_bits(above);
     if (!tk_any(some))
         return;
