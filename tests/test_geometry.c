@@ -6,6 +6,7 @@
  * finder the torus uses, and the polyhedron's checks of its input. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,6 +92,52 @@ Test(roots, first_root_alone_agrees_with_all)
         }
     }
     cr_assert_gt(found, 5000);
+}
+
+/* The first root alone (max 1) against the first of all of them (max 4):
+ * 1 when they agree (both none, or both a root within 1e-9). */
+static void expect_first_root(const double c[5], double lo, double hi, const char *what)
+{
+    double one[4], all[4];
+    int n1 = roots_quartic(c, lo, hi, one, 1), n4 = roots_quartic(c, lo, hi, all, 4);
+    cr_assert_eq(n1, n4 > 0 ? 1 : 0, "%s: %d first roots, %d in all", what, n1, n4);
+    if (n1)
+        ASSERT_NEAR(one[0], all[0], 1e-9);
+}
+
+/* Where p'' has a double root (x^4 + x - 1: p'' = 12 x^2, concave on
+ * neither side) or lo lies within rounding of an inflection, the sign of
+ * p'' at lo and the inflections found need not tell which way p bends on
+ * the piece searched from lo or from the first inflection: the first
+ * root alone must still be the first of all. */
+Test(roots, first_root_alone_where_the_inflections_mislead)
+{
+    const double dbl[5] = {-1, 1, 0, 0, 1};
+    expect_first_root(dbl, -0.5, 0.9, "double inflection at 0");
+    const double b1[5] = {-1.929226952366065, -1.9970649520931119, -3.7303703556296028,
+                          -1.100000111139753, 1.2095539236881621};
+    expect_first_root(b1, -0.52477747822553578, 4.7554408888322159, "inflection dropped");
+    const double b2[5] = {-0.93073968491671621, 1.0861465041704577, 1.9931161348054898,
+                          1.4022923506070162, 0.36997788981312851};
+    expect_first_root(b2, -0.94733918571793385, 0.74563916402618491, "inflection before lo");
+    /* random quartics with lo on a computed inflection and a float either side */
+    uint32_t seed = 4242;
+    for (int k = 0; k < 20000; k++) {
+        double c[5];
+        for (int i = 0; i < 5; i++) {
+            seed = seed * 1664525u + 1013904223u;
+            c[i] = (double)(seed >> 8) / (double)(1u << 24) * 4.0 - 2.0;
+        }
+        if (k % 4 == 0)
+            c[2] = c[3] = 0.0; /* p'' = 12 c4 x^2: a double inflection at 0 */
+        double ddc[3] = {2.0 * c[2], 6.0 * c[3], 12.0 * c[4]}, bend[2];
+        int nb = roots_quadratic(ddc, -4.0, 4.0, bend);
+        double at = nb > 0 ? bend[k % nb] : 0.0;
+        double lo = k % 3 == 0 ? at : k % 3 == 1 ? nextafter(at, -INFINITY) : nextafter(at, INFINITY);
+        char what[64];
+        snprintf(what, sizeof what, "quartic %d", k);
+        expect_first_root(c, lo, lo + 0.5 + (double)(k % 7), what);
+    }
 }
 
 /* roots_quartic_above turns a quartic away only where the search finds no

@@ -168,23 +168,27 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
     double x0 = lo, f0 = roots_eval(c, 4, lo);  /* start of the quartic's piece */
     double y0 = lo, g0 = roots_eval(dc, 3, lo); /* start of the cubic's */
     if (max == 1 && f0 != 0.0) {
-        double pp = roots_eval(ddc, 2, lo);
-        if ((f0 > 0.0) == (pp > 0.0)) {
-            int k = convex_first(c, dc, lo, nbend > 0 ? bend[0] : hi, f0, out);
-            if (k > 0 || (k == 0 && nbend == 0))
+        /* convex_first where sign f0 p bends towards zero: from lo up to
+         * p's first inflection (or hi); or, where it bends away from zero
+         * up to that inflection (concave there, so it keeps its sign if
+         * it has it at the inflection), from there up to the next. p'' is
+         * taken in the middle of the piece searched, not only at its
+         * start: the computed inflections may miss one within rounding of
+         * lo, or list a double one where p'' keeps its sign. */
+        double pp = roots_eval(ddc, 2, lo), from = lo, f = f0;
+        bool toward = (f0 > 0.0) == (pp > 0.0);
+        if (!toward && nbend > 0 && pp != 0.0) {
+            from = bend[0];
+            f = roots_eval(c, 4, from);
+        }
+        int rest = toward ? nbend : nbend - 1; /* inflections past the piece */
+        double e = toward ? (nbend > 0 ? bend[0] : hi) : (nbend > 1 ? bend[1] : hi);
+        double pm = roots_eval(ddc, 2, 0.5 * (from + e));
+        if ((toward || (nbend > 0 && pp != 0.0)) && f != 0.0 && (f > 0.0) == (f0 > 0.0) &&
+            pm != 0.0 && (pm > 0.0) == (f0 > 0.0)) {
+            int k = convex_first(c, dc, from, e, f, out);
+            if (k > 0 || (k == 0 && rest == 0))
                 return k;
-        } else if (nbend > 0 && pp != 0.0) {
-            /* p bends away from zero up to its first inflection bend[0]
-             * (sign f0 p is concave there: p'' has the other sign at lo,
-             * not 0), so it keeps its sign on [lo, bend[0]] if it has it
-             * at bend[0]; from there it bends towards zero, up to the next
-             * inflection */
-            double fb = roots_eval(c, 4, bend[0]);
-            if (fb != 0.0 && (fb > 0.0) == (f0 > 0.0)) {
-                int k = convex_first(c, dc, bend[0], nbend > 1 ? bend[1] : hi, fb, out);
-                if (k > 0 || (k == 0 && nbend == 1))
-                    return k;
-            }
         }
     }
     for (int i = 0; i <= nbend; i++) {

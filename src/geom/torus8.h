@@ -225,21 +225,19 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     const td c[5] = {cq[0], cq[1], cq[2], cq[3], one}; /* torus_quartic's c[4] */
     tk above = t8_above(c, hi, lanes);
     /* the derivatives; convex_first from 0 where p bends towards zero
-     * there (cvx), or from p's first inflection where it bends away from
-     * zero up to it (cave) */
+     * there (toward), or from p's first inflection where it bends away
+     * from zero up to it (roots_quartic) */
     td dc[4] = {c[1], t8_mul(t8_k(2.0), c[2]), t8_mul(t8_k(3.0), c[3]), t8_mul(t8_k(4.0), c[4])};
     td ddc[3] = {dc[1], t8_mul(t8_k(2.0), dc[2]), t8_mul(t8_k(3.0), dc[3])};
     td f0 = t8_eval(c, 4, zero), found = zero;
     tk some = tk_andnot(above, tk_and(lanes, t8_cmp(ddc[2], zero, _CMP_NEQ_UQ)));
     some = tk_and(some, t8_cmp(f0, zero, _CMP_NEQ_UQ));
-    tk pos = t8_cmp(f0, zero, _CMP_GT_OQ);
-    td pp = t8_eval(ddc, 2, zero);
-    tk away = tk_xor(pos, t8_cmp(pp, zero, _CMP_GT_OQ));
-    tk cvx = tk_andnot(away, some);
-    tk cave = tk_and(tk_and(away, some), t8_cmp(pp, zero, _CMP_NEQ_UQ)); /* p'' not 0 at 0 */
     out->miss |= tk_bits(above);
     if (!tk_any(some))
         return;
+    tk pos = t8_cmp(f0, zero, _CMP_GT_OQ);
+    td pp = t8_eval(ddc, 2, zero);
+    tk toward = tk_andnot(tk_xor(pos, t8_cmp(pp, zero, _CMP_GT_OQ)), some);
     /* p's inflections in (0, hi): the roots of p'' by roots_quadratic */
     td disc = t8_sub(t8_mul(ddc[1], ddc[1]), t8_mul(t8_mul(t8_k(4.0), ddc[2]), ddc[0]));
     tk real = t8_cmp(disc, zero, _CMP_NLT_UQ);
@@ -253,18 +251,19 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
                     tk_and(t8_cmp(hi_r, zero, _CMP_GT_OQ), t8_cmp(hi_r, hi, _CMP_LT_OQ)));
     tk bends = tk_or(in0, in1), both = tk_and(in0, in1);
     td bend = t8_pick(in0, lo_r, t8_pick(in1, hi_r, hi)); /* the first, or hi */
-    /* where p bends away from zero, it keeps its sign up to the inflection
-     * if it has it there */
-    td fb = t8_eval(c, 4, bend);
-    cave = tk_and(cave, tk_and(bends, t8_cmp(fb, zero, _CMP_NEQ_UQ)));
-    cave = tk_andnot(tk_xor(t8_cmp(fb, zero, _CMP_GT_OQ), pos), cave);
-    tk act = tk_or(cvx, cave);
+    tk away = tk_andnot(toward, tk_and(tk_and(some, bends), t8_cmp(pp, zero, _CMP_NEQ_UQ)));
+    td x = t8_pick(away, bend, zero), from = x;
+    td f = t8_pick(away, t8_eval(c, 4, bend), f0);
+    td e = t8_pick(toward, bend, t8_pick(both, hi_r, hi));
+    td pm = t8_eval(ddc, 2, t8_mul(t8_k(0.5), t8_add(from, e))); /* p'' inside the piece */
+    tk act = tk_and(tk_or(toward, away), t8_cmp(f, zero, _CMP_NEQ_UQ));
+    act = tk_andnot(tk_xor(t8_cmp(f, zero, _CMP_GT_OQ), pos), act);
+    act = tk_and(act, t8_cmp(pm, zero, _CMP_NEQ_UQ));
+    act = tk_andnot(tk_xor(t8_cmp(pm, zero, _CMP_GT_OQ), pos), act);
     if (!tk_any(act))
         return;
-    td x = t8_pick(cave, bend, zero), from = x, f = t8_pick(cave, fb, f0);
-    td e = t8_pick(cave, t8_pick(both, hi_r, hi), bend);
-    /* no root past the search's end either: no more inflections */
-    tk last = tk_or(tk_andnot(bends, cvx), tk_andnot(both, cave));
+    /* no root past the piece either: no more inflections */
+    tk last = tk_or(tk_andnot(bends, toward), tk_andnot(both, away));
     td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one); /* of p where it starts */
     tk none = tk_andnot(act, act), root = none;
     td df = t8_eval(dc, 3, x);
