@@ -16,6 +16,13 @@
 
 /* ---- roots (core/roots.h) ------------------------------------------------- */
 
+/* The next of a fixed sequence of numbers in [-2, 2). */
+static double next_coefficient(uint32_t *seed)
+{
+    *seed = *seed * 1664525u + 1013904223u;
+    return (double)(*seed >> 8) / (double)(1u << 24) * 4.0 - 2.0;
+}
+
 /* (x - 1)(x - 2)(x - 3)(x - 4) = x^4 - 10x^3 + 35x^2 - 50x + 24. */
 Test(roots, quartic_with_four_known_roots)
 {
@@ -60,6 +67,18 @@ Test(roots, close_and_double_roots)
     ASSERT_NEAR(r[2], 3, 1e-12);
 }
 
+/* The first root alone (max 1) against the first of all of them (max 4):
+ * both none, or both a root within 1e-9; returns how many first roots. */
+static int expect_first_root(const double c[5], double lo, double hi, const char *what)
+{
+    double one[4], all[4];
+    int n1 = roots_quartic(c, lo, hi, one, 1), n4 = roots_quartic(c, lo, hi, all, 4);
+    cr_assert_eq(n1, n4 > 0 ? 1 : 0, "%s: %d first roots, %d in all", what, n1, n4);
+    if (n1)
+        ASSERT_NEAR(one[0], all[0], 1e-9);
+    return n1;
+}
+
 /* The first root alone (max 1), which for a quartic bending towards zero
  * is found by Newton's method from lo without the turning point ahead,
  * against the first of all the roots (max 4), which always goes by the
@@ -71,10 +90,8 @@ Test(roots, first_root_alone_agrees_with_all)
     int found = 0;
     for (int k = 0; k < 20000; k++) {
         double v[6];
-        for (int i = 0; i < 6; i++) {
-            seed = seed * 1664525u + 1013904223u;
-            v[i] = (double)(seed >> 8) / (double)(1u << 24) * 4.0 - 2.0;
-        }
+        for (int i = 0; i < 6; i++)
+            v[i] = next_coefficient(&seed);
         /* (x - v0)(x - v1) times x^2 - 2 v2 x + v2^2 + v3 (v3 > 0: no real roots) or the
          * real pair v2 +- |v3| */
         double m = v[3] > 0 ? v[2] * v[2] + v[3] : v[2] * v[2] - v[3] * v[3];
@@ -83,26 +100,12 @@ Test(roots, first_root_alone_agrees_with_all)
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
                 c[i + j] += p[i] * q[j];
-        double lo = v[4], hi = lo + 1.0 + fabs(v[5]) * 2.0, one[4], all[4];
-        int n1 = roots_quartic(c, lo, hi, one, 1), n4 = roots_quartic(c, lo, hi, all, 4);
-        cr_assert_eq(n1, n4 > 0 ? 1 : 0, "quartic %d: %d first roots, %d in all", k, n1, n4);
-        if (n1) {
-            ASSERT_NEAR(one[0], all[0], 1e-9);
-            found++;
-        }
+        double lo = v[4], hi = lo + 1.0 + fabs(v[5]) * 2.0;
+        char what[64];
+        snprintf(what, sizeof what, "quartic %d", k);
+        found += expect_first_root(c, lo, hi, what);
     }
     cr_assert_gt(found, 5000);
-}
-
-/* The first root alone (max 1) against the first of all of them (max 4):
- * 1 when they agree (both none, or both a root within 1e-9). */
-static void expect_first_root(const double c[5], double lo, double hi, const char *what)
-{
-    double one[4], all[4];
-    int n1 = roots_quartic(c, lo, hi, one, 1), n4 = roots_quartic(c, lo, hi, all, 4);
-    cr_assert_eq(n1, n4 > 0 ? 1 : 0, "%s: %d first roots, %d in all", what, n1, n4);
-    if (n1)
-        ASSERT_NEAR(one[0], all[0], 1e-9);
 }
 
 /* Where p'' has a double root (x^4 + x - 1: p'' = 12 x^2, concave on
@@ -124,10 +127,8 @@ Test(roots, first_root_alone_where_the_inflections_mislead)
     uint32_t seed = 4242;
     for (int k = 0; k < 20000; k++) {
         double c[5];
-        for (int i = 0; i < 5; i++) {
-            seed = seed * 1664525u + 1013904223u;
-            c[i] = (double)(seed >> 8) / (double)(1u << 24) * 4.0 - 2.0;
-        }
+        for (int i = 0; i < 5; i++)
+            c[i] = next_coefficient(&seed);
         if (k % 4 == 0)
             c[2] = c[3] = 0.0; /* p'' = 12 c4 x^2: a double inflection at 0 */
         double ddc[3] = {2.0 * c[2], 6.0 * c[3], 12.0 * c[4]}, bend[2];

@@ -162,6 +162,26 @@ Test(heap, room_is_mapped_in_place_on_one_thread)
     expect_room_mapped(1);
 }
 
+/* count blocks of 48 bytes into blocks, block i written with i's low byte */
+static void write_blocks(unsigned char **blocks, int count)
+{
+    for (int i = 0; i < count; i++) {
+        blocks[i] = malloc(48);
+        cr_assert_not_null(blocks[i]);
+        memset(blocks[i], i & 0xff, 48);
+    }
+}
+
+/* That every step-th block holds what write_blocks wrote; frees them all. */
+static void check_blocks(unsigned char **blocks, int count, int step)
+{
+    for (int i = 0; i < count; i += step)
+        for (int b = 0; b < 48; b++)
+            cr_assert_eq(blocks[i][b], i & 0xff, "block %d byte %d", i, b);
+    for (int i = 0; i < count; i++)
+        free(blocks[i]);
+}
+
 /* Blocks taken and written while the room is being mapped on the mapper's
  * thread keep what was written in them. */
 Test(heap, blocks_written_while_the_room_is_mapped_keep_their_bytes)
@@ -175,17 +195,9 @@ Test(heap, blocks_written_while_the_room_is_mapped_keep_their_bytes)
     static unsigned char *blocks[COUNT];
     memset(blocks, 0, sizeof blocks);
     heap_ready(path, 0);
-    for (int i = 0; i < COUNT; i++) {
-        blocks[i] = malloc(48);
-        cr_assert_not_null(blocks[i]);
-        memset(blocks[i], i & 0xff, 48);
-    }
+    write_blocks(blocks, COUNT);
     heap_settle();
-    for (int i = 0; i < COUNT; i++) {
-        for (int b = 0; b < 48; b++)
-            cr_assert_eq(blocks[i][b], i & 0xff, "block %d byte %d", i, b);
-        free(blocks[i]);
-    }
+    check_blocks(blocks, COUNT, 1);
     tmpdir_remove();
 }
 
@@ -204,16 +216,8 @@ Test(heap, room_left_unmapped_when_the_load_is_done_first)
     size_t after = resident();
     enum { COUNT = 1 << 22 }; /* 256 MiB of 48-byte blocks, past the room */
     static unsigned char *blocks[COUNT];
-    for (int i = 0; i < COUNT; i++) {
-        blocks[i] = malloc(48);
-        cr_assert_not_null(blocks[i]);
-        memset(blocks[i], i & 0xff, 48);
-    }
-    for (int i = 0; i < COUNT; i += 4099)
-        for (int b = 0; b < 48; b++)
-            cr_assert_eq(blocks[i][b], i & 0xff, "block %d byte %d", i, b);
-    for (int i = 0; i < COUNT; i++)
-        free(blocks[i]);
+    write_blocks(blocks, COUNT);
+    check_blocks(blocks, COUNT, 4099);
     tmpdir_remove();
     cr_assert_lt(after, held + ((size_t)240 << 20), "all of the room was mapped before it stopped");
 }

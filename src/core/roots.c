@@ -175,20 +175,18 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
          * taken in the middle of the piece searched, not only at its
          * start: the computed inflections may miss one within rounding of
          * lo, or list a double one where p'' keeps its sign. */
-        double pp = roots_eval(ddc, 2, lo), from = lo, f = f0;
+        double pp = roots_eval(ddc, 2, lo);
         bool toward = (f0 > 0.0) == (pp > 0.0);
-        if (!toward && nbend > 0 && pp != 0.0) {
-            from = bend[0];
-            f = roots_eval(c, 4, from);
-        }
-        int rest = toward ? nbend : nbend - 1; /* inflections past the piece */
-        double e = toward ? (nbend > 0 ? bend[0] : hi) : (nbend > 1 ? bend[1] : hi);
-        double pm = roots_eval(ddc, 2, 0.5 * (from + e));
-        if ((toward || (nbend > 0 && pp != 0.0)) && f != 0.0 && (f > 0.0) == (f0 > 0.0) &&
-            pm != 0.0 && (pm > 0.0) == (f0 > 0.0)) {
-            int k = convex_first(c, dc, from, e, f, out);
-            if (k > 0 || (k == 0 && rest == 0))
-                return k;
+        if (toward || (nbend > 0 && pp != 0.0)) {
+            double from = toward ? lo : bend[0], f = toward ? f0 : roots_eval(c, 4, from);
+            double e = toward ? (nbend > 0 ? bend[0] : hi) : (nbend > 1 ? bend[1] : hi);
+            int rest = toward ? nbend : nbend - 1; /* inflections past the piece */
+            double pm = roots_eval(ddc, 2, 0.5 * (from + e));
+            if (f != 0.0 && (f > 0.0) == (f0 > 0.0) && pm != 0.0 && (pm > 0.0) == (f0 > 0.0)) {
+                int k = convex_first(c, dc, from, e, f, out);
+                if (k > 0 || (k == 0 && rest == 0))
+                    return k;
+            }
         }
     }
     for (int i = 0; i <= nbend; i++) {

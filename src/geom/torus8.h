@@ -212,13 +212,14 @@ static inline tk t8_above(const td *c, td hi, tk lanes)
     return above;
 }
 
-/* torus_solve's first steps for the lanes of `lanes` with the quartic c[0] + ... + c[3] x^3 + x^4 on (0, hi):
- * roots_quartic_above, then roots_quartic(c, 0, hi, .., 1) where it
- * takes convex_first's path (core/roots.c), with the same doubles in the
- * same order lane by lane, the lanes stepping together and each leaving
- * the loop where convex_first returns. Lanes whose search leaves that path
- * (the general search, a bracket, a root rounded onto 0) are in neither
- * out->miss nor out->root. */
+/* torus_solve's first steps for the lanes of `lanes`, with the quartic
+ * c[0] + ... + c[3] x^3 + x^4 on (0, hi): roots_quartic_above, then
+ * roots_quartic(c, 0, hi, .., 1) where it takes convex_first's path, from
+ * 0 or from the first inflection (core/roots.c), with the same doubles in
+ * the same order lane by lane, the lanes stepping together and each
+ * leaving the loop where convex_first returns. Lanes whose search leaves
+ * that path (the general search, a bracket, a root rounded onto its
+ * start) are in neither out->miss nor out->root. */
 static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out)
 {
     const td zero = t8_zero(), one = t8_k(1.0);
