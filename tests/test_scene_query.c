@@ -183,6 +183,32 @@ Test(scene_query, shadow_queries_match_brute_force_at_every_size)
     check_sizes(check_shadow);
 }
 
+/* A scene of at least 4096 bounded objects (scene.c's BUNDLE_MIN) has a
+ * tree of bundles: ranges of up to a node's width of objects are not
+ * split, each object a lane of its own. Its queries match brute force on
+ * every path, and on the eight-wide ones its nodes are fewer than
+ * bundles of four make (this scene: 0.19 nodes an object with bundles of
+ * eight, 0.24 with four). */
+Test(scene_query, bundled_trees_match_brute_force)
+{
+    enum { N = 4200 };
+    for (int p = ACCEL_SCALAR; p <= ACCEL_AVX512; p++) {
+        if (accel_isa_force((accel_isa)p) != (accel_isa)p)
+            continue;
+        scene *s = random_scene(N, 2024);
+        if (s->bvh.width == 8)
+            cr_assert_lt(s->bvh.nnodes, N * 21 / 100, "%d nodes for %d objects", s->bvh.nnodes, N);
+        rng g = rng_seed(99, 2);
+        for (int i = 0; i < 400; i++) {
+            ray r = random_ray(&g, i);
+            check_closest(s, &r, N, i);
+            check_shadow(s, &r, N, i);
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+}
+
 /* The sizes above reach each of the walks: a flat scene, a tree of one
  * node of several leaves, and deeper trees. */
 Test(scene_query, the_sizes_reach_every_walk)
