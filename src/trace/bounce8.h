@@ -1,47 +1,231 @@
-/* bounce8: a packet's reflected or transmitted rays, eight lanes at once:
- * lane by lane the floats of adc_keep, v3_reflect, ray_offset and
- * ray_make (whitted.c, core/ray.h), in the same order. For translation
- * units compiled with AVX2 (whitted_<isa>.c). */
+/* bounce8: a packet's shading eight lanes at once (bounce8_api.h): lane by
+ * lane the floats of shade_prepare's sphere case (shading.h), split,
+ * adc_keep, v3_reflect, ray_offset, ray_make and the light the secondary
+ * rays bring back (whitted.c, core/ray.h, shade/optics.h), in the same
+ * order. For translation units compiled with AVX2 (whitted_<isa>.c). */
 #ifndef GLINT_TRACE_BOUNCE8_H
 #define GLINT_TRACE_BOUNCE8_H
 
+#include "geom/mesh_packet.h" /* packet_lanes */
+#include "scene/scene.h"
 #include "trace/bounce8_api.h"
 #include "trace/simd8.h"
+
+/* v3_norm lane by lane: a * (1 / |a|) where |a| > 0, else a. */
+__attribute__((always_inline)) static inline void bounce8_norm(const __m256 a[3], __m256 out[3])
+{
+    __m256 l = _mm256_sqrt_ps(simd8_dot(a, a));
+    __m256 pos = _mm256_cmp_ps(l, _mm256_setzero_ps(), _CMP_GT_OQ);
+    __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), l);
+    for (int c = 0; c < 3; c++)
+        out[c] = _mm256_blendv_ps(a[c], _mm256_mul_ps(a[c], inv), pos);
+}
+
+/* Eight lanes' floats at byte off of the records at b[k]. */
+__attribute__((always_inline)) static inline __m256 bounce8_at(const void *const b[8], size_t off)
+{
+    const char *f[8];
+    for (int k = 0; k < 8; k++)
+        f[k] = (const char *)b[k] + off;
+    return _mm256_setr_ps(simd8_float(f[0]), simd8_float(f[1]), simd8_float(f[2]),
+                          simd8_float(f[3]), simd8_float(f[4]), simd8_float(f[5]),
+                          simd8_float(f[6]), simd8_float(f[7]));
+}
+
+/* The lanes' materials, those outside `lanes` repeating the first one's
+ * (all of them sp->same when the lanes share one). */
+__attribute__((always_inline)) static inline void bounce8_materials(const shade8 *sp, int lanes,
+                                                                    const void *m[8])
+{
+    if (sp->same) {
+        for (int k = 0; k < 8; k++)
+            m[k] = sp->same;
+        return;
+    }
+    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
+        m[k] = sp->m[lanes >> k & 1 ? k : first];
+}
+
+/* A float field of the lanes' materials m (bounce8_materials): one
+ * broadcast when they share one. */
+__attribute__((always_inline)) static inline __m256 bounce8_mat(const shade8 *sp,
+                                                                const void *const m[8],
+                                                                size_t off)
+{
+    if (sp->same)
+        return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
+    return bounce8_at(m, off);
+}
+
+/* shade_prepare_kernel (bounce8_api.h): sphere_surface_plain at ray_at,
+ * then facing, whose two normals are here the same. */
+__attribute__((always_inline)) static inline int bounce8_prepare(const scene *s, const ray8 *p,
+                                                                 int found, const scene_hit *hit,
+                                                                 shade8 *sp)
+{
+    const void *o[8], *m[8], *t[8];
+    int sph = 0;
+    for (int b = found; b; b &= b - 1) {
+        int k = __builtin_ctz((unsigned)b);
+        const object *ok = &s->objects[hit[k].object];
+        const material *mk = scene_hit_material(s, &hit[k]);
+        if (ok->xform < 0 && ok->shape.kind == SHAPE_SPHERE && !material_uses_uv(mk)) {
+            sph |= 1 << k;
+            o[k] = &ok->shape.sphere, m[k] = mk, t[k] = &hit[k].h.t;
+            sp->m[k] = mk;
+        }
+    }
+    if (!sph)
+        return found;
+    for (int k = 0, first = __builtin_ctz((unsigned)sph); k < 8; k++)
+        if (!(sph >> k & 1))
+            o[k] = o[first], m[k] = m[first], t[k] = t[first];
+    const __m256 sign = _mm256_set1_ps(-0.0f), one = _mm256_set1_ps(1.0f);
+    __m256 tt = bounce8_at(t, 0), rad = bounce8_at(o, offsetof(struct sphere, radius));
+    __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
+    __m256 org[3] = {_mm256_loadu_ps(p->ox), _mm256_loadu_ps(p->oy), _mm256_loadu_ps(p->oz)};
+    __m256 c[3], q[3], n[3], dn[3];
+    for (int i = 0; i < 3; i++) {
+        c[i] = bounce8_at(o, offsetof(struct sphere, center) + (size_t)i * sizeof(float));
+        q[i] = _mm256_sub_ps(_mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt)), c[i]);
+    }
+    bounce8_norm(q, n);
+    bounce8_norm(d, dn);
+    __m256 inside = _mm256_cmp_ps(simd8_dot(dn, n), _mm256_setzero_ps(), _CMP_GT_OQ);
+    for (int i = 0; i < 3; i++) {
+        __m256 f = _mm256_blendv_ps(n[i], _mm256_xor_ps(n[i], sign), inside);
+        _mm256_storeu_ps(sp->p[i], _mm256_add_ps(c[i], _mm256_mul_ps(n[i], rad)));
+        _mm256_storeu_ps(sp->n[i], f);
+        _mm256_storeu_ps(sp->ng[i], f);
+        _mm256_storeu_ps(sp->d[i], dn[i]);
+        __m256 col = bounce8_at(m, offsetof(material, color) + (size_t)i * sizeof(float));
+        _mm256_storeu_ps(sp->base[i], _mm256_mul_ps(col, one));
+    }
+    sp->inside = (sp->inside & ~sph) | (_mm256_movemask_ps(inside) & sph);
+    return found & ~sph;
+}
+
+/* split (whitted.c) with optics_refract and optics_schlick. */
+__attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp, int found,
+                                                               float kr_out[8], float kt_out[8],
+                                                               float gt_out[8], color8 *tdir,
+                                                               int *transmits)
+{
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const __m256 sign = _mm256_set1_ps(-0.0f);
+    *transmits = 0;
+    if (!found)
+        return 0;
+    const void *m[8];
+    bounce8_materials(sp, found, m);
+    __m256 kr = bounce8_mat(sp, m, offsetof(material, reflect));
+    __m256 kt = bounce8_mat(sp, m, offsetof(material, transmit));
+    __m256 ior = bounce8_mat(sp, m, offsetof(material, ior));
+    __m256 d[3], n[3], td[3];
+    for (int c = 0; c < 3; c++) {
+        d[c] = td[c] = _mm256_loadu_ps(sp->d[c]);
+        n[c] = _mm256_loadu_ps(sp->n[c]);
+    }
+    __m256 bends = _mm256_and_ps(_mm256_cmp_ps(kt, zero, _CMP_NLE_UQ),
+                                 _mm256_cmp_ps(ior, one, _CMP_NEQ_UQ));
+    bends = _mm256_and_ps(bends, packet_lanes(found));
+    if (_mm256_movemask_ps(bends)) {
+        __m256 in = packet_lanes(sp->inside);
+        __m256 n1 = _mm256_blendv_ps(one, ior, in), n2 = _mm256_blendv_ps(ior, one, in);
+        __m256 eta = _mm256_div_ps(n1, n2);
+        __m256 cosi = _mm256_xor_ps(simd8_dot(d, n), sign);
+        __m256 k = _mm256_sub_ps(one, _mm256_mul_ps(_mm256_mul_ps(eta, eta),
+                                                    _mm256_sub_ps(one, _mm256_mul_ps(cosi, cosi))));
+        __m256 tir = _mm256_and_ps(bends, _mm256_cmp_ps(k, zero, _CMP_LT_OQ));
+        __m256 refr = _mm256_andnot_ps(tir, bends);
+        __m256 s = _mm256_sub_ps(_mm256_mul_ps(eta, cosi), _mm256_sqrt_ps(k));
+        for (int c = 0; c < 3; c++)
+            td[c] = _mm256_blendv_ps(
+                d[c], _mm256_add_ps(_mm256_mul_ps(d[c], eta), _mm256_mul_ps(n[c], s)), refr);
+        kr = _mm256_blendv_ps(kr, _mm256_add_ps(kr, kt), tir);
+        kt = _mm256_blendv_ps(kt, zero, tir);
+        int fres = sp->same ? -sp->same->fresnel : 0;
+        for (int j = 0; j < 8 && !sp->same; j++)
+            fres |= ((const material *)m[j])->fresnel << j;
+        __m256 fr = _mm256_and_ps(refr, packet_lanes(fres));
+        if (_mm256_movemask_ps(fr)) {
+            __m256 dotc = _mm256_blendv_ps(simd8_dot(d, n), simd8_dot(td, n),
+                                           _mm256_cmp_ps(n1, n2, _CMP_GT_OQ));
+            __m256 cosine = _mm256_xor_ps(dotc, sign);
+            __m256 r0 = _mm256_div_ps(_mm256_sub_ps(n1, n2), _mm256_add_ps(n1, n2));
+            r0 = _mm256_mul_ps(r0, r0);
+            __m256 mm = _mm256_sub_ps(one, cosine), m2 = _mm256_mul_ps(mm, mm);
+            __m256 f = _mm256_add_ps(
+                r0, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(one, r0), m2), m2), mm));
+            kr = _mm256_blendv_ps(kr, _mm256_add_ps(kr, _mm256_mul_ps(kt, f)), fr);
+            kt = _mm256_blendv_ps(kt, _mm256_mul_ps(kt, _mm256_sub_ps(one, f)), fr);
+        }
+    }
+    __m256 tint[3];
+    for (int c = 0; c < 3; c++) {
+        tint[c] = bounce8_mat(sp, m, offsetof(material, tint) + (size_t)c * sizeof(float));
+        _mm256_storeu_ps(tdir->c[c], td[c]);
+    }
+    __m256 big = _mm256_max_ps(tint[0], _mm256_max_ps(tint[1], tint[2]));
+    _mm256_storeu_ps(kr_out, kr);
+    _mm256_storeu_ps(kt_out, kt);
+    _mm256_storeu_ps(gt_out, _mm256_mul_ps(kt, big));
+    *transmits = found & _mm256_movemask_ps(_mm256_cmp_ps(kt, zero, _CMP_GT_OQ));
+    return found & _mm256_movemask_ps(_mm256_cmp_ps(kr, zero, _CMP_GT_OQ));
+}
+
+/* mix (bounce8_api.h): v3_madd(c, sub, k), or v3_add(c, v3_scale(v3_mul(sub,
+ * tint), k)). */
+__attribute__((always_inline)) static inline void bounce8_mix(const shade8 *sp, int keep,
+                                                              bool reflect, const color8 *sub,
+                                                              const float k[8], color8 *c)
+{
+    if (!keep)
+        return;
+    const void *m[8];
+    bounce8_materials(sp, keep, m);
+    __m256 kk = _mm256_loadu_ps(k), lanes = packet_lanes(keep);
+    for (int i = 0; i < 3; i++) {
+        __m256 s = _mm256_loadu_ps(sub->c[i]), v = _mm256_loadu_ps(c->c[i]);
+        if (!reflect)
+            s = _mm256_mul_ps(s, bounce8_mat(sp, m, offsetof(material, tint) + (size_t)i * sizeof(float)));
+        _mm256_storeu_ps(c->c[i], _mm256_blendv_ps(v, _mm256_add_ps(v, _mm256_mul_ps(s, kk)), lanes));
+    }
+}
 
 __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, int found,
                                                          bool reflect, ray rs[8], ray8 *p,
                                                          float weight[8])
 {
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    const shade_point *sp = f->sp;
-    const size_t size = sizeof *sp;
+    const shade8 *sp = f->sp;
     /* adc_keep: share * k / max(total, 1), kept where k > 0 and not below
-     * the bailout; the factors were just stored one by one */
-    __m256 kr = simd8_field(f->kr, sizeof(float), 0), gt = simd8_field(f->gt, sizeof(float), 0);
+     * the bailout; the shares were just stored one by one */
+    __m256 kr = _mm256_loadu_ps(f->kr), gt = _mm256_loadu_ps(f->gt);
     __m256 k = reflect ? kr : gt;
     __m256 w = _mm256_div_ps(_mm256_mul_ps(simd8_field(f->share, sizeof(float), 0), k),
                              _mm256_max_ps(_mm256_add_ps(kr, gt), one));
     __m256 keep = _mm256_and_ps(_mm256_cmp_ps(k, zero, _CMP_GT_OQ),
                                 _mm256_cmp_ps(w, _mm256_set1_ps(f->bailout), _CMP_NLT_UQ));
     if (!reflect)
-        keep = _mm256_and_ps(keep, _mm256_cmp_ps(simd8_field(f->kt, sizeof(float), 0), zero,
-                                                  _CMP_GT_OQ));
+        keep = _mm256_and_ps(keep, _mm256_cmp_ps(_mm256_loadu_ps(f->kt), zero, _CMP_GT_OQ));
     found &= _mm256_movemask_ps(keep);
     if (!found)
         return 0;
     __m256 d[3], at[3], ng[3], o[3];
     if (reflect) { /* v3_reflect(d, n) = d + n (-2 d.n) */
         __m256 in[3], n[3];
-        simd8_vec3(sp, size, offsetof(shade_point, d), in);
-        simd8_vec3(sp, size, offsetof(shade_point, n), n);
+        for (int c = 0; c < 3; c++)
+            in[c] = _mm256_loadu_ps(sp->d[c]), n[c] = _mm256_loadu_ps(sp->n[c]);
         __m256 s = _mm256_mul_ps(_mm256_set1_ps(-2.0f), simd8_dot(in, n));
         for (int c = 0; c < 3; c++)
             d[c] = _mm256_add_ps(in[c], _mm256_mul_ps(n[c], s));
     } else {
-        simd8_vec3(f->tdir, sizeof *f->tdir, 0, d);
+        for (int c = 0; c < 3; c++)
+            d[c] = _mm256_loadu_ps(f->tdir->c[c]);
     }
-    simd8_vec3(sp, size, offsetof(shade_point, p), at);
-    simd8_vec3(sp, size, offsetof(shade_point, ng), ng);
+    for (int c = 0; c < 3; c++)
+        at[c] = _mm256_loadu_ps(sp->p[c]), ng[c] = _mm256_loadu_ps(sp->ng[c]);
     simd8_offset(at, ng, d, o);
     _mm256_storeu_ps(p->ox, o[0]), _mm256_storeu_ps(p->oy, o[1]), _mm256_storeu_ps(p->oz, o[2]);
     _mm256_storeu_ps(p->dx, d[0]), _mm256_storeu_ps(p->dy, d[1]), _mm256_storeu_ps(p->dz, d[2]);
@@ -58,12 +242,29 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
     return found;
 }
 
-/* Defines bounce8_<isa>. */
+/* Defines shade8_kernels_<isa>. */
 #define BOUNCE8_KERNELS(isa)                                                                   \
-    int bounce8_##isa(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,      \
-                      float weight[8])                                                         \
+    static int prepare_##isa(const scene *s, const ray8 *p, int found, const scene_hit *hit,  \
+                             shade8 *sp)                                                       \
+    {                                                                                          \
+        return bounce8_prepare(s, p, found, hit, sp);                                          \
+    }                                                                                          \
+    static int split_##isa(const shade8 *sp, int found, float kr[8], float kt[8], float gt[8], \
+                           color8 *tdir, int *transmits)                                   \
+    {                                                                                          \
+        return bounce8_split(sp, found, kr, kt, gt, tdir, transmits);                          \
+    }                                                                                          \
+    static void mix_##isa(const shade8 *sp, int keep, bool reflect, const color8 *sub,        \
+                          const float k[8], color8 *c)                                         \
+    {                                                                                          \
+        bounce8_mix(sp, keep, reflect, sub, k, c);                                             \
+    }                                                                                          \
+    static int bounce_##isa(const bounce8_from *f, int found, bool reflect, ray rs[8],        \
+                            ray8 *p, float weight[8])                                          \
     {                                                                                          \
         return bounce8(f, found, reflect, rs, p, weight);                                      \
-    }
+    }                                                                                          \
+    const shade8_kernels shade8_kernels_##isa = {prepare_##isa, split_##isa, mix_##isa,       \
+                                                 bounce_##isa};
 
 #endif

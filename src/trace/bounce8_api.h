@@ -1,6 +1,7 @@
-/* bounce8_api: the kernels of bounce8.h, which make a packet's reflected
- * or transmitted rays eight at a time (trace/whitted.c), on the
- * eight-wide paths. */
+/* bounce8_api: the kernels of a packet's shading on the eight-wide paths
+ * (bounce8.h; trace/whitted.c calls them): its shading points, the split
+ * between reflection and transmission, the secondary rays, and the light
+ * they bring back. */
 #ifndef GLINT_TRACE_BOUNCE8_API_H
 #define GLINT_TRACE_BOUNCE8_API_H
 
@@ -11,20 +12,37 @@
  * factors kr and kt, gt the light its transmission carries, its
  * transmitted direction tdir, and its rays' time. */
 typedef struct bounce8_from {
-    const shade_point *sp;
+    const shade8 *sp;
     const float *share, *kr, *kt, *gt, *time;
-    const vec3 *tdir;
+    const color8 *tdir;
     float bailout;
 } bounce8_from;
 
-/* The reflected (reflect) or transmitted rays of the lanes of found that
- * adaptive depth control keeps (whitted.c's adc_keep): returns those
- * lanes, each with its ray in rs[k] and lane k of *p (the other lanes of
- * *p hold numbers) and its share in weight[k]; the same floats as
- * whitted.c's secondaries. */
-int bounce8_avx2(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,
-                 float weight[8]);
-int bounce8_avx512(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,
-                   float weight[8]);
+typedef struct shade8_kernels {
+    /* shade_prepare for the lanes of found whose object is an unturned
+     * sphere and whose material reads no (u, v): their shading points in
+     * sp, from their rays (lanes of p) and hits; returns the other lanes
+     * of found, left to shade_prepare. */
+    int (*prepare)(const struct glint_scene *s, const ray8 *p, int found,
+                   const struct scene_hit *hit, shade8 *sp);
+    /* whitted.c's split for the lanes of found: kr, kt and tdir; gt = kt
+     * times the tint's largest component; returns the lanes with kr > 0,
+     * those with kt > 0 in *transmits. */
+    int (*split)(const shade8 *sp, int found, float kr[8], float kt[8], float gt[8],
+                 color8 *tdir, int *transmits);
+    /* For the lanes of keep: c += sub * k (reflect), or c += (sub * the
+     * material's tint) * k. */
+    void (*mix)(const shade8 *sp, int keep, bool reflect, const color8 *sub, const float k[8],
+                color8 *c);
+    /* The reflected (reflect) or transmitted rays of the lanes of found
+     * that adaptive depth control keeps (whitted.c's adc_keep): returns
+     * those lanes, each with its ray in rs[k] and lane k of *p (the other
+     * lanes of *p hold numbers) and its share in weight[k]; the same
+     * floats as whitted.c's secondaries. */
+    int (*bounce)(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,
+                  float weight[8]);
+} shade8_kernels;
+
+extern const shade8_kernels shade8_kernels_avx2, shade8_kernels_avx512;
 
 #endif

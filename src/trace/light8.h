@@ -16,7 +16,7 @@
  * material_highlight's steps (the bits of n from the lowest, each
  * squaring after its product) and the same +0 for results below 2^-152;
  * into out->hl, the lanes done into out->highlit. */
-__attribute__((always_inline)) static inline void light8_highlight(const shade_point *sp, int need,
+__attribute__((always_inline)) static inline void light8_highlight(const shade8 *sp, int need,
                                                                    const __m256 u[3],
                                                                    const __m256 n[3],
                                                                    light8_seen *out)
@@ -31,7 +31,7 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
      * an idle lane repeats the first lane's */
     const material *m[8];
     for (int k = 0, first = __builtin_ctz((unsigned)need); k < 8; k++)
-        m[k] = need >> k & 1 ? sp[k].m : sp[first].m;
+        m[k] = sp->m[need >> k & 1 ? k : first];
     __m256 sv = _mm256_setr_ps(m[0]->specular, m[1]->specular, m[2]->specular, m[3]->specular,
                                m[4]->specular, m[5]->specular, m[6]->specular, m[7]->specular);
     __m256 nv = _mm256_setr_ps(m[0]->shininess, m[1]->shininess, m[2]->shininess,
@@ -43,7 +43,8 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
     __m256 s = _mm256_mul_ps(_mm256_set1_ps(-2.0f), simd8_dot(nu, n)); /* v3_reflect */
     for (int c = 0; c < 3; c++)
         r[c] = _mm256_add_ps(nu[c], _mm256_mul_ps(n[c], s));
-    simd8_vec3(sp, sizeof *sp, offsetof(shade_point, d), v);
+    for (int c = 0; c < 3; c++)
+        v[c] = _mm256_loadu_ps(sp->d[c]);
     __m256 rv = _mm256_xor_ps(simd8_dot(r, v), sign);
     __m256i bits = _mm256_castps_si256(rv);
     __m256 e = _mm256_cvtepi32_ps(_mm256_sub_epi32(
@@ -77,15 +78,18 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade_p
 
 /* light8_point (light8_api.h). */
 __attribute__((always_inline)) static inline int light8_point(const light *l,
-                                                              const shade_point *sp, int lanes,
+                                                              const shade8 *sp, int lanes,
                                                               const float time[8], ray8 *p,
                                                               light8_seen *out)
 {
     const struct point_light *pl = &l->point;
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    const size_t size = sizeof *sp;
     __m256 at[3], d[3], u[3], n[3], ng[3], o[3];
-    simd8_vec3(sp, size, offsetof(shade_point, p), at);
+    for (int c = 0; c < 3; c++) {
+        at[c] = _mm256_loadu_ps(sp->p[c]);
+        n[c] = _mm256_loadu_ps(sp->n[c]);
+        ng[c] = _mm256_loadu_ps(sp->ng[c]);
+    }
     const __m256 pos[3] = {_mm256_set1_ps(pl->position.x), _mm256_set1_ps(pl->position.y),
                            _mm256_set1_ps(pl->position.z)};
     /* light_toward */
@@ -111,12 +115,10 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
     __m256 dark = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(color[0], zero, _CMP_EQ_OQ),
                                               _mm256_cmp_ps(color[1], zero, _CMP_EQ_OQ)),
                                 _mm256_cmp_ps(color[2], zero, _CMP_EQ_OQ));
-    simd8_vec3(sp, size, offsetof(shade_point, n), n);
     __m256 ndl = simd8_dot(n, u);
     int need = lanes & ~_mm256_movemask_ps(dark) &
                _mm256_movemask_ps(_mm256_cmp_ps(ndl, zero, _CMP_NLE_UQ));
     /* shadow_ray: from the offset origin to the light */
-    simd8_vec3(sp, size, offsetof(shade_point, ng), ng);
     simd8_offset(at, ng, u, o);
     _mm256_storeu_ps(p->ox, o[0]), _mm256_storeu_ps(p->oy, o[1]), _mm256_storeu_ps(p->oz, o[2]);
     _mm256_storeu_ps(p->dx, _mm256_sub_ps(pos[0], o[0]));
@@ -135,12 +137,127 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
     return need;
 }
 
-/* Defines light8_point_<isa>. */
+/* The lanes' materials, an idle lane (not in lanes, which is not empty)
+ * repeating the first one's. */
+__attribute__((always_inline)) static inline void light8_materials(const shade8 *sp, int lanes,
+                                                                   const material *m[8])
+{
+    if (sp->same) {
+        for (int k = 0; k < 8; k++)
+            m[k] = sp->same;
+        return;
+    }
+    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
+        m[k] = sp->m[lanes >> k & 1 ? k : first];
+}
+
+/* The float at byte off of each lane's material: one broadcast where
+ * they share one. */
+__attribute__((always_inline)) static inline __m256 light8_mfield(const material *const m[8],
+                                                                  size_t off)
+{
+    if (m[0] == m[1] && m[0] == m[2] && m[0] == m[3] && m[0] == m[4] && m[0] == m[5] &&
+        m[0] == m[6] && m[0] == m[7])
+        return _mm256_broadcast_ss((const float *)(const void *)((const char *)m[0] + off));
+    const char *b[8];
+    for (int k = 0; k < 8; k++)
+        b[k] = (const char *)m[k] + off;
+    return _mm256_setr_ps(simd8_float(b[0]), simd8_float(b[1]), simd8_float(b[2]),
+                          simd8_float(b[3]), simd8_float(b[4]), simd8_float(b[5]),
+                          simd8_float(b[6]), simd8_float(b[7]));
+}
+
+/* light8_start (light8_api.h): v3_scale(ambient, m->ambient), and 0. */
+__attribute__((always_inline)) static inline void light8_start(const shade8 *sp, int lanes,
+                                                               vec3 ambient, light8_acc *acc)
+{
+    if (!lanes)
+        return;
+    const material *m[8];
+    light8_materials(sp, lanes, m);
+    __m256 a = light8_mfield(m, offsetof(material, ambient));
+    const float amb[3] = {ambient.x, ambient.y, ambient.z};
+    for (int c = 0; c < 3; c++) {
+        _mm256_storeu_ps(acc->diffuse.c[c], _mm256_mul_ps(_mm256_set1_ps(amb[c]), a));
+        _mm256_storeu_ps(acc->specular.c[c], _mm256_setzero_ps());
+    }
+}
+
+/* light8_add (light8_api.h): lighting.c's add_seen where what reaches the
+ * point is not zero: lc = color * vis; diffuse + lc * (m->diffuse * ndl);
+ * specular + lc * hl where hl > 0. */
+__attribute__((always_inline)) static inline void light8_add(const shade8 *sp, int need,
+                                                             const light8_seen *seen,
+                                                             const vis8 *vis, light8_acc *acc)
+{
+    if (!need)
+        return;
+    const __m256 zero = _mm256_setzero_ps();
+    const material *m[8];
+    light8_materials(sp, need, m);
+    __m256 v[3], open = _mm256_blendv_ps(_mm256_set1_ps(1.0f), zero, packet_lanes(vis->blocked));
+    __m256 filtered = packet_lanes(vis->filtered);
+    for (int c = 0; c < 3; c++) /* the filters were stored lane by lane */
+        v[c] = vis->filtered ? _mm256_blendv_ps(open, simd8_field(vis->filter.c[c], 4, 0), filtered)
+                             : open;
+    __m256 dark = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(v[0], zero, _CMP_EQ_OQ),
+                                              _mm256_cmp_ps(v[1], zero, _CMP_EQ_OQ)),
+                                _mm256_cmp_ps(v[2], zero, _CMP_EQ_OQ));
+    __m256 live = _mm256_andnot_ps(dark, packet_lanes(need));
+    __m256 hl = _mm256_loadu_ps(seen->hl);
+    __m256 shine = _mm256_and_ps(live, _mm256_cmp_ps(hl, zero, _CMP_GT_OQ));
+    __m256 f = _mm256_mul_ps(light8_mfield(m, offsetof(material, diffuse)),
+                             _mm256_loadu_ps(seen->ndl));
+    for (int c = 0; c < 3; c++) {
+        __m256 lc = _mm256_mul_ps(_mm256_loadu_ps(seen->color[c]), v[c]);
+        __m256 d = _mm256_loadu_ps(acc->diffuse.c[c]), s = _mm256_loadu_ps(acc->specular.c[c]);
+        d = _mm256_blendv_ps(d, _mm256_add_ps(d, _mm256_mul_ps(lc, f)), live);
+        s = _mm256_blendv_ps(s, _mm256_add_ps(s, _mm256_mul_ps(lc, hl)), shine);
+        _mm256_storeu_ps(acc->diffuse.c[c], d);
+        _mm256_storeu_ps(acc->specular.c[c], s);
+    }
+}
+
+/* light8_end (light8_api.h): lighting.c's local_sum, ((diffuse * base) *
+ * max(1 - transmit, 0) + specular) + emission. */
+__attribute__((always_inline)) static inline void light8_end(const shade8 *sp, int lanes,
+                                                             const light8_acc *acc, color8 *out)
+{
+    if (!lanes)
+        return;
+    const material *m[8];
+    light8_materials(sp, lanes, m);
+    __m256 w = _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f),
+                                           light8_mfield(m, offsetof(material, transmit))),
+                             _mm256_setzero_ps());
+    for (int i = 0; i < 3; i++) {
+        __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]), _mm256_loadu_ps(sp->base[i]));
+        __m256 v = _mm256_add_ps(_mm256_mul_ps(d, w), _mm256_loadu_ps(acc->specular.c[i]));
+        __m256 e = light8_mfield(m, offsetof(material, emission) + (size_t)i * sizeof(float));
+        _mm256_storeu_ps(out->c[i], _mm256_add_ps(v, e));
+    }
+}
+
+/* Defines light8_point_<isa>, light8_start_<isa>, light8_add_<isa> and
+ * light8_end_<isa>. */
 #define LIGHT8_KERNELS(isa)                                                                    \
-    int light8_point_##isa(const light *l, const shade_point *sp, int lanes,                  \
-                           const float time[8], ray8 *p, light8_seen *out)                     \
+    int light8_point_##isa(const light *l, const shade8 *sp, int lanes, const float time[8],  \
+                           ray8 *p, light8_seen *out)                                          \
     {                                                                                          \
         return light8_point(l, sp, lanes, time, p, out);                                       \
+    }                                                                                          \
+    void light8_start_##isa(const shade8 *sp, int lanes, vec3 ambient, light8_acc *acc)        \
+    {                                                                                          \
+        light8_start(sp, lanes, ambient, acc);                                                 \
+    }                                                                                          \
+    void light8_add_##isa(const shade8 *sp, int need, const light8_seen *seen, const vis8 *vis, \
+                          light8_acc *acc)                                                     \
+    {                                                                                          \
+        light8_add(sp, need, seen, vis, acc);                                                  \
+    }                                                                                          \
+    void light8_end_##isa(const shade8 *sp, int lanes, const light8_acc *acc, color8 *out)     \
+    {                                                                                          \
+        light8_end(sp, lanes, acc, out);                                                       \
     }
 
 #endif

@@ -165,11 +165,11 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
 }
 
 /* The shadow rays of lanes `need` in the lanes of *p (the others hold
- * numbers): what reaches each ray's end into vis[k], as shadow_filter
+ * numbers): what reaches each ray's end into *vis, as shadow_filter
  * finds it. Three or more go through the scene together
  * (scene_shadow8), and only those that cross a transmitting object, or
  * cannot go together, one by one. */
-static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vec3 vis[8])
+static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vis8 *vis)
 {
     const scene *s = ctx->scene;
     int blocked = 0, crosses = 0, alone = need;
@@ -179,29 +179,31 @@ static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vec3 vis[8])
         if (crosses) /* their crossings together, which filter each */
             blocked |= scene_shadow_unblocked8(s, p, crosses, cross);
     }
-    int filtered = alone | (crosses & ~blocked); /* the lanes that need their ray */
-    for (int m = need & ~filtered; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        vis[k] = v3s(blocked >> k & 1 ? 0.0f : 1.0f);
-    }
-    for (int m = need & filtered; m; m &= m - 1) {
+    vis->blocked = blocked;
+    vis->filtered = need & (alone | (crosses & ~blocked)); /* the lanes that need their ray */
+    if (vis->filtered) /* every lane set, so that all eight may be read */
+        for (int k = 0; k < 8; k++)
+            color8_put(&vis->filter, k, v3s(blocked >> k & 1 ? 0.0f : 1.0f));
+    for (int m = vis->filtered; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray sr = ray8_get(p, k);
-        vis[k] = alone >> k & 1 ? shadow_filter(s, &sr) : crossings_filter(s, &sr, &cross[k]);
+        color8_put(&vis->filter, k,
+                   alone >> k & 1 ? shadow_filter(s, &sr) : crossings_filter(s, &sr, &cross[k]));
     }
     ctx->shadow_rays += (uint64_t)ray8_count(need);
 }
 
 /* The shadow rays of lanes `need` towards their light samples lr[k]
  * (shadow_ray, at each lane's time), through shadow8_rays. */
-static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[8],
-                    const light_ray lr[8], int need, vec3 vis[8])
+static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp,
+                    const light_ray lr[8], int need, vis8 *vis)
 {
     ray8 p; /* the rays go straight into their lanes */
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ctx->time = tl->time[k];
-        ray sr = shadow_ray(ctx, sp[k].p, sp[k].ng, &lr[k]);
+        shade_point spk = shade8_get(sp, k);
+        ray sr = shadow_ray(ctx, spk.p, spk.ng, &lr[k]);
         ray8_put(&p, k, &sr);
     }
     if (need)
@@ -209,84 +211,117 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade_point sp[
     shadow8_rays(ctx, &p, need, vis);
 }
 
-/* light8_point on the scene's path; -1 where it has none. */
-static int point8(const trace_ctx *ctx, const light *l, const shade_point *sp, int lanes,
-                  const trace_lanes *tl, ray8 *p, light8_seen *seen)
+/* The light kernels of light8_api.h on the scene's path; point NULL
+ * where it has none, and the lanes go one by one. */
+typedef struct light8_kernels {
+    int (*point)(const light *, const shade8 *, int, const float *, ray8 *, light8_seen *);
+    void (*start)(const shade8 *, int, vec3, light8_acc *);
+    void (*add)(const shade8 *, int, const light8_seen *, const vis8 *, light8_acc *);
+    void (*end)(const shade8 *, int, const light8_acc *, color8 *);
+} light8_kernels;
+
+static light8_kernels kernels8(const trace_ctx *ctx)
 {
 #if defined(GLINT_WIDE_KERNELS)
     accel_isa isa = ctx->scene->bvh.isa;
     if (isa == ACCEL_AVX512)
-        return light8_point_avx512(l, sp, lanes, tl->time, p, seen);
+        return (light8_kernels){light8_point_avx512, light8_start_avx512, light8_add_avx512,
+                                light8_end_avx512};
     if (isa == ACCEL_AVX2)
-        return light8_point_avx2(l, sp, lanes, tl->time, p, seen);
+        return (light8_kernels){light8_point_avx2, light8_start_avx2, light8_add_avx2,
+                                light8_end_avx2};
 #endif
-    (void)ctx, (void)l, (void)sp, (void)lanes, (void)tl, (void)p, (void)seen;
-    return -1;
+    (void)ctx;
+    return (light8_kernels){NULL, NULL, NULL, NULL};
 }
 
-/* The one-sample light l at the points of lanes, added to diffuse[k] and
- * specular[k]: a point light's terms eight at a time where the path has
- * them (light8_point), any other lane by lane; the shadow rays together. */
-static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l,
-                       const shade_point *sp, int lanes, vec3 diffuse[8], vec3 specular[8])
+/* add_lit for lane k of acc. */
+static void add_lit8(const shade8 *sp, int k, vec3 dir, vec3 color, float ndl, vec3 vis,
+                     light8_acc *acc)
+{
+    shade_point spk = shade8_get(sp, k);
+    vec3 diffuse = color8_get(&acc->diffuse, k), specular = color8_get(&acc->specular, k);
+    add_lit(&spk, dir, color, ndl, vis, &diffuse, &specular);
+    color8_put(&acc->diffuse, k, diffuse);
+    color8_put(&acc->specular, k, specular);
+}
+
+/* The one-sample light l at the points of lanes, added to *acc: a point
+ * light's terms eight at a time where the path has them (light8_point,
+ * light8_add), any other lane by lane; the shadow rays together. */
+static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l, const shade8 *sp,
+                       int lanes, const light8_kernels *k8, light8_acc *acc)
 {
     ray8 p;
     light8_seen seen;
-    vec3 vis[8];
-    int need = l->kind == LIGHT_POINT ? point8(ctx, l, sp, lanes, tl, &p, &seen) : -1;
-    if (need >= 0) {
-        shadow8_rays(ctx, &p, need, vis);
-        for (int m = need; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            if (v3_is_zero(vis[k]))
-                continue;
-            vec3 color = v3(seen.color[0][k], seen.color[1][k], seen.color[2][k]);
-            float hl = seen.highlit >> k & 1
-                           ? seen.hl[k]
-                           : highlight(&sp[k], v3(seen.dir[0][k], seen.dir[1][k], seen.dir[2][k]));
-            add_seen(&sp[k], color, seen.ndl[k], hl, vis[k], &diffuse[k], &specular[k]);
+    vis8 vis;
+    if (l->kind == LIGHT_POINT && k8->point) {
+        int need = k8->point(l, sp, lanes, tl->time, &p, &seen);
+        if (need >= 0) {
+            shadow8_rays(ctx, &p, need, &vis);
+            for (int m = need & ~seen.highlit; m; m &= m - 1) { /* a powf each */
+                int k = __builtin_ctz((unsigned)m);
+                shade_point spk = shade8_get(sp, k);
+                seen.hl[k] = highlight(&spk, v3(seen.dir[0][k], seen.dir[1][k], seen.dir[2][k]));
+            }
+            k8->add(sp, need, &seen, &vis, acc);
+            return;
         }
-        return;
     }
     light_ray lr[8];
     float ndl[8];
-    need = 0;
+    int need = 0;
     for (int m = lanes; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        lr[k] = light_sample(l, sp[k].p, 0, 0.5f, 0.5f);
-        need |= lit(&sp[k], &lr[k], &ndl[k]) << k;
+        shade_point spk = shade8_get(sp, k);
+        lr[k] = light_sample(l, spk.p, 0, 0.5f, 0.5f);
+        need |= lit(&spk, &lr[k], &ndl[k]) << k;
     }
-    shadow8(ctx, tl, sp, lr, need, vis);
+    shadow8(ctx, tl, sp, lr, need, &vis);
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        add_lit(&sp[k], lr[k].dir, lr[k].color, ndl[k], vis[k], &diffuse[k], &specular[k]);
+        add_lit8(sp, k, lr[k].dir, lr[k].color, ndl[k], vis8_get(&vis, k), acc);
     }
 }
 
-void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *sp, int lanes,
-                     const uint32_t event[8], vec3 out[8])
+void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, int lanes,
+                     const uint32_t event[8], color8 *out)
 {
     const scene *s = ctx->scene;
-    vec3 diffuse[8], specular[8];
-    for (int m = lanes; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        diffuse[k] = v3_scale(s->ambient, sp[k].m->ambient);
-        specular[k] = v3s(0.0f);
+    light8_kernels k8 = kernels8(ctx);
+    light8_acc acc;
+    if (k8.start) {
+        k8.start(sp, lanes, s->ambient, &acc);
+    } else {
+        for (int m = lanes; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            color8_put(&acc.diffuse, k, v3_scale(s->ambient, sp->m[k]->ambient));
+            color8_put(&acc.specular, k, v3s(0.0f));
+        }
     }
     for (int i = 0; i < s->nlights; i++) {
-        const light *l = &s->lights[i];
-        if (light_sample_count(l) != 1) { /* jittered samples, lane by lane */
-            for (int m = lanes; m; m &= m - 1) {
-                int k = __builtin_ctz((unsigned)m);
-                trace_lanes_begin(ctx, tl, k);
-                add_light(ctx, &sp[k], i, event[k], &diffuse[k], &specular[k]);
-            }
+        if (light_sample_count(&s->lights[i]) == 1) {
+            add_light8(ctx, tl, &s->lights[i], sp, lanes, &k8, &acc);
             continue;
         }
-        add_light8(ctx, tl, l, sp, lanes, diffuse, specular);
+        for (int m = lanes; m; m &= m - 1) { /* jittered samples, lane by lane */
+            int k = __builtin_ctz((unsigned)m);
+            trace_lanes_begin(ctx, tl, k);
+            shade_point spk = shade8_get(sp, k);
+            vec3 diffuse = color8_get(&acc.diffuse, k), specular = color8_get(&acc.specular, k);
+            add_light(ctx, &spk, i, event[k], &diffuse, &specular);
+            color8_put(&acc.diffuse, k, diffuse);
+            color8_put(&acc.specular, k, specular);
+        }
+    }
+    if (k8.end) {
+        k8.end(sp, lanes, &acc, out);
+        return;
     }
     for (int m = lanes; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        out[k] = local_sum(&sp[k], diffuse[k], specular[k]);
+        shade_point spk = shade8_get(sp, k);
+        color8_put(out, k, local_sum(&spk, color8_get(&acc.diffuse, k),
+                                     color8_get(&acc.specular, k)));
     }
 }

@@ -17,15 +17,15 @@
 /* ambient * base * (1 - transmit) + lights (diffuse, specular) + emission. */
 vec3 lighting_local(trace_ctx *ctx, const shade_point *sp);
 
-/* lighting_local for the points sp[k] of the lanes in `lanes` of a packet
+/* lighting_local for the points of the lanes in `lanes` of a packet
  * (tl names their samples), shading event event[k] of lane k's sample,
- * into out[k]: the same colours, with the shadow rays towards each point,
+ * into lane k of out: the same colours, with the shadow rays towards each point,
  * spot or directional light traced together (scene_shadow8), and a point
  * light's terms worked out for the eight points at once on the eight-wide
  * paths (light8.h). May leave ctx at any lane's sample; ctx->events is
  * not used. */
-void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade_point *sp, int lanes,
-                     const uint32_t event[8], vec3 out[8]);
+void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, int lanes,
+                     const uint32_t event[8], color8 *out);
 
 /* Fraction of light reaching p from the light sample lr: 0 behind an
  * opaque object, filtered by transmit * tint at each transmitting surface

@@ -20,6 +20,57 @@ typedef struct shade_point {
     const material *m;
 } shade_point;
 
+/* The shading points of a packet's eight lanes, field by field (the
+ * packet's tracing in whitted.c and lighting.c; the eight-wide kernels
+ * load each field of all lanes at once). A lane's fields are set only
+ * when its ray hit something. */
+typedef struct shade8 {
+    float p[3][8], n[3][8], ng[3][8], d[3][8], base[3][8];
+    int inside; /* bit k: lane k's ray hit the surface from behind */
+    const material *m[8];
+    const material *same; /* every lane's material, when the lanes share one; else NULL */
+} shade8;
+
+/* Lane k of a packet's shading points, and a point put into lane k. */
+static inline shade_point shade8_get(const shade8 *s, int k)
+{
+    return (shade_point){v3(s->p[0][k], s->p[1][k], s->p[2][k]),
+                         v3(s->n[0][k], s->n[1][k], s->n[2][k]),
+                         v3(s->ng[0][k], s->ng[1][k], s->ng[2][k]),
+                         v3(s->d[0][k], s->d[1][k], s->d[2][k]),
+                         (s->inside >> k & 1) != 0,
+                         v3(s->base[0][k], s->base[1][k], s->base[2][k]),
+                         s->m[k]};
+}
+
+static inline void shade8_put(shade8 *s, int k, const shade_point *sp)
+{
+    const vec3 *f[5] = {&sp->p, &sp->n, &sp->ng, &sp->d, &sp->base};
+    float(*to[5])[8] = {s->p, s->n, s->ng, s->d, s->base};
+    for (int i = 0; i < 5; i++) {
+        to[i][0][k] = f[i]->x;
+        to[i][1][k] = f[i]->y;
+        to[i][2][k] = f[i]->z;
+    }
+    s->inside = (s->inside & ~(1 << k)) | (int)sp->inside << k;
+    s->m[k] = sp->m;
+}
+
+/* A colour for each of a packet's lanes, component by component. */
+typedef struct color8 {
+    float c[3][8];
+} color8;
+
+static inline vec3 color8_get(const color8 *c, int k)
+{
+    return v3(c->c[0][k], c->c[1][k], c->c[2][k]);
+}
+
+static inline void color8_put(color8 *c, int k, vec3 v)
+{
+    c->c[0][k] = v.x, c->c[1][k] = v.y, c->c[2][k] = v.z;
+}
+
 /* The shading point of material m at point p with shading normal n and
  * geometric normal ng, for a ray of unit direction d: both normals turned
  * to face the ray; the geometric one decides the side, the shading one

@@ -125,21 +125,21 @@ typedef struct lanes8 {
 } lanes8;
 
 static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
-                   int depth, vec3 out[8]);
+                   int depth, color8 *out);
 
-/* bounce8 on the scene's path; -1 where it has none. */
-static int bounce8_on_path(const trace_ctx *ctx, const bounce8_from *f, int found, bool reflect,
-                           ray rs[8], ray8 *p, float weight[8])
+/* The packet kernels of the scene's path (bounce8_api.h), NULL where it
+ * has none: the lanes then go one by one. */
+static const shade8_kernels *kernels8(const trace_ctx *ctx)
 {
 #if defined(GLINT_WIDE_KERNELS)
     accel_isa isa = ctx->scene->bvh.isa;
     if (isa == ACCEL_AVX512)
-        return bounce8_avx512(f, found, reflect, rs, p, weight);
+        return &shade8_kernels_avx512;
     if (isa == ACCEL_AVX2)
-        return bounce8_avx2(f, found, reflect, rs, p, weight);
+        return &shade8_kernels_avx2;
 #endif
-    (void)ctx, (void)f, (void)found, (void)reflect, (void)rs, (void)p, (void)weight;
-    return -1;
+    (void)ctx;
+    return NULL;
 }
 
 /* The reflected (reflect) or transmitted rays of the lanes of `found`
@@ -149,19 +149,22 @@ static int bounce8_on_path(const trace_ctx *ctx, const bounce8_from *f, int foun
 static int secondaries(trace_ctx *ctx, lanes8 *ls, const bounce8_from *f, int found,
                        bool reflect, ray rs[8], ray8 *p)
 {
-    int keep = bounce8_on_path(ctx, f, found, reflect, rs, p, ls->weight);
-    if (keep < 0) {
-        keep = 0;
+    const shade8_kernels *k8 = kernels8(ctx);
+    int keep = 0;
+    if (k8) {
+        keep = k8->bounce(f, found, reflect, rs, p, ls->weight);
+    } else {
         for (int m = found; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
-            const shade_point *sp = &f->sp[k];
+            shade_point sp = shade8_get(f->sp, k);
             float kr = f->kr[k], gt = f->gt[k];
             if (reflect ? !adc_keep(ctx, f->share[k], kr, kr + gt)
                         : !(f->kt[k] > 0.0f && adc_keep(ctx, f->share[k], gt, kr + gt)))
                 continue;
             ls->weight[k] = ctx->weight;
-            vec3 d = reflect ? v3_reflect(sp->d, sp->n) : f->tdir[k];
-            rs[k] = ray_make(ray_offset(sp->p, sp->ng, d), d, INFINITY);
+            vec3 d = reflect ? v3_reflect(sp.d, sp.n)
+                             : color8_get(f->tdir, k);
+            rs[k] = ray_make(ray_offset(sp.p, sp.ng, d), d, INFINITY);
             rs[k].time = f->time[k];
             keep |= 1 << k;
         }
@@ -172,85 +175,135 @@ static int secondaries(trace_ctx *ctx, lanes8 *ls, const bounce8_from *f, int fo
     return keep;
 }
 
-/* trace_rest for the lanes of `found`, with their local light in c[k]. */
+/* split for the lanes of found, with gt = kt * the tint's largest
+ * component: into f's arrays; returns the lanes that reflect (kr > 0),
+ * and those that transmit (kt > 0) into *transmits. */
+static int split8(const trace_ctx *ctx, const shade8 *sp, int found, float kr[8], float kt[8],
+                  float gt[8], color8 *tdir, int *transmits)
+{
+    const shade8_kernels *k8 = kernels8(ctx);
+    if (k8)
+        return k8->split(sp, found, kr, kt, gt, tdir, transmits);
+    int reflects = 0;
+    *transmits = 0;
+    for (int m = found; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        shade_point spk = shade8_get(sp, k);
+        vec3 td;
+        split(&spk, &kr[k], &kt[k], &td);
+        color8_put(tdir, k, td);
+        gt[k] = kt[k] * v3_max_comp(spk.m->tint);
+        reflects |= (kr[k] > 0.0f) << k;
+        *transmits |= (kt[k] > 0.0f) << k;
+    }
+    return reflects;
+}
+
+/* c[k] += sub[k] * kr[k] (reflect), or c[k] += (sub[k] * tint) * kt[k],
+ * for the lanes of keep. */
+static void mix8(const trace_ctx *ctx, const shade8 *sp, int keep, bool reflect,
+                 const color8 *sub, const float kr[8], const float kt[8], color8 *c)
+{
+    const shade8_kernels *k8 = kernels8(ctx);
+    if (k8) {
+        k8->mix(sp, keep, reflect, sub, reflect ? kr : kt, c);
+        return;
+    }
+    for (int m = keep; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        vec3 v = color8_get(c, k), s = color8_get(sub, k);
+        v = reflect ? v3_madd(v, s, kr[k]) : v3_add(v, v3_scale(v3_mul(s, sp->m[k]->tint), kt[k]));
+        color8_put(c, k, v);
+    }
+}
+
+/* trace_rest for the lanes of `found`, with their local light in c. */
 static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int depth,
-                  const scene_hit hit[8], const shade_point sp[8], vec3 c[8], vec3 out[8])
+                  const scene_hit hit[8], const shade8 *sp, color8 *c, color8 *out)
 {
     if (depth < ctx->max_depth) {
         float kr[8], kt[8], gt[8], share[8], time[8];
-        vec3 tdir[8], sub[8];
+        color8 sub, tdir;
         ray rs[8];
         ray8 p;
-        int reflects = 0, transmits = 0; /* the lanes adc_keep may keep */
-        for (int m = found; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            split(&sp[k], &kr[k], &kt[k], &tdir[k]);
-            gt[k] = kt[k] * v3_max_comp(sp[k].m->tint);
+        int transmits, reflects = split8(ctx, sp, found, kr, kt, gt, &tdir, &transmits);
+        for (int k = 0; k < 8; k++) {
             share[k] = ls->weight[k];
             time[k] = r[k].time;
-            reflects |= (kr[k] > 0.0f) << k;
-            transmits |= (kt[k] > 0.0f) << k;
         }
-        bounce8_from f = {sp, share, kr, kt, gt, time, tdir, ctx->bailout};
+        bounce8_from f = {sp, share, kr, kt, gt, time, &tdir, ctx->bailout};
         int keep = reflects ? secondaries(ctx, ls, &f, reflects, true, rs, &p) : 0;
-        if (keep)
-            trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
-        for (int m = keep; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            c[k] = v3_madd(c[k], sub[k], kr[k]);
+        if (keep) {
+            trace8(ctx, ls, rs, &p, keep, depth + 1, &sub);
+            mix8(ctx, sp, keep, true, &sub, kr, kt, c);
         }
         keep = transmits ? secondaries(ctx, ls, &f, transmits, false, rs, &p) : 0;
-        if (keep)
-            trace8(ctx, ls, rs, &p, keep, depth + 1, sub);
-        for (int m = keep; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            c[k] = v3_add(c[k], v3_scale(v3_mul(sub[k], sp[k].m->tint), kt[k]));
+        if (keep) {
+            trace8(ctx, ls, rs, &p, keep, depth + 1, &sub);
+            mix8(ctx, sp, keep, false, &sub, kr, kt, c);
         }
-        for (int m = found; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
+        for (int k = 0; k < 8; k++)
             ls->weight[k] = share[k];
-        }
     }
+    int crossed = 0; /* lanes whose segment runs through fog or a transmitting object */
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        out[k] = shade_segment(ctx->scene, &r[k], hit[k].h.t, &sp[k], c[k]);
+        crossed |= (sp->inside >> k & 1 && sp->m[k]->transmit > 0.0f) << k;
+    }
+    if (ctx->scene->fog.kind != FOG_NONE)
+        crossed = found;
+    *out = *c;
+    for (int m = crossed; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        shade_point spk = shade8_get(sp, k);
+        color8_put(out, k, shade_segment_crossed(ctx->scene, &r[k], hit[k].h.t, &spk,
+                                                 color8_get(c, k)));
     }
 }
 
-/* shade_prepare for the lanes of found. Out of line: the caller's sp is
- * then not taken for read before it is set (-Wmaybe-uninitialized), and it
- * is not cleared for lanes nobody reads. */
-static __attribute__((noinline)) void prepare8(trace_ctx *ctx, const ray r[8], int found,
-                                               const scene_hit hit[8], shade_point sp[8])
+/* shade_prepare for the lanes of found into sp: the untextured, unturned
+ * spheres' eight at a time where the path has the kernels, any other
+ * lane one by one. */
+static void prepare8(trace_ctx *ctx, const ray r[8], const ray8 *p, int found,
+                     const scene_hit hit[8], shade8 *sp)
 {
-    for (int m = found; m; m &= m - 1) {
+    const shade8_kernels *k8 = kernels8(ctx);
+    int rest = k8 ? k8->prepare(ctx->scene, p, found, hit, sp) : found;
+    for (int m = rest; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        shade_prepare(ctx, &r[k], &hit[k], &sp[k]);
+        shade_point spk;
+        shade_prepare(ctx, &r[k], &hit[k], &spk);
+        shade8_put(sp, k, &spk);
     }
+    sp->same = found ? sp->m[__builtin_ctz((unsigned)found)] : NULL;
+    for (int m = found; m; m &= m - 1)
+        if (sp->m[__builtin_ctz((unsigned)m)] != sp->same)
+            sp->same = NULL;
 }
 
 /* The lanes of active, whose nearest hits are hit[k] for the lanes of
- * found (the others saw the background), shaded into out[k]. */
-static void shade8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int active, int found,
-                   int depth, const scene_hit hit[8], vec3 out[8])
+ * found (the others saw the background), shaded into out. */
+static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
+                   int found, int depth, const scene_hit hit[8], color8 *out)
 {
-    shade_point sp[8]; /* set for the lanes of found, the only ones used */
-    vec3 c[8];
-    prepare8(ctx, r, found, hit, sp);
-    lighting_local8(ctx, ls->tl, sp, found, ls->events, c);
+    shade8 sp; /* set for the lanes of found, the only ones used */
+    color8 c;
+    sp.inside = 0;
+    prepare8(ctx, r, p, found, hit, &sp);
+    lighting_local8(ctx, ls->tl, &sp, found, ls->events, &c);
     for (int m = found; m; m &= m - 1)
         ls->events[__builtin_ctz((unsigned)m)]++;
+    rest8(ctx, ls, r, found, depth, hit, &sp, &c, out);
     for (int m = active & ~found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        out[k] = trace_hit(ctx, &r[k], depth, NULL);
+        color8_put(out, k, trace_hit(ctx, &r[k], depth, NULL));
     }
-    rest8(ctx, ls, r, found, depth, hit, sp, c, out);
 }
 
 /* whitted_trace for the rays r[k] of the lanes of active, which are also
  * the lanes of packet *p: three or more together, fewer one by one. */
 static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
-                   int depth, vec3 out[8])
+                   int depth, color8 *out)
 {
     if (!ray8_three_or_more(active)) {
         float weight = ctx->weight;
@@ -259,7 +312,7 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, in
             trace_lanes_begin(ctx, ls->tl, k);
             ctx->events = ls->events[k];
             ctx->weight = ls->weight[k];
-            out[k] = whitted_trace(ctx, &r[k], depth);
+            color8_put(out, k, whitted_trace(ctx, &r[k], depth));
             ls->events[k] = ctx->events;
         }
         ctx->weight = weight;
@@ -267,11 +320,12 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, in
     }
     scene_hit hit[8];
     int found = scene_intersect8_spread(ctx->scene, p, active, hit);
-    shade8(ctx, ls, r, active, found, depth, hit, out);
+    shade_lanes(ctx, ls, r, p, active, found, depth, hit, out);
 }
 
-void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int active,
-                     int found, const scene_hit *hit, vec3 out[8], float coverage[8])
+void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], const ray8 *p,
+                     int active, int found, const scene_hit *hit, vec3 out[8],
+                     float coverage[8])
 {
     float weight = ctx->weight; /* adc_keep changes it */
     lanes8 ls = {.tl = tl};
@@ -280,6 +334,11 @@ void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], int 
         ls.weight[k] = weight;
         coverage[k] = found >> k & 1 ? 1.0f : 0.0f;
     }
-    shade8(ctx, &ls, r, active, found & active, 0, hit, out);
+    color8 c;
+    shade_lanes(ctx, &ls, r, p, active, found & active, 0, hit, &c);
+    for (int m = active; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        out[k] = color8_get(&c, k);
+    }
     ctx->weight = weight;
 }
