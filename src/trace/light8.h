@@ -9,6 +9,36 @@
 #include "trace/light8_api.h"
 #include "trace/simd8.h"
 
+/* The lanes' materials, an idle lane (not in lanes, which is not empty)
+ * repeating the first one's. */
+__attribute__((always_inline)) static inline void light8_materials(const shade8 *sp, int lanes,
+                                                                   const material *m[8])
+{
+    if (sp->same) {
+        for (int k = 0; k < 8; k++)
+            m[k] = sp->same;
+        return;
+    }
+    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
+        m[k] = sp->m[lanes >> k & 1 ? k : first];
+}
+
+/* The float at byte off of each lane's material m[k] (light8_materials):
+ * one broadcast where the lanes share one. */
+__attribute__((always_inline)) static inline __m256 light8_mfield(const shade8 *sp,
+                                                                  const material *const m[8],
+                                                                  size_t off)
+{
+    if (sp->same)
+        return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
+    const char *b[8];
+    for (int k = 0; k < 8; k++)
+        b[k] = (const char *)m[k] + off;
+    return _mm256_setr_ps(simd8_float(b[0]), simd8_float(b[1]), simd8_float(b[2]),
+                          simd8_float(b[3]), simd8_float(b[4]), simd8_float(b[5]),
+                          simd8_float(b[6]), simd8_float(b[7]));
+}
+
 /* highlight (lighting.c) for the lanes of need, whose points see the
  * light in unit directions u at shading normals n: the material's
  * specular times max(0, r.v)^shininess, r the reflection of -u about n
@@ -27,16 +57,11 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade8 
         return;
     }
     /* the materials' fields lane by lane into the registers (an array of
-     * them stored lane by lane and loaded at once would stall the load);
-     * an idle lane repeats the first lane's */
+     * them stored lane by lane and loaded at once would stall the load) */
     const material *m[8];
-    for (int k = 0, first = __builtin_ctz((unsigned)need); k < 8; k++)
-        m[k] = sp->m[need >> k & 1 ? k : first];
-    __m256 sv = _mm256_setr_ps(m[0]->specular, m[1]->specular, m[2]->specular, m[3]->specular,
-                               m[4]->specular, m[5]->specular, m[6]->specular, m[7]->specular);
-    __m256 nv = _mm256_setr_ps(m[0]->shininess, m[1]->shininess, m[2]->shininess,
-                               m[3]->shininess, m[4]->shininess, m[5]->shininess,
-                               m[6]->shininess, m[7]->shininess);
+    light8_materials(sp, need, m);
+    __m256 sv = light8_mfield(sp, m, offsetof(material, specular));
+    __m256 nv = light8_mfield(sp, m, offsetof(material, shininess));
     __m256 nu[3], r[3], v[3];
     for (int c = 0; c < 3; c++)
         nu[c] = _mm256_xor_ps(u[c], sign);
@@ -137,36 +162,6 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
     return need;
 }
 
-/* The lanes' materials, an idle lane (not in lanes, which is not empty)
- * repeating the first one's. */
-__attribute__((always_inline)) static inline void light8_materials(const shade8 *sp, int lanes,
-                                                                   const material *m[8])
-{
-    if (sp->same) {
-        for (int k = 0; k < 8; k++)
-            m[k] = sp->same;
-        return;
-    }
-    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
-        m[k] = sp->m[lanes >> k & 1 ? k : first];
-}
-
-/* The float at byte off of each lane's material: one broadcast where
- * they share one. */
-__attribute__((always_inline)) static inline __m256 light8_mfield(const material *const m[8],
-                                                                  size_t off)
-{
-    if (m[0] == m[1] && m[0] == m[2] && m[0] == m[3] && m[0] == m[4] && m[0] == m[5] &&
-        m[0] == m[6] && m[0] == m[7])
-        return _mm256_broadcast_ss((const float *)(const void *)((const char *)m[0] + off));
-    const char *b[8];
-    for (int k = 0; k < 8; k++)
-        b[k] = (const char *)m[k] + off;
-    return _mm256_setr_ps(simd8_float(b[0]), simd8_float(b[1]), simd8_float(b[2]),
-                          simd8_float(b[3]), simd8_float(b[4]), simd8_float(b[5]),
-                          simd8_float(b[6]), simd8_float(b[7]));
-}
-
 /* light8_start (light8_api.h): v3_scale(ambient, m->ambient), and 0. */
 __attribute__((always_inline)) static inline void light8_start(const shade8 *sp, int lanes,
                                                                vec3 ambient, light8_acc *acc)
@@ -175,7 +170,7 @@ __attribute__((always_inline)) static inline void light8_start(const shade8 *sp,
         return;
     const material *m[8];
     light8_materials(sp, lanes, m);
-    __m256 a = light8_mfield(m, offsetof(material, ambient));
+    __m256 a = light8_mfield(sp, m, offsetof(material, ambient));
     const float amb[3] = {ambient.x, ambient.y, ambient.z};
     for (int c = 0; c < 3; c++) {
         _mm256_storeu_ps(acc->diffuse.c[c], _mm256_mul_ps(_mm256_set1_ps(amb[c]), a));
@@ -206,7 +201,7 @@ __attribute__((always_inline)) static inline void light8_add(const shade8 *sp, i
     __m256 live = _mm256_andnot_ps(dark, packet_lanes(need));
     __m256 hl = _mm256_loadu_ps(seen->hl);
     __m256 shine = _mm256_and_ps(live, _mm256_cmp_ps(hl, zero, _CMP_GT_OQ));
-    __m256 f = _mm256_mul_ps(light8_mfield(m, offsetof(material, diffuse)),
+    __m256 f = _mm256_mul_ps(light8_mfield(sp, m, offsetof(material, diffuse)),
                              _mm256_loadu_ps(seen->ndl));
     for (int c = 0; c < 3; c++) {
         __m256 lc = _mm256_mul_ps(_mm256_loadu_ps(seen->color[c]), v[c]);
@@ -228,12 +223,12 @@ __attribute__((always_inline)) static inline void light8_end(const shade8 *sp, i
     const material *m[8];
     light8_materials(sp, lanes, m);
     __m256 w = _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f),
-                                           light8_mfield(m, offsetof(material, transmit))),
+                                           light8_mfield(sp, m, offsetof(material, transmit))),
                              _mm256_setzero_ps());
     for (int i = 0; i < 3; i++) {
         __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]), _mm256_loadu_ps(sp->base[i]));
         __m256 v = _mm256_add_ps(_mm256_mul_ps(d, w), _mm256_loadu_ps(acc->specular.c[i]));
-        __m256 e = light8_mfield(m, offsetof(material, emission) + (size_t)i * sizeof(float));
+        __m256 e = light8_mfield(sp, m, offsetof(material, emission) + (size_t)i * sizeof(float));
         _mm256_storeu_ps(out->c[i], _mm256_add_ps(v, e));
     }
 }

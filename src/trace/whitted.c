@@ -246,12 +246,15 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
             ls->weight[k] = share[k];
     }
     int crossed = 0; /* lanes whose segment runs through fog or a transmitting object */
-    for (int m = found; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m);
-        crossed |= (sp->inside >> k & 1 && sp->m[k]->transmit > 0.0f) << k;
-    }
     if (ctx->scene->fog.kind != FOG_NONE)
         crossed = found;
+    else if (sp->same)
+        crossed = sp->same->transmit > 0.0f ? found & sp->inside : 0;
+    else
+        for (int m = found & sp->inside; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            crossed |= (sp->m[k]->transmit > 0.0f) << k;
+        }
     *out = *c;
     for (int m = crossed; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -294,9 +297,11 @@ static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *
     for (int m = found; m; m &= m - 1)
         ls->events[__builtin_ctz((unsigned)m)]++;
     rest8(ctx, ls, r, found, depth, hit, &sp, &c, out);
+    const scene *s = ctx->scene; /* the misses: the background, fogged */
     for (int m = active & ~found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        color8_put(out, k, trace_hit(ctx, &r[k], depth, NULL));
+        color8_put(out, k,
+                   s->fog.kind == FOG_NONE ? s->background : trace_hit(ctx, &r[k], depth, NULL));
     }
 }
 
