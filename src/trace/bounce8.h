@@ -227,10 +227,8 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
     for (int c = 0; c < 3; c++)
         at[c] = _mm256_loadu_ps(sp->p[c]), ng[c] = _mm256_loadu_ps(sp->ng[c]);
     simd8_offset(at, ng, d, o);
-    _mm256_storeu_ps(p->ox, o[0]), _mm256_storeu_ps(p->oy, o[1]), _mm256_storeu_ps(p->oz, o[2]);
-    _mm256_storeu_ps(p->dx, d[0]), _mm256_storeu_ps(p->dy, d[1]), _mm256_storeu_ps(p->dz, d[2]);
-    _mm256_storeu_ps(p->tmin, zero), _mm256_storeu_ps(p->tmax, _mm256_set1_ps(INFINITY));
-    _mm256_storeu_ps(p->time, simd8_field(f->time, sizeof(float), 0));
+    simd8_store_rays(p, found, o, d, zero, _mm256_set1_ps(INFINITY),
+                     simd8_field(f->time, sizeof(float), 0));
     float ws[8];
     _mm256_storeu_ps(ws, w);
     for (int b = found; b; b &= b - 1) {
@@ -238,7 +236,6 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
         rs[j] = ray8_get(p, j);
         weight[j] = ws[j];
     }
-    ray8_fill(p, found);
     return found;
 }
 

@@ -145,14 +145,12 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
                _mm256_movemask_ps(_mm256_cmp_ps(ndl, zero, _CMP_NLE_UQ));
     /* shadow_ray: from the offset origin to the light */
     simd8_offset(at, ng, u, o);
-    _mm256_storeu_ps(p->ox, o[0]), _mm256_storeu_ps(p->oy, o[1]), _mm256_storeu_ps(p->oz, o[2]);
-    _mm256_storeu_ps(p->dx, _mm256_sub_ps(pos[0], o[0]));
-    _mm256_storeu_ps(p->dy, _mm256_sub_ps(pos[1], o[1]));
-    _mm256_storeu_ps(p->dz, _mm256_sub_ps(pos[2], o[2]));
-    _mm256_storeu_ps(p->tmin, zero), _mm256_storeu_ps(p->tmax, one);
-    _mm256_storeu_ps(p->time, _mm256_loadu_ps(time));
-    if (need)
-        ray8_fill(p, need);
+    if (need) {
+        __m256 dir[3];
+        for (int c = 0; c < 3; c++)
+            dir[c] = _mm256_sub_ps(pos[c], o[c]);
+        simd8_store_rays(p, need, o, dir, zero, one, simd8_field(time, sizeof(float), 0));
+    }
     light8_highlight(sp, need, u, n, out);
     _mm256_storeu_ps(out->ndl, ndl);
     for (int c = 0; c < 3; c++) {

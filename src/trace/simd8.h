@@ -40,6 +40,37 @@ __attribute__((always_inline)) static inline void simd8_vec3(const void *base, s
     v[2] = simd8_field(base, size, off + 2 * sizeof(float));
 }
 
+/* ray8_fill (core/ray.h) of one field, in a register: the lanes not in
+ * active (not 0) take the first active lane's value. Stored whole
+ * afterwards, the field is loaded whole by the walks without waiting for
+ * lanes stored one by one. */
+__attribute__((always_inline)) static inline __m256 simd8_fill(__m256 v, int active)
+{
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256i first = _mm256_set1_epi32(__builtin_ctz((unsigned)active));
+    __m256i in = _mm256_and_si256(_mm256_set1_epi32(active), bit);
+    __m256 act = _mm256_castsi256_ps(_mm256_cmpeq_epi32(in, bit));
+    return _mm256_blendv_ps(_mm256_permutevar8x32_ps(v, first), v, act);
+}
+
+/* The fields of a packet of rays (o, d, tmin, tmax, time) stored whole,
+ * the lanes not in active filled (simd8_fill). */
+__attribute__((always_inline)) static inline void simd8_store_rays(ray8 *p, int active,
+                                                                   const __m256 o[3],
+                                                                   const __m256 d[3], __m256 tmin,
+                                                                   __m256 tmax, __m256 time)
+{
+    _mm256_storeu_ps(p->ox, simd8_fill(o[0], active));
+    _mm256_storeu_ps(p->oy, simd8_fill(o[1], active));
+    _mm256_storeu_ps(p->oz, simd8_fill(o[2], active));
+    _mm256_storeu_ps(p->dx, simd8_fill(d[0], active));
+    _mm256_storeu_ps(p->dy, simd8_fill(d[1], active));
+    _mm256_storeu_ps(p->dz, simd8_fill(d[2], active));
+    _mm256_storeu_ps(p->tmin, simd8_fill(tmin, active));
+    _mm256_storeu_ps(p->tmax, simd8_fill(tmax, active));
+    _mm256_storeu_ps(p->time, simd8_fill(time, active));
+}
+
 /* v3_dot's (a.x * b.x + a.y * b.y) + a.z * b.z, lane by lane. */
 __attribute__((always_inline)) static inline __m256 simd8_dot(const __m256 a[3],
                                                               const __m256 b[3])
