@@ -64,12 +64,13 @@ __attribute__((always_inline)) static inline int bounce8_prepare(const scene *s,
                                                                  shade8 *sp)
 {
     const void *o[8], *m[8], *t[8];
-    int sph = 0;
+    int sph = 0, same = -1; /* same: the one object the lanes of sph hit, if one */
     for (int b = found; b; b &= b - 1) {
-        int k = __builtin_ctz((unsigned)b);
-        const object *ok = &s->objects[hit[k].object];
+        int k = __builtin_ctz((unsigned)b), i = hit[k].object;
+        const object *ok = &s->objects[i];
         const material *mk = scene_hit_material(s, &hit[k]);
         if (ok->xform < 0 && ok->shape.kind == SHAPE_SPHERE && !material_uses_uv(mk)) {
+            same = sph == 0 || same == i ? i : -2;
             sph |= 1 << k;
             o[k] = &ok->shape.sphere, m[k] = mk, t[k] = &hit[k].h.t;
             sp->m[k] = mk;
@@ -81,14 +82,27 @@ __attribute__((always_inline)) static inline int bounce8_prepare(const scene *s,
         if (!(sph >> k & 1))
             o[k] = o[first], m[k] = m[first], t[k] = t[first];
     const __m256 sign = _mm256_set1_ps(-0.0f), one = _mm256_set1_ps(1.0f);
-    __m256 tt = bounce8_at(t, 0), rad = bounce8_at(o, offsetof(struct sphere, radius));
+    __m256 tt = bounce8_at(t, 0), rad, c[3], col[3];
+    if (same >= 0) { /* one sphere: its fields once */
+        const struct sphere *sh = o[0];
+        const material *mt = m[0];
+        rad = _mm256_set1_ps(sh->radius);
+        c[0] = _mm256_set1_ps(sh->center.x), c[1] = _mm256_set1_ps(sh->center.y);
+        c[2] = _mm256_set1_ps(sh->center.z);
+        col[0] = _mm256_set1_ps(mt->color.x), col[1] = _mm256_set1_ps(mt->color.y);
+        col[2] = _mm256_set1_ps(mt->color.z);
+    } else {
+        rad = bounce8_at(o, offsetof(struct sphere, radius));
+        for (int i = 0; i < 3; i++) {
+            c[i] = bounce8_at(o, offsetof(struct sphere, center) + (size_t)i * sizeof(float));
+            col[i] = bounce8_at(m, offsetof(material, color) + (size_t)i * sizeof(float));
+        }
+    }
     __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
     __m256 org[3] = {_mm256_loadu_ps(p->ox), _mm256_loadu_ps(p->oy), _mm256_loadu_ps(p->oz)};
-    __m256 c[3], q[3], n[3], dn[3];
-    for (int i = 0; i < 3; i++) {
-        c[i] = bounce8_at(o, offsetof(struct sphere, center) + (size_t)i * sizeof(float));
+    __m256 q[3], n[3], dn[3];
+    for (int i = 0; i < 3; i++)
         q[i] = _mm256_sub_ps(_mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt)), c[i]);
-    }
     bounce8_norm(q, n);
     bounce8_norm(d, dn);
     __m256 inside = _mm256_cmp_ps(simd8_dot(dn, n), _mm256_setzero_ps(), _CMP_GT_OQ);
@@ -98,8 +112,7 @@ __attribute__((always_inline)) static inline int bounce8_prepare(const scene *s,
         _mm256_storeu_ps(sp->n[i], f);
         _mm256_storeu_ps(sp->ng[i], f);
         _mm256_storeu_ps(sp->d[i], dn[i]);
-        __m256 col = bounce8_at(m, offsetof(material, color) + (size_t)i * sizeof(float));
-        _mm256_storeu_ps(sp->base[i], _mm256_mul_ps(col, one));
+        _mm256_storeu_ps(sp->base[i], _mm256_mul_ps(col[i], one));
     }
     sp->inside = (sp->inside & ~sph) | (_mm256_movemask_ps(inside) & sph);
     return found & ~sph;
