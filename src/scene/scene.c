@@ -394,9 +394,11 @@ static glint_rc build(scene *s, glint_error *err)
     if (rc != GLINT_OK)
         return rc;
     s->flat = s->bvh.nnodes == 0 || s->bvh.leaf_root;
-    s->any_transmit = false;
-    for (int i = 0; i < s->nmaterials; i++)
+    s->any_transmit = s->any_reflect = false;
+    for (int i = 0; i < s->nmaterials; i++) {
         s->any_transmit = s->any_transmit || s->materials[i].transmit > 0.0f;
+        s->any_reflect = s->any_reflect || s->materials[i].reflect > 0.0f;
+    }
     s->built = true;
     return GLINT_OK;
 }

@@ -21,17 +21,6 @@ __attribute__((always_inline)) static inline void bounce8_norm(const __m256 a[3]
         out[c] = _mm256_blendv_ps(a[c], _mm256_mul_ps(a[c], inv), pos);
 }
 
-/* Eight lanes' floats at byte off of the records at b[k]. */
-__attribute__((always_inline)) static inline __m256 bounce8_at(const void *const b[8], size_t off)
-{
-    const char *f[8];
-    for (int k = 0; k < 8; k++)
-        f[k] = (const char *)b[k] + off;
-    return _mm256_setr_ps(simd8_float(f[0]), simd8_float(f[1]), simd8_float(f[2]),
-                          simd8_float(f[3]), simd8_float(f[4]), simd8_float(f[5]),
-                          simd8_float(f[6]), simd8_float(f[7]));
-}
-
 /* The lanes' materials, those outside `lanes` repeating the first one's
  * (all of them sp->same when the lanes share one). */
 __attribute__((always_inline)) static inline void bounce8_materials(const shade8 *sp, int lanes,
@@ -54,35 +43,27 @@ __attribute__((always_inline)) static inline __m256 bounce8_mat(const shade8 *sp
 {
     if (sp->same)
         return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
-    return bounce8_at(m, off);
+    return simd8_at(m, off);
 }
 
 /* shade_prepare_kernel (bounce8_api.h): sphere_surface_plain at ray_at,
  * then facing, whose two normals are here the same. */
-__attribute__((always_inline)) static inline int bounce8_prepare(const scene *s, const ray8 *p,
-                                                                 int found, const scene_hit *hit,
-                                                                 shade8 *sp)
+__attribute__((always_inline)) static inline void bounce8_prepare(const scene *s, const ray8 *p,
+                                                                  int sph, const scene_hit *hit,
+                                                                  shade8 *sp)
 {
     const void *o[8], *m[8], *t[8];
-    int sph = 0, same = -1; /* same: the one object the lanes of sph hit, if one */
-    for (int b = found; b; b &= b - 1) {
+    int same = -1; /* the one object the lanes of sph hit, if one */
+    for (int b = sph; b; b &= b - 1) {
         int k = __builtin_ctz((unsigned)b), i = hit[k].object;
-        const object *ok = &s->objects[i];
-        const material *mk = scene_hit_material(s, &hit[k]);
-        if (ok->xform < 0 && ok->shape.kind == SHAPE_SPHERE && !material_uses_uv(mk)) {
-            same = sph == 0 || same == i ? i : -2;
-            sph |= 1 << k;
-            o[k] = &ok->shape.sphere, m[k] = mk, t[k] = &hit[k].h.t;
-            sp->m[k] = mk;
-        }
+        same = same == -1 || same == i ? i : -2;
+        o[k] = &s->objects[i].shape.sphere, m[k] = sp->m[k], t[k] = &hit[k].h.t;
     }
-    if (!sph)
-        return found;
     for (int k = 0, first = __builtin_ctz((unsigned)sph); k < 8; k++)
         if (!(sph >> k & 1))
             o[k] = o[first], m[k] = m[first], t[k] = t[first];
     const __m256 sign = _mm256_set1_ps(-0.0f), one = _mm256_set1_ps(1.0f);
-    __m256 tt = bounce8_at(t, 0), rad, c[3], col[3];
+    __m256 tt = simd8_at(t, 0), rad, c[3], col[3];
     if (same >= 0) { /* one sphere: its fields once */
         const struct sphere *sh = o[0];
         const material *mt = m[0];
@@ -92,10 +73,10 @@ __attribute__((always_inline)) static inline int bounce8_prepare(const scene *s,
         col[0] = _mm256_set1_ps(mt->color.x), col[1] = _mm256_set1_ps(mt->color.y);
         col[2] = _mm256_set1_ps(mt->color.z);
     } else {
-        rad = bounce8_at(o, offsetof(struct sphere, radius));
+        rad = simd8_at(o, offsetof(struct sphere, radius));
         for (int i = 0; i < 3; i++) {
-            c[i] = bounce8_at(o, offsetof(struct sphere, center) + (size_t)i * sizeof(float));
-            col[i] = bounce8_at(m, offsetof(material, color) + (size_t)i * sizeof(float));
+            c[i] = simd8_at(o, offsetof(struct sphere, center) + (size_t)i * sizeof(float));
+            col[i] = simd8_at(m, offsetof(material, color) + (size_t)i * sizeof(float));
         }
     }
     __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
@@ -115,7 +96,6 @@ __attribute__((always_inline)) static inline int bounce8_prepare(const scene *s,
         _mm256_storeu_ps(sp->base[i], _mm256_mul_ps(col[i], one));
     }
     sp->inside = (sp->inside & ~sph) | (_mm256_movemask_ps(inside) & sph);
-    return found & ~sph;
 }
 
 /* split (whitted.c) with optics_refract and optics_schlick. */
@@ -136,8 +116,8 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
     __m256 ior = bounce8_mat(sp, m, offsetof(material, ior));
     __m256 d[3], n[3], td[3];
     for (int c = 0; c < 3; c++) {
-        d[c] = td[c] = _mm256_loadu_ps(sp->d[c]);
-        n[c] = _mm256_loadu_ps(sp->n[c]);
+        d[c] = td[c] = simd8_lanes(sp->d[c], sp->lanewise);
+        n[c] = simd8_lanes(sp->n[c], sp->lanewise);
     }
     __m256 bends = _mm256_and_ps(_mm256_cmp_ps(kt, zero, _CMP_NLE_UQ),
                                  _mm256_cmp_ps(ior, one, _CMP_NEQ_UQ));
@@ -229,7 +209,7 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
     if (reflect) { /* v3_reflect(d, n) = d + n (-2 d.n) */
         __m256 in[3], n[3];
         for (int c = 0; c < 3; c++)
-            in[c] = _mm256_loadu_ps(sp->d[c]), n[c] = _mm256_loadu_ps(sp->n[c]);
+            in[c] = simd8_lanes(sp->d[c], sp->lanewise), n[c] = simd8_lanes(sp->n[c], sp->lanewise);
         __m256 s = _mm256_mul_ps(_mm256_set1_ps(-2.0f), simd8_dot(in, n));
         for (int c = 0; c < 3; c++)
             d[c] = _mm256_add_ps(in[c], _mm256_mul_ps(n[c], s));
@@ -238,7 +218,7 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
             d[c] = _mm256_loadu_ps(f->tdir->c[c]);
     }
     for (int c = 0; c < 3; c++)
-        at[c] = _mm256_loadu_ps(sp->p[c]), ng[c] = _mm256_loadu_ps(sp->ng[c]);
+        at[c] = simd8_lanes(sp->p[c], sp->lanewise), ng[c] = simd8_lanes(sp->ng[c], sp->lanewise);
     simd8_offset(at, ng, d, o);
     simd8_store_rays(p, found, o, d, zero, _mm256_set1_ps(INFINITY),
                      simd8_field(f->time, sizeof(float), 0));
@@ -254,10 +234,10 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
 
 /* Defines shade8_kernels_<isa>. */
 #define BOUNCE8_KERNELS(isa)                                                                   \
-    static int prepare_##isa(const scene *s, const ray8 *p, int found, const scene_hit *hit,  \
-                             shade8 *sp)                                                       \
+    static void prepare_##isa(const scene *s, const ray8 *p, int sph, const scene_hit *hit,   \
+                              shade8 *sp)                                                      \
     {                                                                                          \
-        return bounce8_prepare(s, p, found, hit, sp);                                          \
+        bounce8_prepare(s, p, sph, hit, sp);                                                   \
     }                                                                                          \
     static int split_##isa(const shade8 *sp, int found, float kr[8], float kt[8], float gt[8], \
                            color8 *tdir, int *transmits)                                   \

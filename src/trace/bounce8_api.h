@@ -19,12 +19,12 @@ typedef struct bounce8_from {
 } bounce8_from;
 
 typedef struct shade8_kernels {
-    /* shade_prepare for the lanes of found whose object is an unturned
-     * sphere and whose material reads no (u, v): their shading points in
-     * sp, from their rays (lanes of p) and hits; returns the other lanes
-     * of found, left to shade_prepare. */
-    int (*prepare)(const struct glint_scene *s, const ray8 *p, int found,
-                   const struct scene_hit *hit, shade8 *sp);
+    /* shade_prepare for the lanes of sph, whose objects are unturned
+     * spheres of a material that reads no (u, v) (sp->m[k], set), from
+     * their rays (lanes of p) and hits: each field of sp stored whole, the
+     * other lanes holding numbers, and sp->inside's bits of sph set. */
+    void (*prepare)(const struct glint_scene *s, const ray8 *p, int sph,
+                    const struct scene_hit *hit, shade8 *sp);
     /* whitted.c's split for the lanes of found: kr, kt and tdir; gt = kt
      * times the tint's largest component; returns the lanes with kr > 0,
      * those with kt > 0 in *transmits. */

@@ -12,7 +12,7 @@
 /* The lanes' materials, an idle lane (not in lanes, which is not empty)
  * repeating the first one's. */
 __attribute__((always_inline)) static inline void light8_materials(const shade8 *sp, int lanes,
-                                                                   const material *m[8])
+                                                                   const void *m[8])
 {
     if (sp->same) {
         for (int k = 0; k < 8; k++)
@@ -26,17 +26,12 @@ __attribute__((always_inline)) static inline void light8_materials(const shade8 
 /* The float at byte off of each lane's material m[k] (light8_materials):
  * one broadcast where the lanes share one. */
 __attribute__((always_inline)) static inline __m256 light8_mfield(const shade8 *sp,
-                                                                  const material *const m[8],
+                                                                  const void *const m[8],
                                                                   size_t off)
 {
     if (sp->same)
         return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
-    const char *b[8];
-    for (int k = 0; k < 8; k++)
-        b[k] = (const char *)m[k] + off;
-    return _mm256_setr_ps(simd8_float(b[0]), simd8_float(b[1]), simd8_float(b[2]),
-                          simd8_float(b[3]), simd8_float(b[4]), simd8_float(b[5]),
-                          simd8_float(b[6]), simd8_float(b[7]));
+    return simd8_at(m, off);
 }
 
 /* highlight (lighting.c) for the lanes of need, whose points see the
@@ -58,7 +53,7 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade8 
     }
     /* the materials' fields lane by lane into the registers (an array of
      * them stored lane by lane and loaded at once would stall the load) */
-    const material *m[8];
+    const void *m[8];
     light8_materials(sp, need, m);
     __m256 sv = light8_mfield(sp, m, offsetof(material, specular));
     __m256 nv = light8_mfield(sp, m, offsetof(material, shininess));
@@ -69,7 +64,7 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade8 
     for (int c = 0; c < 3; c++)
         r[c] = _mm256_add_ps(nu[c], _mm256_mul_ps(n[c], s));
     for (int c = 0; c < 3; c++)
-        v[c] = _mm256_loadu_ps(sp->d[c]);
+        v[c] = simd8_lanes(sp->d[c], sp->lanewise);
     __m256 rv = _mm256_xor_ps(simd8_dot(r, v), sign);
     __m256i bits = _mm256_castps_si256(rv);
     __m256 e = _mm256_cvtepi32_ps(_mm256_sub_epi32(
@@ -111,9 +106,9 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
     __m256 at[3], d[3], u[3], n[3], ng[3], o[3];
     for (int c = 0; c < 3; c++) {
-        at[c] = _mm256_loadu_ps(sp->p[c]);
-        n[c] = _mm256_loadu_ps(sp->n[c]);
-        ng[c] = _mm256_loadu_ps(sp->ng[c]);
+        at[c] = simd8_lanes(sp->p[c], sp->lanewise);
+        n[c] = simd8_lanes(sp->n[c], sp->lanewise);
+        ng[c] = simd8_lanes(sp->ng[c], sp->lanewise);
     }
     const __m256 pos[3] = {_mm256_set1_ps(pl->position.x), _mm256_set1_ps(pl->position.y),
                            _mm256_set1_ps(pl->position.z)};
@@ -166,7 +161,7 @@ __attribute__((always_inline)) static inline void light8_start(const shade8 *sp,
 {
     if (!lanes)
         return;
-    const material *m[8];
+    const void *m[8];
     light8_materials(sp, lanes, m);
     __m256 a = light8_mfield(sp, m, offsetof(material, ambient));
     const float amb[3] = {ambient.x, ambient.y, ambient.z};
@@ -186,7 +181,7 @@ __attribute__((always_inline)) static inline void light8_add(const shade8 *sp, i
     if (!need)
         return;
     const __m256 zero = _mm256_setzero_ps();
-    const material *m[8];
+    const void *m[8];
     light8_materials(sp, need, m);
     __m256 v[3], open = _mm256_blendv_ps(_mm256_set1_ps(1.0f), zero, packet_lanes(vis->blocked));
     __m256 filtered = packet_lanes(vis->filtered);
@@ -218,13 +213,13 @@ __attribute__((always_inline)) static inline void light8_end(const shade8 *sp, i
 {
     if (!lanes)
         return;
-    const material *m[8];
+    const void *m[8];
     light8_materials(sp, lanes, m);
     __m256 w = _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f),
                                            light8_mfield(sp, m, offsetof(material, transmit))),
                              _mm256_setzero_ps());
     for (int i = 0; i < 3; i++) {
-        __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]), _mm256_loadu_ps(sp->base[i]));
+        __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]), simd8_lanes(sp->base[i], sp->lanewise));
         __m256 v = _mm256_add_ps(_mm256_mul_ps(d, w), _mm256_loadu_ps(acc->specular.c[i]));
         __m256 e = light8_mfield(sp, m, offsetof(material, emission) + (size_t)i * sizeof(float));
         _mm256_storeu_ps(out->c[i], _mm256_add_ps(v, e));

@@ -29,6 +29,9 @@ typedef struct shade8 {
     int inside; /* bit k: lane k's ray hit the surface from behind */
     const material *m[8];
     const material *same; /* every lane's material, when the lanes share one; else NULL */
+    bool lanewise; /* some lane was put one by one (shade8_put): the eight-wide kernels
+                      then load each field lane by lane (simd8.h: simd8_field), as a
+                      whole load would wait for those stores to reach the cache */
 } shade8;
 
 /* Lane k of a packet's shading points, and a point put into lane k. */

@@ -17,6 +17,24 @@ __attribute__((always_inline)) static inline float simd8_float(const char *f)
     return v;
 }
 
+/* The float at byte off of each of the eight records at b[k] (pointers
+ * just stored one by one), by eight loads. Each pointer passes through an
+ * empty asm so that the compiler does not load the eight of them as one
+ * vector to add off, a load that would wait for those stores to reach the
+ * cache. */
+__attribute__((always_inline)) static inline __m256 simd8_at(const void *const b[8], size_t off)
+{
+    const char *f[8];
+    for (int k = 0; k < 8; k++) {
+        f[k] = b[k];
+        __asm__("" : "+r"(f[k]));
+    }
+    return _mm256_setr_ps(simd8_float(f[0] + off), simd8_float(f[1] + off),
+                          simd8_float(f[2] + off), simd8_float(f[3] + off),
+                          simd8_float(f[4] + off), simd8_float(f[5] + off),
+                          simd8_float(f[6] + off), simd8_float(f[7] + off));
+}
+
 /* The float at byte `off` of each of the eight records of `size` bytes
  * from base, by eight loads: faster here than a gather instruction, and
  * unlike one wide load it does not wait for fields just stored one by one
@@ -38,6 +56,13 @@ __attribute__((always_inline)) static inline void simd8_vec3(const void *base, s
     v[0] = simd8_field(base, size, off);
     v[1] = simd8_field(base, size, off + sizeof(float));
     v[2] = simd8_field(base, size, off + 2 * sizeof(float));
+}
+
+/* A field of eight lanes: one load, or eight (simd8_field) where some
+ * lane was just stored on its own. */
+__attribute__((always_inline)) static inline __m256 simd8_lanes(const float f[8], bool lanewise)
+{
+    return lanewise ? simd8_field(f, sizeof(float), 0) : _mm256_loadu_ps(f);
 }
 
 /* ray8_fill (core/ray.h) of one field, in a register: the lanes not in

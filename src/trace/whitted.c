@@ -221,7 +221,8 @@ static void mix8(const trace_ctx *ctx, const shade8 *sp, int keep, bool reflect,
 static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int depth,
                   const scene_hit hit[8], const shade8 *sp, color8 *c, color8 *out)
 {
-    if (depth < ctx->max_depth) {
+    /* where no material reflects or transmits, no lane has a secondary ray */
+    if (depth < ctx->max_depth && (ctx->scene->any_reflect || ctx->scene->any_transmit)) {
         float kr[8], kt[8], gt[8], share[8], time[8];
         color8 sub, tdir;
         ray rs[8];
@@ -265,19 +266,35 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
 }
 
 /* shade_prepare for the lanes of found into sp: the untextured, unturned
- * spheres' eight at a time where the path has the kernels, any other
- * lane one by one. */
+ * spheres' (shading.h: shade_prepare's inline case) eight at a time where
+ * the path has the kernels, any other lane one by one as the lanes are
+ * looked at, each object read once. */
 static void prepare8(trace_ctx *ctx, const ray r[8], const ray8 *p, int found,
                      const scene_hit hit[8], shade8 *sp)
 {
+    const scene *s = ctx->scene;
     const shade8_kernels *k8 = kernels8(ctx);
-    int rest = k8 ? k8->prepare(ctx->scene, p, found, hit, sp) : found;
-    for (int m = rest; m; m &= m - 1) {
+    shade_point done[8];
+    int sph = 0;
+    for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        shade_point spk;
-        shade_prepare(ctx, &r[k], &hit[k], &spk);
-        shade8_put(sp, k, &spk);
+        const object *o = &s->objects[hit[k].object];
+        const material *mk = scene_hit_material(s, &hit[k]);
+        if (k8 && o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(mk)) {
+            sph |= 1 << k;
+            sp->m[k] = mk;
+        } else {
+            shade_prepare(ctx, &r[k], &hit[k], &done[k]);
+        }
     }
+    sp->inside = 0;
+    if (sph)
+        k8->prepare(s, p, sph, hit, sp);
+    for (int m = found & ~sph; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        shade8_put(sp, k, &done[k]);
+    }
+    sp->lanewise = (found & ~sph) != 0;
     sp->same = found ? sp->m[__builtin_ctz((unsigned)found)] : NULL;
     for (int m = found; m; m &= m - 1)
         if (sp->m[__builtin_ctz((unsigned)m)] != sp->same)
