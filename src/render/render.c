@@ -209,7 +209,7 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
             tl.time[i] = rs[i].time;
         vec3 v[8];
         float c[8];
-        whitted_camera8(&w->ctx, &tl, rs, &p, active, found, h, v, c);
+        whitted_camera8(&w->ctx, &tl, &p, active, found, h, v, c);
         for (int i = 0; i < n; i++) {
             if (!(active >> i & 1)) { /* outside a fisheye's circle: black, uncovered */
                 sum[i] = v3_add(sum[i], v3s(0.0f)); /* as sample_range adds it (-0 + 0) */

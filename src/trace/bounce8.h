@@ -187,8 +187,7 @@ __attribute__((always_inline)) static inline void bounce8_mix(const shade8 *sp, 
 }
 
 __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, int found,
-                                                         bool reflect, ray rs[8], ray8 *p,
-                                                         float weight[8])
+                                                         bool reflect, ray8 *p, float weight[8])
 {
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
     const shade8 *sp = f->sp;
@@ -226,7 +225,6 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
     _mm256_storeu_ps(ws, w);
     for (int b = found; b; b &= b - 1) {
         int j = __builtin_ctz((unsigned)b);
-        rs[j] = ray8_get(p, j);
         weight[j] = ws[j];
     }
     return found;
@@ -249,10 +247,10 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
     {                                                                                          \
         bounce8_mix(sp, keep, reflect, sub, k, c);                                             \
     }                                                                                          \
-    static int bounce_##isa(const bounce8_from *f, int found, bool reflect, ray rs[8],        \
-                            ray8 *p, float weight[8])                                          \
+    static int bounce_##isa(const bounce8_from *f, int found, bool reflect, ray8 *p,          \
+                            float weight[8])                                                   \
     {                                                                                          \
-        return bounce8(f, found, reflect, rs, p, weight);                                      \
+        return bounce8(f, found, reflect, p, weight);                                          \
     }                                                                                          \
     const shade8_kernels shade8_kernels_##isa = {prepare_##isa, split_##isa, mix_##isa,       \
                                                  bounce_##isa};

@@ -36,11 +36,10 @@ typedef struct shade8_kernels {
                 color8 *c);
     /* The reflected (reflect) or transmitted rays of the lanes of found
      * that adaptive depth control keeps (whitted.c's adc_keep): returns
-     * those lanes, each with its ray in rs[k] and lane k of *p (the other
-     * lanes of *p hold numbers) and its share in weight[k]; the same
-     * floats as whitted.c's secondaries. */
-    int (*bounce)(const bounce8_from *f, int found, bool reflect, ray rs[8], ray8 *p,
-                  float weight[8]);
+     * those lanes, each with its ray in lane k of *p (the other lanes of
+     * *p repeat one of them) and its share in weight[k]; the same floats
+     * as whitted.c's secondaries. */
+    int (*bounce)(const bounce8_from *f, int found, bool reflect, ray8 *p, float weight[8]);
 } shade8_kernels;
 
 extern const shade8_kernels shade8_kernels_avx2, shade8_kernels_avx512;

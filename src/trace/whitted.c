@@ -124,8 +124,8 @@ typedef struct lanes8 {
     float weight[8];    /* trace_ctx.weight, lane by lane */
 } lanes8;
 
-static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
-                   int depth, color8 *out);
+static void trace8(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, int depth,
+                   color8 *out);
 
 /* The packet kernels of the scene's path (bounce8_api.h), NULL where it
  * has none: the lanes then go one by one. */
@@ -143,17 +143,18 @@ static const shade8_kernels *kernels8(const trace_ctx *ctx)
 }
 
 /* The reflected (reflect) or transmitted rays of the lanes of `found`
- * that adc_keep keeps, from f: returns those lanes, with the ray in rs[k]
- * and lane k of *p, and its share in ls->weight[k]. Eight at a time where
- * the path has the kernels (bounce8.h), the same floats either way. */
+ * that adc_keep keeps, from f: returns those lanes, with the ray in lane
+ * k of *p, and its share in ls->weight[k]. Eight at a time where the path
+ * has the kernels (bounce8.h), the same floats either way. */
 static int secondaries(trace_ctx *ctx, lanes8 *ls, const bounce8_from *f, int found,
-                       bool reflect, ray rs[8], ray8 *p)
+                       bool reflect, ray8 *p)
 {
     const shade8_kernels *k8 = kernels8(ctx);
     int keep = 0;
     if (k8) {
-        keep = k8->bounce(f, found, reflect, rs, p, ls->weight);
+        keep = k8->bounce(f, found, reflect, p, ls->weight);
     } else {
+        ray rs[8];
         for (int m = found; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
             shade_point sp = shade8_get(f->sp, k);
@@ -218,29 +219,26 @@ static void mix8(const trace_ctx *ctx, const shade8 *sp, int keep, bool reflect,
 }
 
 /* trace_rest for the lanes of `found`, with their local light in c. */
-static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int depth,
+static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int depth,
                   const scene_hit hit[8], const shade8 *sp, color8 *c, color8 *out)
 {
     /* where no material reflects or transmits, no lane has a secondary ray */
     if (depth < ctx->max_depth && (ctx->scene->any_reflect || ctx->scene->any_transmit)) {
-        float kr[8], kt[8], gt[8], share[8], time[8];
+        float kr[8], kt[8], gt[8], share[8];
         color8 sub, tdir;
-        ray rs[8];
         ray8 p;
         int transmits, reflects = split8(ctx, sp, found, kr, kt, gt, &tdir, &transmits);
-        for (int k = 0; k < 8; k++) {
+        for (int k = 0; k < 8; k++)
             share[k] = ls->weight[k];
-            time[k] = r[k].time;
-        }
-        bounce8_from f = {sp, share, kr, kt, gt, time, &tdir, ctx->bailout};
-        int keep = reflects ? secondaries(ctx, ls, &f, reflects, true, rs, &p) : 0;
+        bounce8_from f = {sp, share, kr, kt, gt, r->time, &tdir, ctx->bailout};
+        int keep = reflects ? secondaries(ctx, ls, &f, reflects, true, &p) : 0;
         if (keep) {
-            trace8(ctx, ls, rs, &p, keep, depth + 1, &sub);
+            trace8(ctx, ls, &p, keep, depth + 1, &sub);
             mix8(ctx, sp, keep, true, &sub, kr, kt, c);
         }
-        keep = transmits ? secondaries(ctx, ls, &f, transmits, false, rs, &p) : 0;
+        keep = transmits ? secondaries(ctx, ls, &f, transmits, false, &p) : 0;
         if (keep) {
-            trace8(ctx, ls, rs, &p, keep, depth + 1, &sub);
+            trace8(ctx, ls, &p, keep, depth + 1, &sub);
             mix8(ctx, sp, keep, false, &sub, kr, kt, c);
         }
         for (int k = 0; k < 8; k++)
@@ -260,7 +258,8 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
     for (int m = crossed; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         shade_point spk = shade8_get(sp, k);
-        color8_put(out, k, shade_segment_crossed(ctx->scene, &r[k], hit[k].h.t, &spk,
+        ray rk = ray8_get(r, k);
+        color8_put(out, k, shade_segment_crossed(ctx->scene, &rk, hit[k].h.t, &spk,
                                                  color8_get(c, k)));
     }
 }
@@ -269,8 +268,8 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray r[8], int found, int dep
  * spheres' (shading.h: shade_prepare's inline case) eight at a time where
  * the path has the kernels, any other lane one by one as the lanes are
  * looked at, each object read once. */
-static void prepare8(trace_ctx *ctx, const ray r[8], const ray8 *p, int found,
-                     const scene_hit hit[8], shade8 *sp)
+static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit hit[8],
+                     shade8 *sp)
 {
     const scene *s = ctx->scene;
     const shade8_kernels *k8 = kernels8(ctx);
@@ -284,7 +283,8 @@ static void prepare8(trace_ctx *ctx, const ray r[8], const ray8 *p, int found,
             sph |= 1 << k;
             sp->m[k] = mk;
         } else {
-            shade_prepare(ctx, &r[k], &hit[k], &done[k]);
+            ray rk = ray8_get(p, k);
+            shade_prepare(ctx, &rk, &hit[k], &done[k]);
         }
     }
     sp->inside = 0;
@@ -303,29 +303,29 @@ static void prepare8(trace_ctx *ctx, const ray r[8], const ray8 *p, int found,
 
 /* The lanes of active, whose nearest hits are hit[k] for the lanes of
  * found (the others saw the background), shaded into out. */
-static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
-                   int found, int depth, const scene_hit hit[8], color8 *out)
+static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, int found,
+                        int depth, const scene_hit hit[8], color8 *out)
 {
     shade8 sp; /* set for the lanes of found, the only ones used */
     color8 c;
     sp.inside = 0;
-    prepare8(ctx, r, p, found, hit, &sp);
+    prepare8(ctx, p, found, hit, &sp);
     lighting_local8(ctx, ls->tl, &sp, found, ls->events, &c);
     for (int m = found; m; m &= m - 1)
         ls->events[__builtin_ctz((unsigned)m)]++;
-    rest8(ctx, ls, r, found, depth, hit, &sp, &c, out);
+    rest8(ctx, ls, p, found, depth, hit, &sp, &c, out);
     const scene *s = ctx->scene; /* the misses: the background, fogged */
     for (int m = active & ~found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        color8_put(out, k,
-                   s->fog.kind == FOG_NONE ? s->background : trace_hit(ctx, &r[k], depth, NULL));
+        ray rk = ray8_get(p, k);
+        color8_put(out, k, s->fog.kind == FOG_NONE ? s->background : trace_hit(ctx, &rk, depth, NULL));
     }
 }
 
-/* whitted_trace for the rays r[k] of the lanes of active, which are also
- * the lanes of packet *p: three or more together, fewer one by one. */
-static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, int active,
-                   int depth, color8 *out)
+/* whitted_trace for the rays of the lanes of active of packet *p: three
+ * or more together, fewer one by one. */
+static void trace8(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, int depth,
+                   color8 *out)
 {
     if (!ray8_three_or_more(active)) {
         float weight = ctx->weight;
@@ -334,7 +334,8 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, in
             trace_lanes_begin(ctx, ls->tl, k);
             ctx->events = ls->events[k];
             ctx->weight = ls->weight[k];
-            color8_put(out, k, whitted_trace(ctx, &r[k], depth));
+            ray rk = ray8_get(p, k);
+            color8_put(out, k, whitted_trace(ctx, &rk, depth));
             ls->events[k] = ctx->events;
         }
         ctx->weight = weight;
@@ -342,12 +343,11 @@ static void trace8(trace_ctx *ctx, lanes8 *ls, const ray r[8], const ray8 *p, in
     }
     scene_hit hit[8];
     int found = scene_intersect8_spread(ctx->scene, p, active, hit);
-    shade_lanes(ctx, ls, r, p, active, found, depth, hit, out);
+    shade_lanes(ctx, ls, p, active, found, depth, hit, out);
 }
 
-void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], const ray8 *p,
-                     int active, int found, const scene_hit *hit, vec3 out[8],
-                     float coverage[8])
+void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray8 *p, int active,
+                     int found, const scene_hit *hit, vec3 out[8], float coverage[8])
 {
     float weight = ctx->weight; /* adc_keep changes it */
     lanes8 ls = {.tl = tl};
@@ -357,7 +357,7 @@ void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], cons
         coverage[k] = found >> k & 1 ? 1.0f : 0.0f;
     }
     color8 c;
-    shade_lanes(ctx, &ls, r, p, active, found & active, 0, hit, &c);
+    shade_lanes(ctx, &ls, p, active, found & active, 0, hit, &c);
     for (int m = active; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         out[k] = color8_get(&c, k);

@@ -82,14 +82,13 @@ vec3 whitted_camera_hit(trace_ctx *ctx, const ray *r, const struct scene_hit *hi
                         float *coverage);
 
 /* whitted_camera_hit for the lanes of active of a packet of camera rays
- * r[k], also the lanes of *p (tl names their samples), with the hits hit[k] of the lanes in
+ * *p (tl names their samples), with the hits hit[k] of the lanes in
  * found: colours into out[k], coverage into coverage[k]. The same colours
  * to the bit. The lanes go down their trees together: each level's
  * reflected (then transmitted) rays of three or more lanes go through the
  * scene as one packet (scene_intersect8) and their shadow rays likewise
  * (lighting_local8); fewer go one ray at a time. */
-void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray r[8], const ray8 *p,
-                     int active, int found, const struct scene_hit *hit, vec3 out[8],
-                     float coverage[8]);
+void whitted_camera8(trace_ctx *ctx, const trace_lanes *tl, const ray8 *p, int active,
+                     int found, const struct scene_hit *hit, vec3 out[8], float coverage[8]);
 
 #endif
