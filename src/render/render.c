@@ -183,13 +183,13 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
     bool alike = sampler_same_in_every_pixel(&j->smp);
     for (int k = k0; k < k1; k++) {
         ray8 p;
-        ray rs[8];
         int active = 0;
         if (alike) {
             pixel_sample s = sampler_get(&j->smp, x0, y, k);
             active = camera_row8(&j->frame, x0, n, s.fx, (float)y + s.fy, s.lu, s.lv,
-                                 sc->time + s.time * sc->shutter_seconds, rs, &p);
+                                 sc->time + s.time * sc->shutter_seconds, &p);
         } else {
+            ray rs[8];
             for (int i = 0; i < n; i++) {
                 pixel_sample s = sampler_get(&j->smp, x0 + i, y, k);
                 if (camera_ray(&j->frame, (float)(x0 + i) + s.fx, (float)y + s.fy, s.lu, s.lv,
@@ -206,7 +206,7 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         int found = scene_intersect8(sc, &p, active, h);
         trace_lanes tl = {(uint32_t)x0, (uint32_t)y, (uint32_t)k, {0}};
         for (int i = 0; i < n; i++)
-            tl.time[i] = rs[i].time;
+            tl.time[i] = p.time[i];
         vec3 v[8];
         float c[8];
         whitted_camera8(&w->ctx, &tl, &p, active, found, h, v, c);

@@ -129,9 +129,10 @@ bool camera_ray(const camera_frame *f, float x, float y, float lu, float lv, ray
 }
 
 int camera_row8(const camera_frame *f, int x0, int n, float fx, float y, float lu, float lv,
-                float time, ray out[8], ray8 *p)
+                float time, ray8 *p)
 {
     if (f->projection != CAMERA_PERSPECTIVE || f->lens_radius > 0.0f) {
+        ray out[8];
         int active = 0;
         for (int i = 0; i < n; i++) {
             if (camera_ray(f, (float)(x0 + i) + fx, y, lu, lv, &out[i]))
@@ -152,7 +153,5 @@ int camera_row8(const camera_frame *f, int x0, int n, float fx, float y, float l
         p->ox[k] = f->eye.x, p->oy[k] = f->eye.y, p->oz[k] = f->eye.z;
         p->tmin[k] = 0.0f, p->tmax[k] = INFINITY, p->time[k] = time;
     }
-    for (int i = 0; i < n; i++)
-        out[i] = (ray){f->eye, {p->dx[i], p->dy[i], p->dz[i]}, 0.0f, INFINITY, time};
     return (1 << n) - 1;
 }

@@ -56,11 +56,11 @@ camera_frame camera_frame_make(const camera *cam, int width, int height);
 bool camera_ray(const camera_frame *f, float x, float y, float lu, float lv, ray *out);
 
 /* camera_ray for the n <= 8 image positions (x0 + i + fx, y) of a row,
- * all from lens position (lu, lv), at time `time`: ray i into out[i] and
- * lane i of *p (idle lanes repeat a ray, as ray8_pack leaves them).
- * Returns the lanes with a ray. */
+ * all from lens position (lu, lv), at time `time`: ray i into lane i of
+ * *p (idle lanes repeat a ray, as ray8_pack leaves them). Returns the
+ * lanes with a ray. */
 int camera_row8(const camera_frame *f, int x0, int n, float fx, float y, float lu, float lv,
-                float time, ray out[8], ray8 *p);
+                float time, ray8 *p);
 
 /* The unit direction the pinhole ray through (x, y) takes, as camera_ray
  * with aperture 0; false outside a fisheye's circle. */
