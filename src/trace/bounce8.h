@@ -148,8 +148,8 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
             __m256 r0 = _mm256_div_ps(_mm256_sub_ps(n1, n2), _mm256_add_ps(n1, n2));
             r0 = _mm256_mul_ps(r0, r0);
             __m256 mm = _mm256_sub_ps(one, cosine), m2 = _mm256_mul_ps(mm, mm);
-            __m256 f = _mm256_add_ps(
-                r0, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(one, r0), m2), m2), mm));
+            __m256 g = _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(one, r0), m2), m2);
+            __m256 f = _mm256_add_ps(r0, _mm256_mul_ps(g, mm));
             kr = _mm256_blendv_ps(kr, _mm256_add_ps(kr, _mm256_mul_ps(kt, f)), fr);
             kt = _mm256_blendv_ps(kt, _mm256_mul_ps(kt, _mm256_sub_ps(one, f)), fr);
         }
@@ -180,9 +180,11 @@ __attribute__((always_inline)) static inline void bounce8_mix(const shade8 *sp, 
     __m256 kk = _mm256_loadu_ps(k), lanes = packet_lanes(keep);
     for (int i = 0; i < 3; i++) {
         __m256 s = _mm256_loadu_ps(sub->c[i]), v = _mm256_loadu_ps(c->c[i]);
+        size_t tint = offsetof(material, tint) + (size_t)i * sizeof(float);
         if (!reflect)
-            s = _mm256_mul_ps(s, bounce8_mat(sp, m, offsetof(material, tint) + (size_t)i * sizeof(float)));
-        _mm256_storeu_ps(c->c[i], _mm256_blendv_ps(v, _mm256_add_ps(v, _mm256_mul_ps(s, kk)), lanes));
+            s = _mm256_mul_ps(s, bounce8_mat(sp, m, tint));
+        __m256 sum = _mm256_add_ps(v, _mm256_mul_ps(s, kk));
+        _mm256_storeu_ps(c->c[i], _mm256_blendv_ps(v, sum, lanes));
     }
 }
 

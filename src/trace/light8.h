@@ -1,7 +1,9 @@
 /* light8: a point light's one sample seen from the shading points of eight
- * lanes at once, with their shadow rays: lane by lane the floats that
- * light_sample, lit and shadow_ray (lighting.c) work out, in the same
- * order. For translation units compiled with AVX2 (lighting_<isa>.c). */
+ * lanes at once, with their shadow rays, and the lanes' local light (its
+ * start, each point light's share, its end): lane by lane the floats that
+ * light_sample, lit, shadow_ray, add_seen and local_sum (lighting.c) work
+ * out, in the same order. For translation units compiled with AVX2
+ * (lighting_<isa>.c). */
 #ifndef GLINT_TRACE_LIGHT8_H
 #define GLINT_TRACE_LIGHT8_H
 
@@ -219,7 +221,8 @@ __attribute__((always_inline)) static inline void light8_end(const shade8 *sp, i
                                            light8_mfield(sp, m, offsetof(material, transmit))),
                              _mm256_setzero_ps());
     for (int i = 0; i < 3; i++) {
-        __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]), simd8_lanes(sp->base[i], sp->lanewise));
+        __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]),
+                                 simd8_lanes(sp->base[i], sp->lanewise));
         __m256 v = _mm256_add_ps(_mm256_mul_ps(d, w), _mm256_loadu_ps(acc->specular.c[i]));
         __m256 e = light8_mfield(sp, m, offsetof(material, emission) + (size_t)i * sizeof(float));
         _mm256_storeu_ps(out->c[i], _mm256_add_ps(v, e));

@@ -1,5 +1,6 @@
-/* light8_api: what the point-light kernels of light8.h give the lighting
- * of a packet (lighting.c), on the eight-wide paths. */
+/* light8_api: the kernels of light8.h for the lighting of a packet
+ * (lighting.c), on the eight-wide paths: a point light's sample and the
+ * lanes' local light. */
 #ifndef GLINT_TRACE_LIGHT8_API_H
 #define GLINT_TRACE_LIGHT8_API_H
 

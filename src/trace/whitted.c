@@ -176,9 +176,9 @@ static int secondaries(trace_ctx *ctx, lanes8 *ls, const bounce8_from *f, int fo
     return keep;
 }
 
-/* split for the lanes of found, with gt = kt * the tint's largest
- * component: into f's arrays; returns the lanes that reflect (kr > 0),
- * and those that transmit (kt > 0) into *transmits. */
+/* split for the lanes of found, into kr, kt and tdir, with gt = kt * the
+ * tint's largest component; returns the lanes that reflect (kr > 0), and
+ * those that transmit (kt > 0) into *transmits. */
 static int split8(const trace_ctx *ctx, const shade8 *sp, int found, float kr[8], float kt[8],
                   float gt[8], color8 *tdir, int *transmits)
 {
@@ -318,7 +318,8 @@ static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, i
     for (int m = active & ~found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray rk = ray8_get(p, k);
-        color8_put(out, k, s->fog.kind == FOG_NONE ? s->background : trace_hit(ctx, &rk, depth, NULL));
+        vec3 v = s->fog.kind == FOG_NONE ? s->background : trace_hit(ctx, &rk, depth, NULL);
+        color8_put(out, k, v);
     }
 }
 
