@@ -21,32 +21,7 @@ __attribute__((always_inline)) static inline void bounce8_norm(const __m256 a[3]
         out[c] = _mm256_blendv_ps(a[c], _mm256_mul_ps(a[c], inv), pos);
 }
 
-/* The lanes' materials, those outside `lanes` repeating the first one's
- * (all of them sp->same when the lanes share one). */
-__attribute__((always_inline)) static inline void bounce8_materials(const shade8 *sp, int lanes,
-                                                                    const void *m[8])
-{
-    if (sp->same) {
-        for (int k = 0; k < 8; k++)
-            m[k] = sp->same;
-        return;
-    }
-    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
-        m[k] = sp->m[lanes >> k & 1 ? k : first];
-}
-
-/* A float field of the lanes' materials m (bounce8_materials): one
- * broadcast when they share one. */
-__attribute__((always_inline)) static inline __m256 bounce8_mat(const shade8 *sp,
-                                                                const void *const m[8],
-                                                                size_t off)
-{
-    if (sp->same)
-        return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
-    return simd8_at(m, off);
-}
-
-/* shade_prepare_kernel (bounce8_api.h): sphere_surface_plain at ray_at,
+/* prepare (bounce8_api.h): sphere_surface_plain at ray_at,
  * then facing, whose two normals are here the same. */
 __attribute__((always_inline)) static inline void bounce8_prepare(const scene *s, const ray8 *p,
                                                                   int sph, const scene_hit *hit,
@@ -110,10 +85,10 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
     if (!found)
         return 0;
     const void *m[8];
-    bounce8_materials(sp, found, m);
-    __m256 kr = bounce8_mat(sp, m, offsetof(material, reflect));
-    __m256 kt = bounce8_mat(sp, m, offsetof(material, transmit));
-    __m256 ior = bounce8_mat(sp, m, offsetof(material, ior));
+    simd8_materials(sp, found, m);
+    __m256 kr = simd8_mfield(sp, m, offsetof(material, reflect));
+    __m256 kt = simd8_mfield(sp, m, offsetof(material, transmit));
+    __m256 ior = simd8_mfield(sp, m, offsetof(material, ior));
     __m256 d[3], n[3], td[3];
     for (int c = 0; c < 3; c++) {
         d[c] = td[c] = simd8_lanes(sp->d[c], sp->lanewise);
@@ -156,7 +131,7 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
     }
     __m256 tint[3];
     for (int c = 0; c < 3; c++) {
-        tint[c] = bounce8_mat(sp, m, offsetof(material, tint) + (size_t)c * sizeof(float));
+        tint[c] = simd8_mfield(sp, m, offsetof(material, tint) + (size_t)c * sizeof(float));
         _mm256_storeu_ps(tdir->c[c], td[c]);
     }
     __m256 big = _mm256_max_ps(tint[0], _mm256_max_ps(tint[1], tint[2]));
@@ -176,13 +151,13 @@ __attribute__((always_inline)) static inline void bounce8_mix(const shade8 *sp, 
     if (!keep)
         return;
     const void *m[8];
-    bounce8_materials(sp, keep, m);
+    simd8_materials(sp, keep, m);
     __m256 kk = _mm256_loadu_ps(k), lanes = packet_lanes(keep);
     for (int i = 0; i < 3; i++) {
         __m256 s = _mm256_loadu_ps(sub->c[i]), v = _mm256_loadu_ps(c->c[i]);
         size_t tint = offsetof(material, tint) + (size_t)i * sizeof(float);
         if (!reflect)
-            s = _mm256_mul_ps(s, bounce8_mat(sp, m, tint));
+            s = _mm256_mul_ps(s, simd8_mfield(sp, m, tint));
         __m256 sum = _mm256_add_ps(v, _mm256_mul_ps(s, kk));
         _mm256_storeu_ps(c->c[i], _mm256_blendv_ps(v, sum, lanes));
     }

@@ -11,31 +11,6 @@
 #include "trace/light8_api.h"
 #include "trace/simd8.h"
 
-/* The lanes' materials, an idle lane (not in lanes, which is not empty)
- * repeating the first one's. */
-__attribute__((always_inline)) static inline void light8_materials(const shade8 *sp, int lanes,
-                                                                   const void *m[8])
-{
-    if (sp->same) {
-        for (int k = 0; k < 8; k++)
-            m[k] = sp->same;
-        return;
-    }
-    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
-        m[k] = sp->m[lanes >> k & 1 ? k : first];
-}
-
-/* The float at byte off of each lane's material m[k] (light8_materials):
- * one broadcast where the lanes share one. */
-__attribute__((always_inline)) static inline __m256 light8_mfield(const shade8 *sp,
-                                                                  const void *const m[8],
-                                                                  size_t off)
-{
-    if (sp->same)
-        return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
-    return simd8_at(m, off);
-}
-
 /* highlight (lighting.c) for the lanes of need, whose points see the
  * light in unit directions u at shading normals n: the material's
  * specular times max(0, r.v)^shininess, r the reflection of -u about n
@@ -56,9 +31,9 @@ __attribute__((always_inline)) static inline void light8_highlight(const shade8 
     /* the materials' fields lane by lane into the registers (an array of
      * them stored lane by lane and loaded at once would stall the load) */
     const void *m[8];
-    light8_materials(sp, need, m);
-    __m256 sv = light8_mfield(sp, m, offsetof(material, specular));
-    __m256 nv = light8_mfield(sp, m, offsetof(material, shininess));
+    simd8_materials(sp, need, m);
+    __m256 sv = simd8_mfield(sp, m, offsetof(material, specular));
+    __m256 nv = simd8_mfield(sp, m, offsetof(material, shininess));
     __m256 nu[3], r[3], v[3];
     for (int c = 0; c < 3; c++)
         nu[c] = _mm256_xor_ps(u[c], sign);
@@ -164,8 +139,8 @@ __attribute__((always_inline)) static inline void light8_start(const shade8 *sp,
     if (!lanes)
         return;
     const void *m[8];
-    light8_materials(sp, lanes, m);
-    __m256 a = light8_mfield(sp, m, offsetof(material, ambient));
+    simd8_materials(sp, lanes, m);
+    __m256 a = simd8_mfield(sp, m, offsetof(material, ambient));
     const float amb[3] = {ambient.x, ambient.y, ambient.z};
     for (int c = 0; c < 3; c++) {
         _mm256_storeu_ps(acc->diffuse.c[c], _mm256_mul_ps(_mm256_set1_ps(amb[c]), a));
@@ -184,7 +159,7 @@ __attribute__((always_inline)) static inline void light8_add(const shade8 *sp, i
         return;
     const __m256 zero = _mm256_setzero_ps();
     const void *m[8];
-    light8_materials(sp, need, m);
+    simd8_materials(sp, need, m);
     __m256 v[3], open = _mm256_blendv_ps(_mm256_set1_ps(1.0f), zero, packet_lanes(vis->blocked));
     __m256 filtered = packet_lanes(vis->filtered);
     for (int c = 0; c < 3; c++) /* the filters were stored lane by lane */
@@ -196,7 +171,7 @@ __attribute__((always_inline)) static inline void light8_add(const shade8 *sp, i
     __m256 live = _mm256_andnot_ps(dark, packet_lanes(need));
     __m256 hl = _mm256_loadu_ps(seen->hl);
     __m256 shine = _mm256_and_ps(live, _mm256_cmp_ps(hl, zero, _CMP_GT_OQ));
-    __m256 f = _mm256_mul_ps(light8_mfield(sp, m, offsetof(material, diffuse)),
+    __m256 f = _mm256_mul_ps(simd8_mfield(sp, m, offsetof(material, diffuse)),
                              _mm256_loadu_ps(seen->ndl));
     for (int c = 0; c < 3; c++) {
         __m256 lc = _mm256_mul_ps(_mm256_loadu_ps(seen->color[c]), v[c]);
@@ -216,15 +191,15 @@ __attribute__((always_inline)) static inline void light8_end(const shade8 *sp, i
     if (!lanes)
         return;
     const void *m[8];
-    light8_materials(sp, lanes, m);
+    simd8_materials(sp, lanes, m);
     __m256 w = _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f),
-                                           light8_mfield(sp, m, offsetof(material, transmit))),
+                                           simd8_mfield(sp, m, offsetof(material, transmit))),
                              _mm256_setzero_ps());
     for (int i = 0; i < 3; i++) {
         __m256 d = _mm256_mul_ps(_mm256_loadu_ps(acc->diffuse.c[i]),
                                  simd8_lanes(sp->base[i], sp->lanewise));
         __m256 v = _mm256_add_ps(_mm256_mul_ps(d, w), _mm256_loadu_ps(acc->specular.c[i]));
-        __m256 e = light8_mfield(sp, m, offsetof(material, emission) + (size_t)i * sizeof(float));
+        __m256 e = simd8_mfield(sp, m, offsetof(material, emission) + (size_t)i * sizeof(float));
         _mm256_storeu_ps(out->c[i], _mm256_add_ps(v, e));
     }
 }

@@ -100,6 +100,13 @@ __attribute__((always_inline)) static inline void facing(shade_point *out, const
 void shade_prepare_surface(trace_ctx *ctx, const ray *r, const scene_hit *hit, const material *m,
                            shade_point *out);
 
+/* Whether a hit on object o of material m is shade_prepare's commonest
+ * case: an untextured, unturned sphere. */
+static inline bool shade_plain_sphere(const object *o, const material *m)
+{
+    return o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(m);
+}
+
 /* The shading point of a hit. Inline for its commonest case, an
  * untextured, unturned sphere, whose surface then stays in registers
  * (written to memory and read back in other widths, it stalled the
@@ -111,7 +118,7 @@ __attribute__((always_inline)) static inline void shade_prepare(trace_ctx *ctx, 
     const scene *s = ctx->scene;
     const material *m = scene_hit_material(s, hit);
     const object *o = &s->objects[hit->object];
-    if (o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(m)) {
+    if (shade_plain_sphere(o, m)) {
         surface plain;
         sphere_surface_plain(&o->shape.sphere, ray_at(r, hit->h.t), &plain);
         facing(out, m, v3_norm(r->d), plain.p, plain.n, plain.ng, v3_mul(m->color, v3s(1.0f)));

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 #include "core/ray.h"
+#include "trace/shading.h"
 
 /* The float at f. */
 __attribute__((always_inline)) static inline float simd8_float(const char *f)
@@ -63,6 +64,32 @@ __attribute__((always_inline)) static inline void simd8_vec3(const void *base, s
 __attribute__((always_inline)) static inline __m256 simd8_lanes(const float f[8], bool lanewise)
 {
     return lanewise ? simd8_field(f, sizeof(float), 0) : _mm256_loadu_ps(f);
+}
+
+/* The materials of a packet's lanes (shading.h: shade8), an idle lane
+ * (not in lanes, which is not empty) repeating the first one's; all of
+ * them sp->same when the lanes share one. */
+__attribute__((always_inline)) static inline void simd8_materials(const shade8 *sp, int lanes,
+                                                                  const void *m[8])
+{
+    if (sp->same) {
+        for (int k = 0; k < 8; k++)
+            m[k] = sp->same;
+        return;
+    }
+    for (int k = 0, first = __builtin_ctz((unsigned)lanes); k < 8; k++)
+        m[k] = sp->m[lanes >> k & 1 ? k : first];
+}
+
+/* The float at byte off of each lane's material m[k] (simd8_materials):
+ * one broadcast where the lanes share one. */
+__attribute__((always_inline)) static inline __m256 simd8_mfield(const shade8 *sp,
+                                                                 const void *const m[8],
+                                                                 size_t off)
+{
+    if (sp->same)
+        return _mm256_broadcast_ss((const float *)(const void *)((const char *)sp->same + off));
+    return simd8_at(m, off);
 }
 
 /* ray8_fill (core/ray.h) of one field, in a register: the lanes not in

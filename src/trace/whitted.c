@@ -275,11 +275,13 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
     const shade8_kernels *k8 = kernels8(ctx);
     shade_point done[8];
     int sph = 0;
+    sp->same = found ? scene_hit_material(s, &hit[__builtin_ctz((unsigned)found)]) : NULL;
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         const object *o = &s->objects[hit[k].object];
         const material *mk = scene_hit_material(s, &hit[k]);
-        if (k8 && o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(mk)) {
+        sp->same = mk == sp->same ? mk : NULL;
+        if (k8 && shade_plain_sphere(o, mk)) {
             sph |= 1 << k;
             sp->m[k] = mk;
         } else {
@@ -295,10 +297,6 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
         shade8_put(sp, k, &done[k]);
     }
     sp->lanewise = (found & ~sph) != 0;
-    sp->same = found ? sp->m[__builtin_ctz((unsigned)found)] : NULL;
-    for (int m = found; m; m &= m - 1)
-        if (sp->m[__builtin_ctz((unsigned)m)] != sp->same)
-            sp->same = NULL;
 }
 
 /* The lanes of active, whose nearest hits are hit[k] for the lanes of
