@@ -2,10 +2,13 @@
  * rather than from mappings of their own, and the heap holds room in
  * proportion to the scene file's size (up to its cap), kept after it is
  * freed and already mapped: carving it into small blocks takes almost no
- * page faults. Where the policy does not apply (AddressSanitizer's
+ * page faults; blocks that other threads take come from that heap too.
+ * Where the policy does not apply (AddressSanitizer's
  * allocator, another C library) there is nothing to check. */
 #include <criterion/criterion.h>
 #include <malloc.h>
+#include <pthread.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -238,4 +241,43 @@ Test(heap, no_room_without_a_file_of_known_size)
     heap_ready(NULL, 0);
     heap_settle();
     cr_assert_lt(mallinfo2().arena - before, (size_t)1 << 20);
+}
+
+static void *take_block(void *out)
+{
+    *(void **)out = malloc((size_t)64 << 10);
+    return NULL;
+}
+
+/* Whether p lies in the main heap, the process's [heap] mapping (another
+ * thread's heap would be a mapping of its own). */
+static bool in_main_heap(const void *p)
+{
+    FILE *f = fopen("/proc/self/maps", "r");
+    cr_assert_not_null(f);
+    char line[512];
+    bool in = false;
+    while (fgets(line, sizeof line, f)) {
+        unsigned long lo, hi;
+        if (strstr(line, "[heap]") && sscanf(line, "%lx-%lx", &lo, &hi) == 2)
+            in = in || ((uintptr_t)p >= lo && (uintptr_t)p < hi);
+    }
+    fclose(f);
+    return in;
+}
+
+Test(heap, other_threads_take_blocks_from_the_main_heap)
+{
+    SKIP_UNLESS_APPLIES();
+    heap_ready(NULL, 0);
+    void *mine = malloc((size_t)64 << 10), *theirs = NULL;
+    pthread_t t;
+    cr_assert_eq(pthread_create(&t, NULL, take_block, &theirs), 0);
+    cr_assert_eq(pthread_join(t, NULL), 0);
+    cr_assert_not_null(mine);
+    cr_assert_not_null(theirs);
+    cr_assert(in_main_heap(mine));
+    cr_assert(in_main_heap(theirs), "the thread's block %p is outside the main heap", theirs);
+    free(mine);
+    free(theirs);
 }

@@ -151,6 +151,7 @@ void heap_ready(const char *path, int threads)
     heap_settle(); /* a room still being mapped stays as it is */
     mallopt(M_MMAP_THRESHOLD, (int)HEAP_MMAP_FROM);
     mallopt(M_TRIM_THRESHOLD, (int)HEAP_TRIM_FROM);
+    mallopt(M_ARENA_MAX, 1);
     struct stat st;
     if (!path || strcmp(path, "-") == 0 || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
         return;

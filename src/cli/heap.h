@@ -11,6 +11,10 @@
  *   freed (a YAML tree, an image writer's buffers, a frame's film in a
  *   sequence) is reused on pages already mapped, where by default every
  *   block from 128 KiB up was a mapping of its own, fresh each time;
+ * - every thread allocates from that one heap: by default each thread
+ *   that allocates gets a heap of its own, on fresh pages (the PNG
+ *   writer's second thread took some 550 page faults for a 1080p image
+ *   there, about 5 ms of a 20 ms write);
  * - room in the main heap, twelve times the scene file's size and at most
  *   256 MiB, is mapped (in huge pages where the kernel offers them) on a
  *   thread of its own while the scene loads: the loader's many small
@@ -28,8 +32,8 @@
  * scene; "-": standard input, whose size is not known), by a process that
  * may run `threads` threads (0: one a CPU; where that is one the room is
  * mapped before this returns, else by one more thread meanwhile). Call
- * once, from the main thread (other threads allocate from heaps of their
- * own, which glibc unmaps when they empty). Advice only: nothing fails. */
+ * once, from the main thread, before other threads start. Advice only:
+ * nothing fails. */
 void heap_ready(const char *path, int threads);
 
 /* Stops the mapping of the room heap_ready maps and waits for its thread
