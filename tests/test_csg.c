@@ -833,7 +833,8 @@ static int32_t rows_tree(csg *c, rng *g, owned *own, const mesh *row)
 static bool past_first_round(const csg *c, const ray *r, const shape_hit *h)
 {
     const csg_leaf *l = &c->leaves[0];
-    ray lr = {mat4_point(&l->x.inv, r->o), mat4_vector(&l->x.inv, r->d), r->tmin, r->tmax, 0};
+    ray lr = mat4_ray(&l->x.inv, r);
+    lr.time = 0;
     crossing x[CSG_LEAF_CROSSINGS];
     bool more;
     int n = shape_crossings(&l->shape, &lr, x, CSG_LEAF_CROSSINGS, &more);

@@ -79,7 +79,7 @@ static mesh *soup_mesh(int n, uint64_t seed)
 
 static void put(ray8 *p, int k, vec3 o, vec3 d, float tmin, float tmax)
 {
-    ray8_put(p, k, &(ray){o, d, tmin, tmax, 0.0f});
+    ray8_put(p, k, &(ray){.o = o, .d = d, .tmin = tmin, .tmax = tmax, .time = 0.0f});
 }
 
 /* Packet i of a few kinds: a pinhole camera's rays through eight pixels

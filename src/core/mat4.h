@@ -6,6 +6,7 @@
 #define GLINT_CORE_MAT4_H
 
 #include <stdbool.h>
+#include "ray.h"
 #include "vec3.h"
 
 typedef struct mat4 {
@@ -54,6 +55,14 @@ static inline vec3 mat4_vector(const mat4 *m, vec3 v)
     return v3(a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z,
               a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
               a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z);
+}
+
+/* The ray r in the space m maps into (m an inverse transform): its origin
+ * as a point, its direction as a vector, the rest as it is. */
+static inline ray mat4_ray(const mat4 *m, const ray *r)
+{
+    return (ray){.o = mat4_point(m, r->o), .d = mat4_vector(m, r->d), .tmin = r->tmin,
+                 .tmax = r->tmax, .time = r->time};
 }
 
 /* Normal n given in object space, mapped to world space through the

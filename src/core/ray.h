@@ -15,9 +15,18 @@
 #include <stdbool.h>
 #include "vec3.h"
 
+/* o with tmin and d with tmax in 16 bytes each: a ray made in registers
+ * and passed in memory is stored in those two pieces, and a read of o or
+ * d (as one 8-byte and one 4-byte load) then lies within one of them,
+ * where the processor forwards it from the store; across two (o, d
+ * side by side) it waited for the stores to reach the cache (row 8's
+ * shading points, each given a ray taken from its packet). Initialise by
+ * field names. */
 typedef struct ray {
-    vec3 o, d;
-    float tmin, tmax;
+    vec3 o;
+    float tmin;
+    vec3 d;
+    float tmax;
     float time; /* seconds: where moving objects are for this ray (motion blur) */
 } ray;
 
@@ -33,8 +42,11 @@ typedef struct ray8 {
 /* Ray k of a packet, and a ray put into lane k. */
 static inline ray ray8_get(const ray8 *p, int k)
 {
-    return (ray){{p->ox[k], p->oy[k], p->oz[k]}, {p->dx[k], p->dy[k], p->dz[k]}, p->tmin[k],
-                 p->tmax[k], p->time[k]};
+    return (ray){.o = {p->ox[k], p->oy[k], p->oz[k]},
+                 .d = {p->dx[k], p->dy[k], p->dz[k]},
+                 .tmin = p->tmin[k],
+                 .tmax = p->tmax[k],
+                 .time = p->time[k]};
 }
 
 static inline void ray8_put(ray8 *p, int k, const ray *r)
@@ -105,7 +117,7 @@ static inline vec3 ray_offset(vec3 p, vec3 ng, vec3 d)
 
 static inline ray ray_make(vec3 o, vec3 d, float tmax)
 {
-    return (ray){o, d, 0.0f, tmax, 0.0f};
+    return (ray){.o = o, .d = d, .tmin = 0.0f, .tmax = tmax, .time = 0.0f};
 }
 
 /* Where r meets the plane through point with normal n: true with *t when

@@ -157,8 +157,7 @@ static inline ray leaf_ray(const csg_leaf *l, const ray *r)
 {
     if (!l->moved)
         return *r;
-    return (ray){mat4_point(&l->x.inv, r->o), mat4_vector(&l->x.inv, r->d), r->tmin, r->tmax,
-                 r->time};
+    return mat4_ray(&l->x.inv, r);
 }
 
 /* One crossing of a round: its t, and which leaf's which crossing it is.

@@ -24,8 +24,7 @@ __attribute__((always_inline)) static inline void scene_surface_inline(const sce
     ray lr; /* the ray in the object's space, as scene_object_ray carries it */
     const ray *q = r;
     if (x) {
-        lr = (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
-                   r->time};
+        lr = mat4_ray(&x->inv, r);
         q = &lr;
     }
     out->color = v3s(1.0f);

@@ -23,12 +23,10 @@ __attribute__((always_inline)) static inline ray scene_object_ray(const scene *s
         return *r;
     if (__builtin_expect(o->moving, 0)) {
         xform x = scene_object_xform_at(s, o, r->time);
-        return (ray){mat4_point(&x.inv, r->o), mat4_vector(&x.inv, r->d), r->tmin, r->tmax,
-                     r->time};
+        return mat4_ray(&x.inv, r);
     }
     const xform *x = &s->xforms[o->xform];
-    return (ray){mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax,
-                 r->time};
+    return mat4_ray(&x->inv, r);
 }
 
 typedef struct scene_leaf_ctx {

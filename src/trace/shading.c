@@ -60,7 +60,7 @@ static bool plain_surface(const scene *s, const ray *r, const scene_hit *hit, co
     if (o->shape.kind != SHAPE_TORUS || o->xform < 0 || o->moving)
         return false;
     const xform *x = &s->xforms[o->xform];
-    ray lr = {mat4_point(&x->inv, r->o), mat4_vector(&x->inv, r->d), r->tmin, r->tmax, r->time};
+    ray lr = mat4_ray(&x->inv, r);
     vec3 p, n;
     double q[3];
     torus_nearest(&o->shape.torus, ray_at(&lr, hit->h.t), &p, &n, q);
