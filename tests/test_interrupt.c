@@ -113,8 +113,11 @@ Test(interrupt, kill_from_outside_keeps_a_resume_file)
      * shows it rendering (a shell's background job ignores SIGINT); killed
      * outright should it ever miss the signal (glint_run puts "cd DIR &&"
      * first: the "true;" ends that list so that only glint runs in the
-     * background) */
-    int code = glint_run("true; timeout -s KILL 120",
+     * background). timeout runs in the foreground: otherwise it passes the
+     * TERM on twice, to glint and to its process group, and when glint has
+     * taken the first before the second arrives, the second is a second
+     * signal, which leaves at once (a_second_signal_exits_at_once) */
+    int code = glint_run("true; timeout --foreground -s KILL 120",
                          "--progress -t 2 -r 1000x1000 -s 256 -o big.png 2> log & pid=$!; "
                          "i=0; while ! grep -qs Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
                          "i=$((i+1)); done; kill -TERM $pid; wait $pid; c=$?; cat log; exit $c; :",
