@@ -134,6 +134,33 @@ Test(interrupt, kill_from_outside_keeps_a_resume_file)
     glint_resume_free(&r);
 }
 
+/* The same signal twice from one process, 20 ms apart, as timeout(1)
+ * can send it (to the command, then to its process group): one request,
+ * and the render is kept, where a second signal would leave at once. The
+ * scene's tiles take a good part of a second each, so the second comes
+ * while a tile is still being rendered. */
+Test(interrupt, one_sender_signalling_twice_at_once_is_one_request)
+{
+    char out[4096];
+    dir_put("slow.yaml",
+            "image: {width: 64, height: 64, samples: 1024, depth: 12}\n"
+            "camera: {eye: [0, 0, 3], look_at: [0, 0, 0], fov: 60}\n"
+            "lights: [{type: point, position: [2, 3, 4]}, {type: point, position: [-3, 2, 4]}]\n"
+            "objects:\n"
+            "  - {type: sphere, center: [0, 0, 0], radius: 1.6, material: {color: 1, "
+            "specular: 1, shininess: 200, reflect: 0.4, transmit: 0.5, ior: 1.5}}\n"
+            "  - {type: sphere, center: [0, 0, -4], radius: 3, material: {reflect: 0.8}}\n");
+    int code = glint_run("true; timeout --foreground -s KILL 120",
+                         "--progress -t 1 slow.yaml -o twice.png 2> log & pid=$!; "
+                         "i=0; while ! grep -qs Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
+                         "i=$((i+1)); done; kill -TERM $pid; sleep 0.02; kill -TERM $pid; "
+                         "wait $pid; c=$?; cat log; exit $c; :",
+                         out, sizeof out);
+    cr_expect_eq(code, 143, "%s", out);
+    cr_expect(strstr(out, "kept in twice.png.resume"), "%s", out);
+    cr_expect(dir_has("twice.png.resume"));
+}
+
 Test(interrupt, progress_lines_wrote_line_and_stats)
 {
     char out[8192];

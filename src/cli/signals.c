@@ -1,18 +1,45 @@
 #include "signals.h"
 
 #include <signal.h>
+#include <stdbool.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
-static volatile sig_atomic_t caught;
+/* A second signal from the process that sent the first, this soon after
+ * it, is the same request sent twice: timeout(1), when its time is up,
+ * sends its signal to the command and then to the command's process group,
+ * and the command may take the first before the second is sent. A person
+ * cannot send two so fast. */
+#define SIGNALS_SAME_WITHIN_NS 500000000L
 
-static void on_signal(int sig)
+static volatile sig_atomic_t caught;
+static volatile pid_t first_sender; /* 0: the kernel (a terminal's Ctrl-C), or raise */
+static struct timespec first_at;
+
+static bool same_request(int sig, const siginfo_t *si)
 {
+    if (sig != caught || si->si_code != SI_USER || si->si_pid == 0 ||
+        si->si_pid != first_sender)
+        return false;
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now); /* async-signal-safe */
+    long ns = (long)(now.tv_sec - first_at.tv_sec) * 1000000000L + (now.tv_nsec - first_at.tv_nsec);
+    return ns < SIGNALS_SAME_WITHIN_NS;
+}
+
+static void on_signal(int sig, siginfo_t *si, void *context)
+{
+    (void)context;
     if (caught) {
+        if (same_request(sig, si))
+            return;
         /* the second: leave now, ending the progress line first */
         (void)!write(STDERR_FILENO, "\n", 1);
         _exit(signals_exit_code(sig));
     }
+    first_sender = si->si_code == SI_USER ? si->si_pid : 0;
+    clock_gettime(CLOCK_MONOTONIC, &first_at);
     caught = sig;
 }
 
@@ -20,7 +47,8 @@ void signals_install(void)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
+    sa.sa_sigaction = on_signal;
+    sa.sa_flags = SA_SIGINFO;
     sigemptyset(&sa.sa_mask);
     /* a SIGINT ignored from the start (a shell's background job) stays ignored */
     struct sigaction old;

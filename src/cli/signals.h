@@ -2,7 +2,8 @@
  * the work to stop: the render's cancel callback polls signals_caught, the
  * render stops within one tile, and glint keeps what it has (a resume
  * file) and exits with 128 + the signal (130, 143). A second one exits at
- * once, with the same code. The flag is the one piece of process-wide state
+ * once, with the same code, unless the process that sent the first sent it
+ * within half a second (timeout(1) sends its signal twice). The flag is the one piece of process-wide state
  * in glint (and in each process of glint-mpi), as a signal handler can
  * reach nothing else. */
 #ifndef GLINT_CLI_SIGNALS_H
