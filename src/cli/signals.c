@@ -10,7 +10,8 @@
  * it, is the same request sent twice: timeout(1), when its time is up,
  * sends its signal to the command and then to the command's process group,
  * and the command may take the first before the second is sent. A person
- * cannot send two so fast. */
+ * hardly sends two so fast from one shell; a terminal's Ctrl-C comes from
+ * the kernel (sender 0) and a second one always leaves at once. */
 #define SIGNALS_SAME_WITHIN_NS 500000000L
 
 static volatile sig_atomic_t caught;
