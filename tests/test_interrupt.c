@@ -106,22 +106,30 @@ Test(interrupt, a_second_signal_exits_at_once)
     cr_expect_eq(code, 143, "%s", out);
 }
 
+/* glint args (with --progress) run in the background, signalled from
+ * outside by the shell commands `send` once its first progress line
+ * shows it rendering (a shell's background job ignores SIGINT); killed
+ * outright should it ever miss the signal (glint_run puts "cd DIR &&"
+ * first: the "true;" ends that list so that only glint runs in the
+ * background). timeout runs in the foreground: otherwise it passes the
+ * TERM on twice, to glint and to its process group. Returns glint's exit
+ * code; out gets its standard error. */
+static int signal_while_rendering(const char *args, const char *send, char *out, size_t cap)
+{
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "%s 2> log & pid=$!; i=0; while ! grep -qs Mrays log && [ $i -lt 600 ]; do "
+             "sleep 0.1; i=$((i+1)); done; %s wait $pid; c=$?; cat log; exit $c; :",
+             args, send);
+    return glint_run("true; timeout --foreground -s KILL 120", cmd, out, cap);
+}
+
 Test(interrupt, kill_from_outside_keeps_a_resume_file)
 {
     char out[4096];
-    /* a render of minutes, stopped by SIGTERM once its first progress line
-     * shows it rendering (a shell's background job ignores SIGINT); killed
-     * outright should it ever miss the signal (glint_run puts "cd DIR &&"
-     * first: the "true;" ends that list so that only glint runs in the
-     * background). timeout runs in the foreground: otherwise it passes the
-     * TERM on twice, to glint and to its process group, and when glint has
-     * taken the first before the second arrives, the second is a second
-     * signal, which leaves at once (a_second_signal_exits_at_once) */
-    int code = glint_run("true; timeout --foreground -s KILL 120",
-                         "--progress -t 2 -r 1000x1000 -s 256 -o big.png 2> log & pid=$!; "
-                         "i=0; while ! grep -qs Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
-                         "i=$((i+1)); done; kill -TERM $pid; wait $pid; c=$?; cat log; exit $c; :",
-                         out, sizeof out);
+    /* a render of minutes, stopped by one SIGTERM */
+    int code = signal_while_rendering("--progress -t 2 -r 1000x1000 -s 256 -o big.png",
+                                      "kill -TERM $pid;", out, sizeof out);
     cr_expect_eq(code, 143, "%s", out);
     cr_expect(strstr(out, "kept in big.png.resume"), "%s", out);
     char path[512];
@@ -150,12 +158,9 @@ Test(interrupt, one_sender_signalling_twice_at_once_is_one_request)
             "  - {type: sphere, center: [0, 0, 0], radius: 1.6, material: {color: 1, "
             "specular: 1, shininess: 200, reflect: 0.4, transmit: 0.5, ior: 1.5}}\n"
             "  - {type: sphere, center: [0, 0, -4], radius: 3, material: {reflect: 0.8}}\n");
-    int code = glint_run("true; timeout --foreground -s KILL 120",
-                         "--progress -t 1 slow.yaml -o twice.png 2> log & pid=$!; "
-                         "i=0; while ! grep -qs Mrays log && [ $i -lt 600 ]; do sleep 0.1; "
-                         "i=$((i+1)); done; kill -TERM $pid; sleep 0.02; kill -TERM $pid; "
-                         "wait $pid; c=$?; cat log; exit $c; :",
-                         out, sizeof out);
+    int code = signal_while_rendering("--progress -t 1 slow.yaml -o twice.png",
+                                      "kill -TERM $pid; sleep 0.02; kill -TERM $pid;", out,
+                                      sizeof out);
     cr_expect_eq(code, 143, "%s", out);
     cr_expect(strstr(out, "kept in twice.png.resume"), "%s", out);
     cr_expect(dir_has("twice.png.resume"));

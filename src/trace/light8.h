@@ -109,9 +109,7 @@ __attribute__((always_inline)) static inline int light8_point(const light *l,
             color[c] = _mm256_mul_ps(color[c], f);
     }
     /* lit: a colour that is not zero, and !(n . dir <= 0) */
-    __m256 dark = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(color[0], zero, _CMP_EQ_OQ),
-                                              _mm256_cmp_ps(color[1], zero, _CMP_EQ_OQ)),
-                                _mm256_cmp_ps(color[2], zero, _CMP_EQ_OQ));
+    __m256 dark = simd8_is_zero(color);
     __m256 ndl = simd8_dot(n, u);
     int need = lanes & ~_mm256_movemask_ps(dark) &
                _mm256_movemask_ps(_mm256_cmp_ps(ndl, zero, _CMP_NLE_UQ));
@@ -163,11 +161,10 @@ __attribute__((always_inline)) static inline void light8_add(const shade8 *sp, i
     __m256 v[3], open = _mm256_blendv_ps(_mm256_set1_ps(1.0f), zero, packet_lanes(vis->blocked));
     __m256 filtered = packet_lanes(vis->filtered);
     for (int c = 0; c < 3; c++) /* the filters were stored lane by lane */
-        v[c] = vis->filtered ? _mm256_blendv_ps(open, simd8_field(vis->filter.c[c], 4, 0), filtered)
+        v[c] = vis->filtered ? _mm256_blendv_ps(
+                                   open, simd8_field(vis->filter.c[c], sizeof(float), 0), filtered)
                              : open;
-    __m256 dark = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(v[0], zero, _CMP_EQ_OQ),
-                                              _mm256_cmp_ps(v[1], zero, _CMP_EQ_OQ)),
-                                _mm256_cmp_ps(v[2], zero, _CMP_EQ_OQ));
+    __m256 dark = simd8_is_zero(v);
     __m256 live = _mm256_andnot_ps(dark, packet_lanes(need));
     __m256 hl = _mm256_loadu_ps(seen->hl);
     __m256 shine = _mm256_and_ps(live, _mm256_cmp_ps(hl, zero, _CMP_GT_OQ));

@@ -235,15 +235,27 @@ static light8_kernels kernels8(const trace_ctx *ctx)
     return (light8_kernels){NULL, NULL, NULL, NULL};
 }
 
+/* Lane k of acc, and lane k put back. */
+static void acc_get(const light8_acc *acc, int k, vec3 *diffuse, vec3 *specular)
+{
+    *diffuse = color8_get(&acc->diffuse, k), *specular = color8_get(&acc->specular, k);
+}
+
+static void acc_put(light8_acc *acc, int k, vec3 diffuse, vec3 specular)
+{
+    color8_put(&acc->diffuse, k, diffuse);
+    color8_put(&acc->specular, k, specular);
+}
+
 /* add_lit for lane k of acc. */
 static void add_lit8(const shade8 *sp, int k, vec3 dir, vec3 color, float ndl, vec3 vis,
                      light8_acc *acc)
 {
     shade_point spk = shade8_get(sp, k);
-    vec3 diffuse = color8_get(&acc->diffuse, k), specular = color8_get(&acc->specular, k);
+    vec3 diffuse, specular;
+    acc_get(acc, k, &diffuse, &specular);
     add_lit(&spk, dir, color, ndl, vis, &diffuse, &specular);
-    color8_put(&acc->diffuse, k, diffuse);
-    color8_put(&acc->specular, k, specular);
+    acc_put(acc, k, diffuse, specular);
 }
 
 /* The one-sample light l at the points of lanes, added to *acc: a point
@@ -295,8 +307,7 @@ void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, in
     } else {
         for (int m = lanes; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
-            color8_put(&acc.diffuse, k, v3_scale(s->ambient, sp->m[k]->ambient));
-            color8_put(&acc.specular, k, v3s(0.0f));
+            acc_put(&acc, k, v3_scale(s->ambient, sp->m[k]->ambient), v3s(0.0f));
         }
     }
     for (int i = 0; i < s->nlights; i++) {
@@ -308,10 +319,10 @@ void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, in
             int k = __builtin_ctz((unsigned)m);
             trace_lanes_begin(ctx, tl, k);
             shade_point spk = shade8_get(sp, k);
-            vec3 diffuse = color8_get(&acc.diffuse, k), specular = color8_get(&acc.specular, k);
+            vec3 diffuse, specular;
+            acc_get(&acc, k, &diffuse, &specular);
             add_light(ctx, &spk, i, event[k], &diffuse, &specular);
-            color8_put(&acc.diffuse, k, diffuse);
-            color8_put(&acc.specular, k, specular);
+            acc_put(&acc, k, diffuse, specular);
         }
     }
     if (k8.end) {
@@ -321,7 +332,8 @@ void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, in
     for (int m = lanes; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         shade_point spk = shade8_get(sp, k);
-        color8_put(out, k, local_sum(&spk, color8_get(&acc.diffuse, k),
-                                     color8_get(&acc.specular, k)));
+        vec3 diffuse, specular;
+        acc_get(&acc, k, &diffuse, &specular);
+        color8_put(out, k, local_sum(&spk, diffuse, specular));
     }
 }

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 #include "core/ray.h"
+#include "geom/mesh_packet.h" /* packet_lanes */
 #include "trace/shading.h"
 
 /* The float at f. */
@@ -98,11 +99,8 @@ __attribute__((always_inline)) static inline __m256 simd8_mfield(const shade8 *s
  * lanes stored one by one. */
 __attribute__((always_inline)) static inline __m256 simd8_fill(__m256 v, int active)
 {
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     __m256i first = _mm256_set1_epi32(__builtin_ctz((unsigned)active));
-    __m256i in = _mm256_and_si256(_mm256_set1_epi32(active), bit);
-    __m256 act = _mm256_castsi256_ps(_mm256_cmpeq_epi32(in, bit));
-    return _mm256_blendv_ps(_mm256_permutevar8x32_ps(v, first), v, act);
+    return _mm256_blendv_ps(_mm256_permutevar8x32_ps(v, first), v, packet_lanes(active));
 }
 
 /* The fields of a packet of rays (o, d, tmin, tmax, time) stored whole,
@@ -129,6 +127,16 @@ __attribute__((always_inline)) static inline __m256 simd8_dot(const __m256 a[3],
 {
     return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], b[0]), _mm256_mul_ps(a[1], b[1])),
                          _mm256_mul_ps(a[2], b[2]));
+}
+
+/* The lanes where all three components of v are zero (v3_is_zero), as
+ * all-ones lanes. */
+__attribute__((always_inline)) static inline __m256 simd8_is_zero(const __m256 v[3])
+{
+    const __m256 zero = _mm256_setzero_ps();
+    return _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(v[0], zero, _CMP_EQ_OQ),
+                                       _mm256_cmp_ps(v[1], zero, _CMP_EQ_OQ)),
+                         _mm256_cmp_ps(v[2], zero, _CMP_EQ_OQ));
 }
 
 /* ray_offset (core/ray.h) lane by lane: the origin for rays leaving

@@ -306,7 +306,6 @@ static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, i
 {
     shade8 sp; /* set for the lanes of found, the only ones used */
     color8 c;
-    sp.inside = 0;
     prepare8(ctx, p, found, hit, &sp);
     lighting_local8(ctx, ls->tl, &sp, found, ls->events, &c);
     for (int m = found; m; m &= m - 1)
