@@ -115,6 +115,20 @@ GLINT_API glint_rc glint_settings_check(const glint_settings *s, glint_error *er
  * run on (its CPU affinity, which taskset, mpirun and srun set). */
 GLINT_API int glint_default_threads(void);
 
+/* Memory kept for a load and the render after it. A program that loads a
+ * scene and then renders it can have the library keep one block of at
+ * least `bytes` mapped pages (six times a YAML scene file's size holds its
+ * parse tree): the parse tree of the next scene file loaded takes it while
+ * the scene loads, and the film made after it (of 1 MiB or more) then
+ * takes the same pages, touched already, instead of fresh ones (which a
+ * virtual machine may first have to get from its host); a film freed
+ * leaves its block for the next. Returns the block, whose pages the
+ * caller may map ahead while the scene loads (from any thread, with
+ * madvise MADV_POPULATE_WRITE, which leaves what they hold), or NULL when
+ * it cannot be made or was made already. Advice only: every result is
+ * the same with it or without. */
+GLINT_API void *glint_memory_spare(size_t bytes);
+
 /* ---- scenes -------------------------------------------------------------- */
 
 typedef struct glint_scene glint_scene;

@@ -2,7 +2,9 @@
  * rather than from mappings of their own, and the heap holds room in
  * proportion to the scene file's size (up to its cap), kept after it is
  * freed and already mapped: carving it into small blocks takes almost no
- * page faults; blocks that other threads take come from that heap too.
+ * page faults; blocks that other threads take come from that heap too;
+ * the library's spare block (glint_memory_spare) is made and mapped
+ * beside the room.
  * Where the policy does not apply (AddressSanitizer's
  * allocator, another C library) there is nothing to check. */
 #include <criterion/criterion.h>
@@ -17,6 +19,7 @@
 #include <unistd.h>
 
 #include "cli/heap.h"
+#include "glint.h"
 #include "tmpdir.h"
 
 #define SKIP_UNLESS_APPLIES()                                                                   \
@@ -77,9 +80,14 @@ static void wait_resident(size_t before, size_t grown)
     cr_assert_geq(resident(), before + grown, "the room was not mapped within a minute");
 }
 
+/* The spare heap_ready makes for a scene file of `bytes`: six times its
+ * size (cli/heap.c), mapped before the room. */
+static size_t spare_for(off_t bytes) { return 6 * (size_t)bytes; }
+
 /* How much heap_ready for a scene file of `bytes`, by a process of
  * `threads` threads, grows the heap by; with `mapped`, once the mapping
- * had had time to finish before heap_settle stopped it. */
+ * of the spare and the room had had time to finish before heap_settle
+ * stopped it. */
 static size_t room_for_mapped(off_t bytes, int threads, bool mapped)
 {
     tmpdir_make("heap");
@@ -90,7 +98,7 @@ static size_t room_for_mapped(off_t bytes, int threads, bool mapped)
     heap_ready(path, threads);
     size_t room = mallinfo2().arena - before;
     if (mapped)
-        wait_resident(held, room - room / 16);
+        wait_resident(held, spare_for(bytes) + room - room / 16);
     heap_settle();
     tmpdir_remove();
     return room;
@@ -120,10 +128,10 @@ static void expect_room(off_t bytes, size_t mib, size_t below)
 Test(heap, room_in_proportion_to_the_scene_file)
 {
     SKIP_UNLESS_APPLIES();
-    expect_room((off_t)1 << 20, 12, 16); /* 12 MiB taken and given back: the heap keeps it */
+    expect_room((off_t)1 << 20, 6, 10); /* 6 MiB taken and given back: the heap keeps it */
 }
 
-/* That the room for a scene file of 4 MiB, readied by a process of
+/* That the room for a scene file of 8 MiB, readied by a process of
  * `threads` threads, is mapped once heap_settle returns after a load that
  * took longer than the mapping. */
 static void expect_room_mapped(int threads)
@@ -134,7 +142,7 @@ static void expect_room_mapped(int threads)
     munmap(probe, 4096);
     if (!can_map)
         cr_skip_test("the kernel cannot map memory ahead (Linux 5.14 on)");
-    cr_assert_geq(room_for_mapped((off_t)4 << 20, threads, true), (size_t)48 << 20);
+    cr_assert_geq(room_for_mapped((off_t)8 << 20, threads, true), (size_t)48 << 20);
     /* 32 MiB of small blocks (48 bytes, 64 with malloc's header), as a
      * loader takes them: 8,192 pages, but already mapped, so only the odd
      * fault of malloc's own */
@@ -193,7 +201,7 @@ Test(heap, blocks_written_while_the_room_is_mapped_keep_their_bytes)
     tmpdir_make("heap");
     char path[256];
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
-    scene_file(path, (off_t)8 << 20); /* 96 MiB of room */
+    scene_file(path, (off_t)16 << 20); /* 96 MiB of room, after the spare's 96 */
     enum { COUNT = 1 << 20 };
     static unsigned char *blocks[COUNT];
     memset(blocks, 0, sizeof blocks);
@@ -212,7 +220,7 @@ Test(heap, room_left_unmapped_when_the_load_is_done_first)
     tmpdir_make("heap");
     char path[256];
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
-    scene_file(path, (off_t)20 << 20); /* 240 MiB of room */
+    scene_file(path, (off_t)20 << 20); /* 120 MiB of spare, then 120 of room */
     size_t held = resident();
     heap_ready(path, 0);
     heap_settle();
@@ -222,13 +230,38 @@ Test(heap, room_left_unmapped_when_the_load_is_done_first)
     write_blocks(blocks, COUNT);
     check_blocks(blocks, COUNT, 4099);
     tmpdir_remove();
-    cr_assert_lt(after, held + ((size_t)240 << 20), "all of the room was mapped before it stopped");
+    cr_assert_lt(after, held + ((size_t)240 << 20),
+                 "all of the spare and the room were mapped before it stopped");
 }
 
 Test(heap, room_at_its_cap_is_kept)
 {
     SKIP_UNLESS_APPLIES();
-    expect_room((off_t)30 << 20, 256, 264); /* 30 MB would ask for 360 MiB: 256, all kept */
+    expect_room((off_t)50 << 20, 256, 264); /* 50 MB would ask for 300 MiB: 256, all kept */
+}
+
+/* heap_ready makes the library's spare from a scene file's size (a
+ * second glint_memory_spare then has none to make), and none for a file
+ * of unknown size. */
+Test(heap, the_spare_is_made_for_a_scene_file)
+{
+    SKIP_UNLESS_APPLIES();
+    tmpdir_make("heap");
+    char path[256];
+    snprintf(path, sizeof path, "%s/scene.yaml", dir);
+    scene_file(path, (off_t)1 << 20);
+    heap_ready(path, 0);
+    heap_settle();
+    cr_assert_null(glint_memory_spare((size_t)4 << 20), "heap_ready made no spare");
+    tmpdir_remove();
+}
+
+Test(heap, no_spare_without_a_file_of_known_size)
+{
+    SKIP_UNLESS_APPLIES();
+    heap_ready("-", 0);
+    heap_settle();
+    cr_assert_not_null(glint_memory_spare((size_t)4 << 20), "a spare for standard input");
 }
 
 Test(heap, no_room_without_a_file_of_known_size)

@@ -11,6 +11,7 @@
 
 #include "api/check.h"
 #include "core/error.h"
+#include "core/spare.h"
 #include "io/image_write.h"
 #include "load/load.h"
 #include "render/render.h"
@@ -124,6 +125,8 @@ glint_rc glint_settings_check(const glint_settings *s, glint_error *err)
 }
 
 int glint_default_threads(void) { return settings_default_threads(); }
+
+void *glint_memory_spare(size_t bytes) { return spare_make(bytes); }
 
 /* ---- camera ---------------------------------------------------------------- */
 

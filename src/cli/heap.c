@@ -33,9 +33,14 @@
 #define HEAP_MMAP_FROM ((size_t)32 << 20)
 /* The room mapped at once: this many times the scene file's bytes (a
  * scene of 11,000 objects in 2 MB of YAML had 20 MiB of heap when
- * loaded), at most HEAP_ROOM_MAX. */
-#define HEAP_ROOM_PER_BYTE 12
+ * loaded, 12 of it the parse tree, which now lies in the spare), at most
+ * HEAP_ROOM_MAX. */
+#define HEAP_ROOM_PER_BYTE 6
 #define HEAP_ROOM_MAX ((size_t)256 << 20)
+/* The library's spare block (glint_memory_spare), for the parse tree and
+ * then the film: this many times the scene file's bytes, at most
+ * HEAP_ROOM_MAX. */
+#define HEAP_SPARE_PER_BYTE 6
 /* The room is taken in pieces of this size (below HEAP_MMAP_FROM). */
 #define HEAP_PIECE ((size_t)16 << 20)
 /* The mapper maps this much at a time (a huge page), and stops between
@@ -56,7 +61,7 @@ bool heap_policy_applies(void)
 }
 
 #if defined(HEAP_POLICY)
-enum { ROOM_PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 1 };
+enum { ROOM_PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 2 };
 
 /* The room's pages still to be mapped, piece by piece, and the thread
  * mapping them while the scene loads. */
@@ -101,13 +106,17 @@ static void *map_pieces(void *unused)
  * a virtual machine whose host has taken its memory back, 1-2 ms a MiB),
  * the rest of the room is left to be mapped if and when it is touched,
  * instead of the render waiting for all of it. */
-static void map_room(size_t n, int threads)
+static void map_room(size_t n, char *spare, size_t spare_bytes, int threads)
 {
     const uintptr_t page = 4096;
     char *piece[ROOM_PIECES];
     int k = 0;
     room.n = 0;
-    for (size_t left = n; left > 0 && k < ROOM_PIECES; k++) {
+    if (spare) { /* first: the parse tree there is written from the load's start */
+        room.at[room.n] = spare;
+        room.bytes[room.n++] = spare_bytes;
+    }
+    for (size_t left = n; left > 0 && k < ROOM_PIECES - 1; k++) {
         size_t take = left < HEAP_PIECE ? left : HEAP_PIECE;
         if (!(piece[k] = malloc(take)))
             break;
@@ -158,8 +167,10 @@ void heap_ready(const char *path, int threads)
     size_t bytes = (size_t)st.st_size;
     size_t room_bytes = bytes > HEAP_ROOM_MAX / HEAP_ROOM_PER_BYTE ? HEAP_ROOM_MAX
                                                                    : bytes * HEAP_ROOM_PER_BYTE;
+    size_t spare_bytes = bytes > HEAP_ROOM_MAX / HEAP_SPARE_PER_BYTE ? HEAP_ROOM_MAX
+                                                                     : bytes * HEAP_SPARE_PER_BYTE;
     if (room_bytes >= ((size_t)4 << 20))
-        map_room(room_bytes, threads);
+        map_room(room_bytes, glint_memory_spare(spare_bytes), spare_bytes, threads);
 #else
     (void)path, (void)threads;
 #endif

@@ -15,10 +15,13 @@
  *   that allocates gets a heap of its own, on fresh pages (the PNG
  *   writer's second thread took some 550 page faults for a 1080p image
  *   there, about 5 ms of a 20 ms write);
- * - room in the main heap, twelve times the scene file's size and at most
- *   256 MiB, is mapped (in huge pages where the kernel offers them) on a
- *   thread of its own while the scene loads: the loader's many small
- *   blocks then land on mapped pages.
+ * - the library keeps a spare block six times the scene file's size
+ *   (glint_memory_spare), where the scene's parse tree is built and which
+ *   the film takes after it, on the pages the load touched; and room in
+ *   the main heap, six times the file's size, for the scene itself. Both,
+ *   at most 256 MiB each, are mapped (in huge pages where the kernel
+ *   offers them) on a thread of its own while the scene loads: the
+ *   loader's blocks then land on mapped pages.
  *
  * The process then keeps that memory until it ends. A process policy,
  * not the library's: it lives with the programs (glint, glint-mpi), and

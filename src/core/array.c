@@ -115,6 +115,14 @@ static void *fill(void *arg)
 #define FILL_SPLIT_FROM ((size_t)8 << 20)
 #define FILL_MAX_THREADS 8
 
+void array_clear_on(void *p, size_t n, int threads)
+{
+    fill_job f = {p, n, (n + HUGE_PAGE - 1) / HUGE_PAGE, 0};
+    int k = n >= FILL_SPLIT_FROM ? cpus_threads(threads, FILL_MAX_THREADS) : 1;
+    k = (size_t)k > f.pages ? (int)f.pages : k;
+    cpus_share(k, fill, &f);
+}
+
 void *array_calloc_big_on(size_t n, int threads)
 {
     if (n < ARRAY_HUGE_FROM)
@@ -123,12 +131,8 @@ void *array_calloc_big_on(size_t n, int threads)
      * 70 ms of page faults, a 1024x512 texture decoded 4 ms); at most
      * twice the bytes asked for */
     char *p = alloc_huge(n, false);
-    if (!p)
-        return NULL;
-    fill_job f = {p, n, (n + HUGE_PAGE - 1) / HUGE_PAGE, 0};
-    int k = n >= FILL_SPLIT_FROM ? cpus_threads(threads, FILL_MAX_THREADS) : 1;
-    k = (size_t)k > f.pages ? (int)f.pages : k;
-    cpus_share(k, fill, &f);
+    if (p)
+        array_clear_on(p, n, threads);
     return p;
 }
 

@@ -58,4 +58,9 @@ void *array_calloc_big(size_t n);
  * thread and 25-31 ms on two. */
 void *array_calloc_big_on(size_t n, int threads);
 
+/* Maps and clears the n bytes at p (a block of whole 2 MiB pages from
+ * 2 MiB up, aligned to one) as array_calloc_big_on does: from 8 MiB up
+ * by up to `threads` threads, a huge page at a time. */
+void array_clear_on(void *p, size_t n, int threads);
+
 #endif

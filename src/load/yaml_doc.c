@@ -10,6 +10,7 @@
 
 #include "core/array.h"
 #include "core/error.h"
+#include "core/spare.h"
 #include "core/text.h"
 #include "load/names.h"
 #include "load/yaml_fast.h"
@@ -131,6 +132,21 @@ static glint_rc resolve_scalar(builder *b, const yaml_event_t *ev, ynode *n)
 
 /* ---- tree building ---------------------------------------------------- */
 
+/* Before an array of the tree grows: one that lies in the spare block
+ * (reserve_for) is copied to the heap, its `bytes` of room with it, since
+ * growing frees the old block; false when memory runs out. */
+static bool own(ydoc *d, void **items, size_t bytes)
+{
+    if (!ydoc_borrowed(d, *items))
+        return true;
+    void *q = malloc(bytes ? bytes : 1);
+    if (!q)
+        return false;
+    memcpy(q, *items, bytes);
+    *items = q;
+    return true;
+}
+
 /* Room for one more node; the limit is met when the room, which never
  * grows past it, is full. */
 static glint_rc grow_nodes(builder *b, yaml_mark_t m)
@@ -140,7 +156,8 @@ static glint_rc grow_nodes(builder *b, yaml_mark_t m)
         return err_set(b->err, GLINT_ERR_INPUT, "%s:%u:%u: more than %u YAML nodes", b->name,
                        (uint32_t)m.line + 1, (uint32_t)m.column + 1, YDOC_MAX_NODES);
     size_t cap = d->cap_nodes;
-    if (!array_grow((void **)&d->nodes, &cap, (size_t)d->nnodes + 1, sizeof *d->nodes))
+    if (!own(d, (void **)&d->nodes, cap * sizeof *d->nodes) ||
+        !array_grow((void **)&d->nodes, &cap, (size_t)d->nnodes + 1, sizeof *d->nodes))
         return err_nomem(b->err);
     d->cap_nodes = cap > YDOC_MAX_NODES ? YDOC_MAX_NODES : (uint32_t)cap;
     return GLINT_OK;
@@ -215,7 +232,9 @@ static glint_rc new_scalar(builder *b, const char *s, size_t len, yaml_mark_t m,
     glint_rc rc = new_node(b, YNODE_STRING, m, node);
     if (rc != GLINT_OK)
         return rc;
-    if (!array_reserve((void **)&d->text, &d->cap_text, d->ntext + len + 1, 1))
+    size_t need = d->ntext + len + 1;
+    if (need > d->cap_text && (!own(d, (void **)&d->text, d->cap_text) ||
+                               !array_grow((void **)&d->text, &d->cap_text, need, 1)))
         return err_nomem(b->err);
     put_text(d, &d->nodes[*node], s, len);
     return GLINT_OK;
@@ -285,7 +304,9 @@ static glint_rc push_kids(builder *b, const uint32_t *ids, size_t n, uint32_t *f
     ydoc *d = b->d;
     if (d->nkids + n > UINT32_MAX)
         return err_set(b->err, GLINT_ERR_INPUT, "%s: the document is too large", b->name);
-    if (!array_reserve((void **)&d->kids, &d->cap_kids, d->nkids + n, sizeof *d->kids))
+    size_t need = d->nkids + n;
+    if (need > d->cap_kids && (!own(d, (void **)&d->kids, d->cap_kids * sizeof *d->kids) ||
+                               !array_grow((void **)&d->kids, &d->cap_kids, need, sizeof *d->kids)))
         return err_nomem(b->err);
     *first = (uint32_t)d->nkids;
     if (n)
@@ -486,6 +507,18 @@ static void reserve_for(ydoc *d, size_t len)
     nodes = nodes > YDOC_MAX_NODES ? YDOC_MAX_NODES : nodes;
     kids = kids > most / sizeof *d->kids ? most / sizeof *d->kids : kids;
     text = text > most ? most : text;
+    /* in the process's spare block when it has one (core/spare.h): the
+     * film made after the load then takes the same pages */
+    size_t bn = (nodes * sizeof *d->nodes + 63) / 64 * 64;
+    size_t bk = (kids * sizeof *d->kids + 63) / 64 * 64;
+    if (bn + bk + text >= ARRAY_HUGE_FROM && (d->block = spare_take(bn + bk + text, NULL))) {
+        d->block_bytes = bn + bk + text;
+        d->nodes = (ynode *)(void *)d->block;
+        d->kids = (uint32_t *)(void *)(d->block + bn);
+        d->text = d->block + bn + bk;
+        d->cap_nodes = (uint32_t)nodes, d->cap_kids = kids, d->cap_text = text;
+        return;
+    }
     d->cap_nodes = (uint32_t)reserve((void **)&d->nodes, nodes, sizeof *d->nodes);
     d->cap_kids = reserve((void **)&d->kids, kids, sizeof *d->kids);
     d->cap_text = reserve((void **)&d->text, text, 1);

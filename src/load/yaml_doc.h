@@ -68,7 +68,19 @@ typedef struct ydoc {
     char *text;
     size_t ntext, cap_text;
     uint32_t root; /* YDOC_NONE when the stream holds no document */
+    /* The process's spare block (core/spare.h) when the arrays were made
+     * up front in it, block_bytes long; else NULL. An array that outgrows
+     * its room there moves to the heap (ydoc_borrowed tells which). */
+    char *block;
+    size_t block_bytes;
 } ydoc;
+
+/* Whether the array at p lies in d's block rather than on the heap. */
+static inline bool ydoc_borrowed(const ydoc *d, const void *p)
+{
+    const char *c = p;
+    return d->block && c >= d->block && c < d->block + d->block_bytes;
+}
 
 /* Parses text (len bytes, UTF-8/16 as libyaml detects) into *out; name is
  * used in messages only. A stream with more than one document is refused. */

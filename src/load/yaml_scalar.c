@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/spare.h"
 #include "core/text.h"
 
 /* Numbers longer than this are taken as strings: no real number needs it,
@@ -319,8 +320,12 @@ void ydoc_free(ydoc *d)
 {
     if (!d)
         return;
-    free(d->nodes);
-    free(d->kids);
-    free(d->text);
+    if (!ydoc_borrowed(d, d->nodes))
+        free(d->nodes);
+    if (!ydoc_borrowed(d, d->kids))
+        free(d->kids);
+    if (!ydoc_borrowed(d, d->text))
+        free(d->text);
+    spare_give(d->block); /* the next big block (a film) takes its pages */
     free(d);
 }

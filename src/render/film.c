@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include "core/array.h"
+#include "core/spare.h"
 
 int render_tile_count(int width, int height)
 {
@@ -20,14 +20,14 @@ glint_rect render_tile_rect(int width, int height, int tile)
 
 float *render_film_rgb(int width, int height, int threads)
 {
-    return array_calloc_big_on((size_t)width * (size_t)height * 3 * sizeof(float), threads);
+    return spare_calloc((size_t)width * (size_t)height * 3 * sizeof(float), threads);
 }
 
 void render_film_free(glint_film *film)
 {
     if (!film)
         return;
-    free(film->rgb);
+    spare_free(film->rgb);
     free(film->alpha);
     film->rgb = NULL;
     film->alpha = NULL;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/spare.h"
 #include "io/file.h"
 #include "render/render.h"
 #include "scene/fingerprint.h"
@@ -66,7 +67,7 @@ void resume_free(glint_resume *r)
     if (!r)
         return;
     free(r->done);
-    free(r->film.rgb);
+    spare_free(r->film.rgb);
     free(r->film.alpha);
     free(r->note);
     *r = (glint_resume){0};
