@@ -44,7 +44,7 @@ Test(heap, big_blocks_come_from_the_heap)
     SKIP_UNLESS_APPLIES();
     if (!mapped_alone((size_t)1 << 20)) /* GLIBC_TUNABLES may have changed the default */
         cr_skip_test("this process's malloc already serves 1 MiB from its heap");
-    heap_ready(NULL, 0);
+    heap_ready(NULL, 0, 0);
     cr_assert_not(mapped_alone((size_t)1 << 20));
     cr_assert_not(mapped_alone((size_t)31 << 20));
     cr_assert(mapped_alone((size_t)64 << 20), "blocks past 32 MiB keep their own mapping");
@@ -95,7 +95,7 @@ static size_t room_for_mapped(off_t bytes, int threads, bool mapped)
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
     scene_file(path, bytes);
     size_t before = mallinfo2().arena, held = resident();
-    heap_ready(path, threads);
+    heap_ready(path, threads, 0);
     size_t room = mallinfo2().arena - before;
     if (mapped)
         wait_resident(held, spare_for(bytes) + room - room / 16);
@@ -205,7 +205,7 @@ Test(heap, blocks_written_while_the_room_is_mapped_keep_their_bytes)
     enum { COUNT = 1 << 20 };
     static unsigned char *blocks[COUNT];
     memset(blocks, 0, sizeof blocks);
-    heap_ready(path, 0);
+    heap_ready(path, 0, 0);
     write_blocks(blocks, COUNT);
     heap_settle();
     check_blocks(blocks, COUNT, 1);
@@ -222,7 +222,7 @@ Test(heap, room_left_unmapped_when_the_load_is_done_first)
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
     scene_file(path, (off_t)20 << 20); /* 120 MiB of spare, then 120 of room */
     size_t held = resident();
-    heap_ready(path, 0);
+    heap_ready(path, 0, 0);
     heap_settle();
     size_t after = resident();
     enum { COUNT = 1 << 22 }; /* 256 MiB of 48-byte blocks, past the room */
@@ -250,16 +250,28 @@ Test(heap, the_spare_is_made_for_a_scene_file)
     char path[256];
     snprintf(path, sizeof path, "%s/scene.yaml", dir);
     scene_file(path, (off_t)1 << 20);
-    heap_ready(path, 0);
+    heap_ready(path, 0, 0);
     heap_settle();
     cr_assert_null(glint_memory_spare((size_t)4 << 20), "heap_ready made no spare");
     tmpdir_remove();
 }
 
+/* Without a scene file (the built-in scene), a film's size from -r still
+ * gets its spare, mapped while the scene loads, and nothing else. */
+Test(heap, the_spare_is_made_for_a_known_film)
+{
+    SKIP_UNLESS_APPLIES();
+    size_t before = mallinfo2().arena;
+    heap_ready(NULL, 0, (size_t)1920 * 1080 * 12);
+    heap_settle();
+    cr_assert_null(glint_memory_spare((size_t)4 << 20), "heap_ready made no spare");
+    cr_assert_lt(mallinfo2().arena - before, (size_t)1 << 20, "room for no scene file");
+}
+
 Test(heap, no_spare_without_a_file_of_known_size)
 {
     SKIP_UNLESS_APPLIES();
-    heap_ready("-", 0);
+    heap_ready("-", 0, 0);
     heap_settle();
     cr_assert_not_null(glint_memory_spare((size_t)4 << 20), "a spare for standard input");
 }
@@ -268,10 +280,10 @@ Test(heap, no_room_without_a_file_of_known_size)
 {
     SKIP_UNLESS_APPLIES();
     size_t before = mallinfo2().arena;
-    heap_ready("-", 0);
-    heap_ready("/nonexistent/scene.yaml", 0);
-    heap_ready("/tmp", 0); /* a folder */
-    heap_ready(NULL, 0);
+    heap_ready("-", 0, 0);
+    heap_ready("/nonexistent/scene.yaml", 0, 0);
+    heap_ready("/tmp", 0, 0); /* a folder */
+    heap_ready(NULL, 0, 0);
     heap_settle();
     cr_assert_lt(mallinfo2().arena - before, (size_t)1 << 20);
 }
@@ -302,7 +314,7 @@ static bool in_main_heap(const void *p)
 Test(heap, other_threads_take_blocks_from_the_main_heap)
 {
     SKIP_UNLESS_APPLIES();
-    heap_ready(NULL, 0);
+    heap_ready(NULL, 0, 0);
     void *mine = malloc((size_t)64 << 10), *theirs = NULL;
     pthread_t t;
     cr_assert_eq(pthread_create(&t, NULL, take_block, &theirs), 0);

@@ -54,7 +54,11 @@ int main(int argc, char **argv)
     if ((c.preview || c.preview_bench) && c.frames)
         return cli_usage_error(&glint_program, "--frames and --frame render to files; they do not "
                                                "go with -p or --preview-bench");
-    heap_ready(c.scene_path, c.threads); /* once, on this thread, before the first load */
+    /* once, on this thread, before the first load; a film's size when -r gives it */
+    size_t film = c.width > 0 && c.height > 0 && !c.preview && !c.preview_bench
+                      ? (size_t)c.width * (size_t)c.height * 3 * sizeof(float)
+                      : 0;
+    heap_ready(c.scene_path, c.threads, film);
     code = c.preview || c.preview_bench ? preview_main(&c) : batch_main(&c);
     free(kept_argv); /* c pointed into it */
     return code;

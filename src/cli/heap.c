@@ -154,7 +154,13 @@ void heap_settle(void)
 #endif
 }
 
-void heap_ready(const char *path, int threads)
+/* per times n, at most HEAP_ROOM_MAX */
+static size_t capped(size_t n, size_t per)
+{
+    return n > HEAP_ROOM_MAX / per ? HEAP_ROOM_MAX : n * per;
+}
+
+void heap_ready(const char *path, int threads, size_t film_bytes)
 {
 #if defined(HEAP_POLICY)
     heap_settle(); /* a room still being mapped stays as it is */
@@ -162,16 +168,20 @@ void heap_ready(const char *path, int threads)
     mallopt(M_TRIM_THRESHOLD, (int)HEAP_TRIM_FROM);
     mallopt(M_ARENA_MAX, 1);
     struct stat st;
-    if (!path || strcmp(path, "-") == 0 || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
-        return;
-    size_t bytes = (size_t)st.st_size;
-    size_t room_bytes = bytes > HEAP_ROOM_MAX / HEAP_ROOM_PER_BYTE ? HEAP_ROOM_MAX
-                                                                   : bytes * HEAP_ROOM_PER_BYTE;
-    size_t spare_bytes = bytes > HEAP_ROOM_MAX / HEAP_SPARE_PER_BYTE ? HEAP_ROOM_MAX
-                                                                     : bytes * HEAP_SPARE_PER_BYTE;
-    if (room_bytes >= ((size_t)4 << 20))
-        map_room(room_bytes, glint_memory_spare(spare_bytes), spare_bytes, threads);
+    size_t bytes = 0; /* the scene file's, where it has a size */
+    if (path && strcmp(path, "-") != 0 && stat(path, &st) == 0 && S_ISREG(st.st_mode))
+        bytes = (size_t)st.st_size;
+    const size_t least = (size_t)4 << 20;
+    size_t room_bytes = capped(bytes, HEAP_ROOM_PER_BYTE);
+    room_bytes = room_bytes < least ? 0 : room_bytes;
+    /* the spare holds the parse tree, then the film, mapped while the
+     * scene loads: whichever is bigger */
+    size_t spare_bytes = capped(bytes, HEAP_SPARE_PER_BYTE);
+    spare_bytes = spare_bytes > film_bytes ? spare_bytes : capped(film_bytes, 1);
+    char *spare = spare_bytes >= least ? glint_memory_spare(spare_bytes) : NULL;
+    if (spare || room_bytes)
+        map_room(room_bytes, spare, spare_bytes, threads);
 #else
-    (void)path, (void)threads;
+    (void)path, (void)threads, (void)film_bytes;
 #endif
 }

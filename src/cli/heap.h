@@ -15,9 +15,10 @@
  *   that allocates gets a heap of its own, on fresh pages (the PNG
  *   writer's second thread took some 550 page faults for a 1080p image
  *   there, about 5 ms of a 20 ms write);
- * - the library keeps a spare block six times the scene file's size
- *   (glint_memory_spare), where the scene's parse tree is built and which
- *   the film takes after it, on the pages the load touched; and room in
+ * - the library keeps a spare block six times the scene file's size, or
+ *   the film's when -r gives it and it is bigger (glint_memory_spare),
+ *   where the scene's parse tree is built and which the film takes after
+ *   it, on the pages the load touched; and room in
  *   the main heap, six times the file's size, for the scene itself. Both,
  *   at most 256 MiB each, are mapped (in huge pages where the kernel
  *   offers them) on a thread of its own while the scene loads: the
@@ -30,14 +31,17 @@
 #define GLINT_CLI_HEAP_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 /* Readies the heap for loading the scene at path (NULL: the built-in
  * scene; "-": standard input, whose size is not known), by a process that
  * may run `threads` threads (0: one a CPU; where that is one the room is
- * mapped before this returns, else by one more thread meanwhile). Call
+ * mapped before this returns, else by one more thread meanwhile), and then
+ * rendering a film of film_bytes (0: not known yet; from -r), for which
+ * the spare is made big enough and so mapped while the scene loads. Call
  * once, from the main thread, before other threads start. Advice only:
  * nothing fails. */
-void heap_ready(const char *path, int threads);
+void heap_ready(const char *path, int threads, size_t film_bytes);
 
 /* Stops the mapping of the room heap_ready maps and waits for its thread
  * (within one huge page's mapping); pages it had not reached yet are

@@ -70,7 +70,7 @@ static glint_rc prepare(dist_job *job, glint_error *err)
     if (rc == GLINT_OK && job->rank == 0)
         rc = glint_output_check(o->frames ? path : o->output, &o->write, err);
     if (rc == GLINT_OK) {
-        heap_ready(o->scene_path, o->threads);
+        heap_ready(o->scene_path, o->threads, 0);
         rc = o->scene_path ? glint_scene_load_with(o->scene_path, &lo, &job->scene, err)
                            : glint_scene_builtin_with(&lo, &job->scene, err);
         heap_settle();
