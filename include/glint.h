@@ -122,11 +122,13 @@ GLINT_API int glint_default_threads(void);
  * the scene loads, and the film made after it (of 1 MiB or more) then
  * takes the same pages, touched already, instead of fresh ones (which a
  * virtual machine may first have to get from its host); a film freed
- * leaves its block for the next. Returns the block, whose pages the
- * caller may map ahead while the scene loads (from any thread, with
- * madvise MADV_POPULATE_WRITE, which leaves what they hold), or NULL when
- * it cannot be made or was made already. Advice only: every result is
- * the same with it or without. */
+ * leaves its block for the next. The block stays mapped until the process
+ * ends. Returns it, whose pages the caller may map ahead while the scene
+ * loads (from any thread, with madvise MADV_POPULATE_WRITE, which leaves
+ * what they hold; never write to it, unmap it or use the address after
+ * the load), or NULL when it cannot be made or was made already. Films
+ * are freed with glint_film_free, as always: never with free(). Advice
+ * only: every result is the same with it or without. */
 GLINT_API void *glint_memory_spare(size_t bytes);
 
 /* ---- scenes -------------------------------------------------------------- */

@@ -94,20 +94,15 @@ Test(spare, small_blocks_leave_it)
     cr_assert_eq(spare_take(MIB, NULL), s);
 }
 
-Test(spare, the_bigger_of_two_given_back_stays)
+Test(spare, one_block_at_most)
 {
     char *a = spare_make(2 * MIB);
     cr_assert_not_null(a);
     cr_assert_eq(spare_take(MIB, NULL), a);
-    char *b = spare_make(6 * MIB); /* none left, so a second can be made */
-    cr_assert_not_null(b);
-    cr_assert_eq(spare_take(MIB, NULL), b);
+    cr_assert_null(spare_make(6 * MIB), "a second block while the first is taken");
     cr_assert(spare_give(a));
-    cr_assert(spare_give(b));
-    size_t had = 0;
-    cr_assert_eq(spare_take(MIB, &had), b);
-    cr_assert_eq(had, 6 * MIB);
-    cr_assert_null(spare_take(MIB, NULL), "the smaller was unmapped");
+    cr_assert_null(spare_make(6 * MIB), "a second block while the first is kept");
+    cr_assert_eq(spare_take(MIB, NULL), a);
 }
 
 /* A flow sequence of n small numbers: a node for every 2 bytes, more than
@@ -132,6 +127,8 @@ static char *numbers(size_t n, size_t *len)
 
 Test(spare, a_parse_tree_outgrows_it_and_gives_it_back)
 {
+    if (YDOC_SANITIZED)
+        cr_skip_test("under AddressSanitizer the tree keeps to the heap, where overruns show");
     char *s = spare_make(4 * MIB);
     cr_assert_not_null(s);
     size_t len, n = 1500000;

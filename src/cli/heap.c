@@ -154,11 +154,13 @@ void heap_settle(void)
 #endif
 }
 
+#if defined(HEAP_POLICY)
 /* per times n, at most HEAP_ROOM_MAX */
 static size_t capped(size_t n, size_t per)
 {
     return n > HEAP_ROOM_MAX / per ? HEAP_ROOM_MAX : n * per;
 }
+#endif
 
 void heap_ready(const char *path, int threads, size_t film_bytes)
 {
@@ -175,7 +177,10 @@ void heap_ready(const char *path, int threads, size_t film_bytes)
     size_t room_bytes = capped(bytes, HEAP_ROOM_PER_BYTE);
     room_bytes = room_bytes < least ? 0 : room_bytes;
     /* the spare holds the parse tree, then the film, mapped while the
-     * scene loads: whichever is bigger */
+     * scene loads: whichever is bigger. It stays where it is during the
+     * load (the tree is sized from the same file's length; should the
+     * file have grown since, a spare moved to grow has its old range
+     * mapped for nothing: mapping ahead never writes) */
     size_t spare_bytes = capped(bytes, HEAP_SPARE_PER_BYTE);
     spare_bytes = spare_bytes > film_bytes ? spare_bytes : capped(film_bytes, 1);
     char *spare = spare_bytes >= least ? glint_memory_spare(spare_bytes) : NULL;

@@ -12,18 +12,17 @@
 #endif
 
 #define HUGE_PAGE ((size_t)2 << 20)
-/* blocks handed out at once; a take beyond them gets NULL */
-#define SPARE_OUT 8
 
 typedef struct block {
     char *p;
     size_t n; /* whole huge pages */
 } block;
 
+/* The one block: kept (the spare) or taken. */
 static struct {
     pthread_mutex_t lock;
-    block spare; /* p NULL: none */
-    block out[SPARE_OUT];
+    block b; /* p NULL: none */
+    bool taken;
 } sp = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
 static size_t whole_pages(size_t n)
@@ -62,16 +61,14 @@ static bool grow(block *b, size_t n)
     if (!to)
         return false;
     char *q = mremap(b->p, b->n, n, MREMAP_MAYMOVE | MREMAP_FIXED, to);
-    if (q == MAP_FAILED) {
-        munmap(to, n);
+    if (q == MAP_FAILED) /* the reservation is left: the kernel may have unmapped it already,
+                            and another thread mapped something there since */
         return false;
-    }
     madvise(q, n, MADV_HUGEPAGE);
     *b = (block){q, n};
     return true;
 }
 
-static void unmap(block b) { munmap(b.p, b.n); }
 #else
 static char *map_aligned(size_t n, bool reserve)
 {
@@ -83,16 +80,15 @@ static bool grow(block *b, size_t n)
     (void)b, (void)n;
     return false;
 }
-static void unmap(block b) { (void)b; }
 #endif
 
 void *spare_make(size_t n)
 {
     n = whole_pages(n);
     pthread_mutex_lock(&sp.lock);
-    char *p = !sp.spare.p && n ? map_aligned(n, false) : NULL;
+    char *p = !sp.b.p && n ? map_aligned(n, false) : NULL;
     if (p)
-        sp.spare = (block){p, n};
+        sp.b = (block){p, n};
     pthread_mutex_unlock(&sp.lock);
     return p;
 }
@@ -102,48 +98,25 @@ void *spare_take(size_t n, size_t *had)
     n = whole_pages(n ? n : 1);
     pthread_mutex_lock(&sp.lock);
     char *p = NULL;
-    int slot = 0;
-    while (slot < SPARE_OUT && sp.out[slot].p)
-        slot++;
-    if (sp.spare.p && n && slot < SPARE_OUT) {
-        size_t before = sp.spare.n;
-        if (n <= sp.spare.n || grow(&sp.spare, n)) {
-            p = sp.spare.p;
-            sp.out[slot] = sp.spare;
-            sp.spare = (block){NULL, 0};
-            if (had)
-                *had = before;
-        }
+    size_t before = sp.b.n;
+    if (sp.b.p && !sp.taken && n && (n <= sp.b.n || grow(&sp.b, n))) {
+        p = sp.b.p;
+        sp.taken = true;
+        if (had)
+            *had = before;
     }
     pthread_mutex_unlock(&sp.lock);
     return p;
 }
 
-/* The slot of out holding p, or -1; with the lock held. */
-static int find_out(const void *p)
-{
-    for (int i = 0; p && i < SPARE_OUT; i++)
-        if (sp.out[i].p == p)
-            return i;
-    return -1;
-}
-
 bool spare_give(void *p)
 {
     pthread_mutex_lock(&sp.lock);
-    int i = find_out(p);
-    if (i >= 0) {
-        block b = sp.out[i], drop = b;
-        sp.out[i] = (block){NULL, 0};
-        if (!sp.spare.p || sp.spare.n < b.n) { /* keep the bigger */
-            drop = sp.spare;
-            sp.spare = b;
-        }
-        if (drop.p)
-            unmap(drop);
-    }
+    bool ours = p && sp.taken && p == sp.b.p;
+    if (ours)
+        sp.taken = false;
     pthread_mutex_unlock(&sp.lock);
-    return i >= 0;
+    return ours;
 }
 
 void spare_free(void *p)
@@ -155,8 +128,7 @@ void spare_free(void *p)
 size_t spare_size(const void *p)
 {
     pthread_mutex_lock(&sp.lock);
-    int i = find_out(p);
-    size_t n = i >= 0 ? sp.out[i].n : 0;
+    size_t n = p && sp.taken && p == sp.b.p ? sp.b.n : 0;
     pthread_mutex_unlock(&sp.lock);
     return n;
 }

@@ -11,8 +11,8 @@
  * programs' heap policy, cli/heap.h, sized from the scene file); without
  * one spare_take returns NULL and its callers allocate as they always did.
  * A block taken is the spare's pages, in whole huge pages aligned to one,
- * and is handed back with spare_give, after which it is the spare again
- * (or unmapped, should there be a bigger spare by then). Thread-safe. */
+ * and is handed back with spare_give, after which it is the spare again.
+ * There is one block at most, kept until the process ends. Thread-safe. */
 #ifndef GLINT_CORE_SPARE_H
 #define GLINT_CORE_SPARE_H
 
@@ -22,7 +22,8 @@
 /* Makes the spare: n bytes (rounded up to whole huge pages) mapped in
  * transparent huge pages where the kernel offers them, not yet touched
  * (the caller may map them ahead: spare_make returns the block; NULL when
- * it cannot be made or there is a spare already). */
+ * it cannot be made or there is one already, kept or taken). The process
+ * keeps it until it ends. */
 void *spare_make(size_t n);
 
 /* The spare, grown to at least n bytes (its pages kept, moved if need

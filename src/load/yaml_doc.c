@@ -508,10 +508,13 @@ static void reserve_for(ydoc *d, size_t len)
     kids = kids > most / sizeof *d->kids ? most / sizeof *d->kids : kids;
     text = text > most ? most : text;
     /* in the process's spare block when it has one (core/spare.h): the
-     * film made after the load then takes the same pages */
+     * film made after the load then takes the same pages; not under
+     * AddressSanitizer, which sees overruns between heap blocks, not
+     * between arrays carved from one mapping */
     size_t bn = (nodes * sizeof *d->nodes + 63) / 64 * 64;
     size_t bk = (kids * sizeof *d->kids + 63) / 64 * 64;
-    if (bn + bk + text >= ARRAY_HUGE_FROM && (d->block = spare_take(bn + bk + text, NULL))) {
+    if (!YDOC_SANITIZED && bn + bk + text >= ARRAY_HUGE_FROM &&
+        (d->block = spare_take(bn + bk + text, NULL))) {
         d->block_bytes = bn + bk + text;
         d->nodes = (ynode *)(void *)d->block;
         d->kids = (uint32_t *)(void *)(d->block + bn);
