@@ -515,6 +515,32 @@ Test(cli, scene_from_standard_input_and_no_fifos, .timeout = 60)
     cr_expect_str_eq(out, "glint: /dev/zero: cannot read scene: not a regular file\n");
 }
 
+/* A scene file of over 1 MB: the programs make the library's spare block
+ * from its size (cli/heap.h), the parse tree is built in it and the film
+ * then takes it. The same scene from standard input (no size known, a
+ * film below the spare's 4 MiB: no spare) gives the same bytes. */
+Test(cli, a_big_scene_file_renders_as_from_standard_input, .timeout = 120)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/big.yaml", tmpdir);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs("lights: [{type: point, position: [0, 30, 20]}]\n"
+          "camera: {eye: [0, 12, 30], look_at: [0, 0, 0], fov: 60}\nobjects:\n", f);
+    for (int i = 0; i < 14000; i++)
+        fprintf(f, "  - {type: sphere, center: [%d.25, %d.5, %d.75], radius: 0.%d, "
+                   "material: {color: [0.%d, 0.5, 0.%d], specular: 0.25}}\n",
+                i % 40 - 20, i % 7, i / 40 % 35 - 30, 1 + i % 4, i % 9, 9 - i % 9);
+    long size = ftell(f);
+    fclose(f);
+    cr_assert_gt(size, 1 << 20);
+    char out[4096];
+    cr_assert_eq(run("-q -t 2 -r 480x360 -o file.png big.yaml", out, sizeof out), 0, "%s", out);
+    cr_assert_eq(run("-q -t 2 -r 480x360 -o stdin.png - < big.yaml", out, sizeof out), 0, "%s",
+                 out);
+    cr_assert_eq(run_sh("cmp file.png stdin.png", out, sizeof out), 0, "%s", out);
+}
+
 /* Memory running out inside the mesh importer said "std::bad_alloc" and
  * exited 2, as if the file were bad. A 200-byte PLY declaring two billion
  * vertices is now refused from its header before anything is allocated
