@@ -15,6 +15,7 @@
 #include "core/spare.h"
 #include "glint.h"
 #include "load/yaml_doc.h"
+#include "ydoc_check.h"
 
 #define MIB ((size_t)1 << 20)
 
@@ -185,14 +186,8 @@ Test(spare, trees_in_it_are_the_trees_on_the_heap)
     cr_assert_eq(a->nnodes, b->nnodes);
     cr_assert_eq(a->nkids, b->nkids);
     cr_assert_eq(a->root, b->root);
-    for (uint32_t i = 0; i < a->nnodes; i++) {
-        const ynode *x = ydoc_node(a, i), *y = ydoc_node(b, i);
-        cr_assert(x->kind == y->kind && x->flags == y->flags && x->line == y->line &&
-                      x->col == y->col && x->count == y->count,
-                  "node %u", i);
-        if (x->kind != YNODE_SEQ && x->kind != YNODE_MAP)
-            cr_assert_str_eq(ydoc_text(a, x), ydoc_text(b, y), "node %u", i);
-    }
+    for (uint32_t i = 0; i < a->nnodes; i++)
+        expect_same_node(a, b, i);
     cr_assert_eq(memcmp(a->kids, b->kids, a->nkids * sizeof *a->kids), 0);
     ydoc_free(a);
     ydoc_free(b);

@@ -138,6 +138,6 @@ void *spare_calloc(size_t n, int threads)
     void *p = n >= ARRAY_HUGE_FROM ? spare_take(n, NULL) : NULL; /* not for a small block */
     if (!p)
         return array_calloc_big_on(n, threads);
-    array_clear_on(p, n ? n : 1, threads);
+    array_clear_on(p, n, threads);
     return p;
 }

@@ -132,19 +132,22 @@ static glint_rc resolve_scalar(builder *b, const yaml_event_t *ev, ynode *n)
 
 /* ---- tree building ---------------------------------------------------- */
 
-/* Before an array of the tree grows: one that lies in the spare block
- * (reserve_for) is copied to the heap, its `bytes` of room with it, since
+/* array_reserve for an array of the tree: one that lies in the spare
+ * block (reserve_for) is first copied to the heap, its room with it, since
  * growing frees the old block; false when memory runs out. */
-static bool own(ydoc *d, void **items, size_t bytes)
+static bool tree_reserve(ydoc *d, void **items, size_t *cap, size_t need, size_t elem)
 {
-    if (!ydoc_borrowed(d, *items))
+    if (need <= *cap)
         return true;
-    void *q = malloc(bytes ? bytes : 1);
-    if (!q)
-        return false;
-    memcpy(q, *items, bytes);
-    *items = q;
-    return true;
+    if (ydoc_borrowed(d, *items)) {
+        size_t bytes = *cap * elem;
+        void *q = malloc(bytes > 0 ? bytes : 1);
+        if (!q)
+            return false;
+        memcpy(q, *items, bytes);
+        *items = q;
+    }
+    return array_grow(items, cap, need, elem);
 }
 
 /* Room for one more node; the limit is met when the room, which never
@@ -156,8 +159,7 @@ static glint_rc grow_nodes(builder *b, yaml_mark_t m)
         return err_set(b->err, GLINT_ERR_INPUT, "%s:%u:%u: more than %u YAML nodes", b->name,
                        (uint32_t)m.line + 1, (uint32_t)m.column + 1, YDOC_MAX_NODES);
     size_t cap = d->cap_nodes;
-    if (!own(d, (void **)&d->nodes, cap * sizeof *d->nodes) ||
-        !array_grow((void **)&d->nodes, &cap, (size_t)d->nnodes + 1, sizeof *d->nodes))
+    if (!tree_reserve(d, (void **)&d->nodes, &cap, (size_t)d->nnodes + 1, sizeof *d->nodes))
         return err_nomem(b->err);
     d->cap_nodes = cap > YDOC_MAX_NODES ? YDOC_MAX_NODES : (uint32_t)cap;
     return GLINT_OK;
@@ -232,9 +234,7 @@ static glint_rc new_scalar(builder *b, const char *s, size_t len, yaml_mark_t m,
     glint_rc rc = new_node(b, YNODE_STRING, m, node);
     if (rc != GLINT_OK)
         return rc;
-    size_t need = d->ntext + len + 1;
-    if (need > d->cap_text && (!own(d, (void **)&d->text, d->cap_text) ||
-                               !array_grow((void **)&d->text, &d->cap_text, need, 1)))
+    if (!tree_reserve(d, (void **)&d->text, &d->cap_text, d->ntext + len + 1, 1))
         return err_nomem(b->err);
     put_text(d, &d->nodes[*node], s, len);
     return GLINT_OK;
@@ -304,9 +304,7 @@ static glint_rc push_kids(builder *b, const uint32_t *ids, size_t n, uint32_t *f
     ydoc *d = b->d;
     if (d->nkids + n > UINT32_MAX)
         return err_set(b->err, GLINT_ERR_INPUT, "%s: the document is too large", b->name);
-    size_t need = d->nkids + n;
-    if (need > d->cap_kids && (!own(d, (void **)&d->kids, d->cap_kids * sizeof *d->kids) ||
-                               !array_grow((void **)&d->kids, &d->cap_kids, need, sizeof *d->kids)))
+    if (!tree_reserve(d, (void **)&d->kids, &d->cap_kids, d->nkids + n, sizeof *d->kids))
         return err_nomem(b->err);
     *first = (uint32_t)d->nkids;
     if (n)
