@@ -1,7 +1,8 @@
-/* The packet shading's eight-lane kernels (trace/bounce8.h: prepare, split,
- * mix, bounce; trace/light8.h: point, start, add, end) against the
- * one-ray code they stand for (trace/whitted.c, trace/lighting.c,
- * trace/shading.h), through whole renders: random scenes whose packets
+/* The packet shading's eight-lane kernels (trace/prepare8.h: prepare;
+ * trace/bounce8.h: split, mix, bounce; trace/light8.h: point, start, add,
+ * end) against the one-ray code they stand for (trace/whitted.c,
+ * trace/lighting.c, trace/shading.h), through whole renders: random
+ * scenes whose packets
  * mix objects and materials, with every kind of edge the kernels choose
  * between (a whole shininess raised by squaring, a fractional one left to
  * powf, none; total internal reflection, Fresnel on and off, an ior below
@@ -182,7 +183,9 @@ static float shared_materials(scene *s, rng *g, int shared[3])
 
 /* Many unturned spheres, so that packets mix objects and materials; a
  * few large ones, which packets meet whole; turned (and stretched)
- * spheres, quads and boxes, some turned; sometimes a floor. */
+ * spheres, quads and boxes, some turned; turned tori; sometimes a floor
+ * and a tilted wall (the planes and tori that are plain, shading.h, are
+ * prepared eight lanes at once: trace/prepare8.h). */
 static void add_shapes(scene *s, rng *g, const int shared[3], int tex)
 {
     for (int i = 0, n = 26 + pick(g, 14); i < n; i++) {
@@ -217,9 +220,18 @@ static void add_shapes(scene *s, rng *g, const int shared[3], int tex)
         shape b = shape_box(lo, hi);
         cr_assert_geq(scene_add_object(s, &b, object_material(s, g, shared, tex), x), 0);
     }
+    for (int i = 0, n = 2 + pick(g, 4); i < n; i++) { /* turned tori, some stretched */
+        shape t = shape_torus(v3s(0.0f), uniform(g, 0.6f, 1.6f), uniform(g, 0.15f, 0.5f));
+        int x = random_xform(s, g, random_place(g), chance(g, 0.4f));
+        cr_assert_geq(scene_add_object(s, &t, object_material(s, g, shared, tex), x), 0);
+    }
     if (chance(g, 0.5f)) { /* a plane, which every ray is tested against */
         shape floor = shape_plane(v3(0, -5.5f, 0), v3(0, 1, 0));
         cr_assert_geq(scene_add_object(s, &floor, object_material(s, g, shared, -1), -1), 0);
+    }
+    if (chance(g, 0.3f)) { /* a tilted one behind, seen from either side */
+        shape wall = shape_plane(v3(0, 0, -9.0f), v3_norm(v3(uniform(g, -0.5f, 0.5f), 0.3f, 1.0f)));
+        cr_assert_geq(scene_add_object(s, &wall, object_material(s, g, shared, -1), -1), 0);
     }
 }
 
@@ -358,6 +370,7 @@ static const char *shape_name(shape_kind k)
            : k == SHAPE_QUAD ? "quad"
            : k == SHAPE_BOX  ? "box"
            : k == SHAPE_PLANE ? "plane"
+           : k == SHAPE_TORUS ? "torus"
                               : "other";
 }
 

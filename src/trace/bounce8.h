@@ -1,5 +1,5 @@
 /* bounce8: a packet's shading eight lanes at once (bounce8_api.h): lane by
- * lane the floats of shade_prepare's sphere case (shading.h), split,
+ * lane the floats of shade_prepare's plain surfaces (prepare8.h), split,
  * adc_keep, v3_reflect, ray_offset, ray_make and the light the secondary
  * rays bring back (whitted.c, core/ray.h, shade/optics.h), in the same
  * order. For translation units compiled with AVX2 (whitted_<isa>.c). */
@@ -9,69 +9,8 @@
 #include "geom/mesh_packet.h" /* packet_lanes */
 #include "scene/scene.h"
 #include "trace/bounce8_api.h"
+#include "trace/prepare8.h"
 #include "trace/simd8.h"
-
-/* v3_norm lane by lane: a * (1 / |a|) where |a| > 0, else a. */
-__attribute__((always_inline)) static inline void bounce8_norm(const __m256 a[3], __m256 out[3])
-{
-    __m256 l = _mm256_sqrt_ps(simd8_dot(a, a));
-    __m256 pos = _mm256_cmp_ps(l, _mm256_setzero_ps(), _CMP_GT_OQ);
-    __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), l);
-    for (int c = 0; c < 3; c++)
-        out[c] = _mm256_blendv_ps(a[c], _mm256_mul_ps(a[c], inv), pos);
-}
-
-/* prepare (bounce8_api.h): sphere_surface_plain at ray_at,
- * then facing, whose two normals are here the same. */
-__attribute__((always_inline)) static inline void bounce8_prepare(const scene *s, const ray8 *p,
-                                                                  int sph, const scene_hit *hit,
-                                                                  shade8 *sp)
-{
-    const void *o[8], *m[8], *t[8];
-    int same = -1; /* the one object the lanes of sph hit, if one */
-    for (int b = sph; b; b &= b - 1) {
-        int k = __builtin_ctz((unsigned)b), i = hit[k].object;
-        same = same == -1 || same == i ? i : -2;
-        o[k] = &s->objects[i].shape.sphere, m[k] = sp->m[k], t[k] = &hit[k].h.t;
-    }
-    for (int k = 0, first = __builtin_ctz((unsigned)sph); k < 8; k++)
-        if (!(sph >> k & 1))
-            o[k] = o[first], m[k] = m[first], t[k] = t[first];
-    const __m256 sign = _mm256_set1_ps(-0.0f), one = _mm256_set1_ps(1.0f);
-    __m256 tt = simd8_at(t, 0), rad, c[3], col[3];
-    if (same >= 0) { /* one sphere: its fields once */
-        const struct sphere *sh = o[0];
-        const material *mt = m[0];
-        rad = _mm256_set1_ps(sh->radius);
-        c[0] = _mm256_set1_ps(sh->center.x), c[1] = _mm256_set1_ps(sh->center.y);
-        c[2] = _mm256_set1_ps(sh->center.z);
-        col[0] = _mm256_set1_ps(mt->color.x), col[1] = _mm256_set1_ps(mt->color.y);
-        col[2] = _mm256_set1_ps(mt->color.z);
-    } else {
-        rad = simd8_at(o, offsetof(struct sphere, radius));
-        for (int i = 0; i < 3; i++) {
-            c[i] = simd8_at(o, offsetof(struct sphere, center) + (size_t)i * sizeof(float));
-            col[i] = simd8_at(m, offsetof(material, color) + (size_t)i * sizeof(float));
-        }
-    }
-    __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
-    __m256 org[3] = {_mm256_loadu_ps(p->ox), _mm256_loadu_ps(p->oy), _mm256_loadu_ps(p->oz)};
-    __m256 q[3], n[3], dn[3];
-    for (int i = 0; i < 3; i++)
-        q[i] = _mm256_sub_ps(_mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt)), c[i]);
-    bounce8_norm(q, n);
-    bounce8_norm(d, dn);
-    __m256 inside = _mm256_cmp_ps(simd8_dot(dn, n), _mm256_setzero_ps(), _CMP_GT_OQ);
-    for (int i = 0; i < 3; i++) {
-        __m256 f = _mm256_blendv_ps(n[i], _mm256_xor_ps(n[i], sign), inside);
-        _mm256_storeu_ps(sp->p[i], _mm256_add_ps(c[i], _mm256_mul_ps(n[i], rad)));
-        _mm256_storeu_ps(sp->n[i], f);
-        _mm256_storeu_ps(sp->ng[i], f);
-        _mm256_storeu_ps(sp->d[i], dn[i]);
-        _mm256_storeu_ps(sp->base[i], _mm256_mul_ps(col[i], one));
-    }
-    sp->inside = (sp->inside & ~sph) | (_mm256_movemask_ps(inside) & sph);
-}
 
 /* split (whitted.c) with optics_refract and optics_schlick. */
 __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp, int found,
@@ -89,9 +28,9 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
     __m256 kr = simd8_mfield(sp, m, offsetof(material, reflect));
     __m256 kt = simd8_mfield(sp, m, offsetof(material, transmit));
     __m256 ior = simd8_mfield(sp, m, offsetof(material, ior));
-    __m256 d[3], n[3], td[3];
+    __m256 d[3], n[3], tdv[3];
     for (int c = 0; c < 3; c++) {
-        d[c] = td[c] = simd8_lanes(sp->d[c], sp->lanewise);
+        d[c] = tdv[c] = simd8_lanes(sp->d[c], sp->lanewise);
         n[c] = simd8_lanes(sp->n[c], sp->lanewise);
     }
     __m256 bends = _mm256_and_ps(_mm256_cmp_ps(kt, zero, _CMP_NLE_UQ),
@@ -108,7 +47,7 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
         __m256 refr = _mm256_andnot_ps(tir, bends);
         __m256 s = _mm256_sub_ps(_mm256_mul_ps(eta, cosi), _mm256_sqrt_ps(k));
         for (int c = 0; c < 3; c++)
-            td[c] = _mm256_blendv_ps(
+            tdv[c] = _mm256_blendv_ps(
                 d[c], _mm256_add_ps(_mm256_mul_ps(d[c], eta), _mm256_mul_ps(n[c], s)), refr);
         kr = _mm256_blendv_ps(kr, _mm256_add_ps(kr, kt), tir);
         kt = _mm256_blendv_ps(kt, zero, tir);
@@ -117,7 +56,7 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
             fres |= ((const material *)m[j])->fresnel << j;
         __m256 fr = _mm256_and_ps(refr, packet_lanes(fres));
         if (_mm256_movemask_ps(fr)) {
-            __m256 dotc = _mm256_blendv_ps(simd8_dot(d, n), simd8_dot(td, n),
+            __m256 dotc = _mm256_blendv_ps(simd8_dot(d, n), simd8_dot(tdv, n),
                                            _mm256_cmp_ps(n1, n2, _CMP_GT_OQ));
             __m256 cosine = _mm256_xor_ps(dotc, sign);
             __m256 r0 = _mm256_div_ps(_mm256_sub_ps(n1, n2), _mm256_add_ps(n1, n2));
@@ -132,7 +71,7 @@ __attribute__((always_inline)) static inline int bounce8_split(const shade8 *sp,
     __m256 tint[3];
     for (int c = 0; c < 3; c++) {
         tint[c] = simd8_mfield(sp, m, offsetof(material, tint) + (size_t)c * sizeof(float));
-        _mm256_storeu_ps(tdir->c[c], td[c]);
+        _mm256_storeu_ps(tdir->c[c], tdv[c]);
     }
     __m256 big = _mm256_max_ps(tint[0], _mm256_max_ps(tint[1], tint[2]));
     _mm256_storeu_ps(kr_out, kr);
@@ -209,10 +148,10 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
 
 /* Defines shade8_kernels_<isa>. */
 #define BOUNCE8_KERNELS(isa)                                                                   \
-    static void prepare_##isa(const scene *s, const ray8 *p, int sph, const scene_hit *hit,   \
-                              shade8 *sp)                                                      \
+    static void prepare_##isa(const scene *s, const ray8 *p, shade8_plain kinds,              \
+                              const scene_hit *hit, shade8 *sp)                                \
     {                                                                                          \
-        bounce8_prepare(s, p, sph, hit, sp);                                                   \
+        prepare8(s, p, kinds, hit, sp);                                                        \
     }                                                                                          \
     static int split_##isa(const shade8 *sp, int found, float kr[8], float kt[8], float gt[8], \
                            color8 *tdir, int *transmits)                                   \

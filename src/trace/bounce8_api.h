@@ -18,12 +18,18 @@ typedef struct bounce8_from {
     float bailout;
 } bounce8_from;
 
+/* The lanes of a packet whose hits are on shade_prepare's plain surfaces
+ * (shading.h), by kind. */
+typedef struct shade8_plain {
+    int sphere, plane, torus;
+} shade8_plain;
+
 typedef struct shade8_kernels {
-    /* shade_prepare for the lanes of sph, whose objects are unturned
-     * spheres of a material that reads no (u, v) (sp->m[k], set), from
-     * their rays (lanes of p) and hits: each field of sp stored whole, the
-     * other lanes holding numbers, and sp->inside's bits of sph set. */
-    void (*prepare)(const struct glint_scene *s, const ray8 *p, int sph,
+    /* shade_prepare for the lanes of kinds (not empty), whose materials
+     * are sp->m[k] (set), from their rays (lanes of p) and hits: each
+     * field of sp stored whole, the other lanes holding numbers, and
+     * sp->inside's bits of those lanes set. */
+    void (*prepare)(const struct glint_scene *s, const ray8 *p, shade8_plain kinds,
                     const struct scene_hit *hit, shade8 *sp);
     /* whitted.c's split for the lanes of found: kr, kt and tdir; gt = kt
      * times the tint's largest component; returns the lanes with kr > 0,

@@ -48,16 +48,14 @@ static bool plain_surface(const scene *s, const ray *r, const scene_hit *hit, co
                           vec3 d, shade_point *out)
 {
     const object *o = &s->objects[hit->object];
-    if (material_uses_uv(m))
-        return false;
     vec3 base = v3_mul(m->color, v3s(1.0f));
-    if (o->shape.kind == SHAPE_PLANE && o->xform < 0) {
+    if (shade_plain_plane(o, m)) {
         const struct plane *pl = &o->shape.plane;
         vec3 p = ray_at(r, hit->h.t);
         facing(out, m, d, plane_onto(pl, p, v3_sub(p, pl->point)), pl->normal, pl->normal, base);
         return true;
     }
-    if (o->shape.kind != SHAPE_TORUS || o->xform < 0 || o->moving)
+    if (!shade_plain_torus(o, m))
         return false;
     const xform *x = &s->xforms[o->xform];
     ray lr = mat4_ray(&x->inv, r);

@@ -107,6 +107,19 @@ static inline bool shade_plain_sphere(const object *o, const material *m)
     return o->xform < 0 && o->shape.kind == SHAPE_SPHERE && !material_uses_uv(m);
 }
 
+/* Whether it is one of the plain surfaces shade_prepare_surface takes
+ * first (shading.c: plain_surface): an untextured, unturned plane, or an
+ * untextured torus turned by a fixed transform. */
+static inline bool shade_plain_plane(const object *o, const material *m)
+{
+    return o->xform < 0 && o->shape.kind == SHAPE_PLANE && !material_uses_uv(m);
+}
+
+static inline bool shade_plain_torus(const object *o, const material *m)
+{
+    return o->xform >= 0 && !o->moving && o->shape.kind == SHAPE_TORUS && !material_uses_uv(m);
+}
+
 /* The shading point of a hit. Inline for its commonest case, an
  * untextured, unturned sphere, whose surface then stays in registers
  * (written to memory and read back in other widths, it stalled the

@@ -264,39 +264,45 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int dept
     }
 }
 
-/* shade_prepare for the lanes of found into sp: the untextured, unturned
- * spheres' (shading.h: shade_prepare's inline case) eight at a time where
- * the path has the kernels, any other lane one by one as the lanes are
- * looked at, each object read once. */
+/* shade_prepare for the lanes of found into sp: those on plain surfaces
+ * (shading.h: untextured spheres and planes, unturned, and tori turned by
+ * a fixed transform) eight at a time where the path has the kernels, any
+ * other lane one by one as the lanes are looked at, each object read
+ * once. */
 static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit hit[8],
                      shade8 *sp)
 {
     const scene *s = ctx->scene;
     const shade8_kernels *k8 = kernels8(ctx);
     shade_point done[8];
-    int sph = 0;
+    shade8_plain plain = {0, 0, 0};
     sp->same = found ? scene_hit_material(s, &hit[__builtin_ctz((unsigned)found)]) : NULL;
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         const object *o = &s->objects[hit[k].object];
         const material *mk = scene_hit_material(s, &hit[k]);
         sp->same = mk == sp->same ? mk : NULL;
+        sp->m[k] = mk;
         if (k8 && shade_plain_sphere(o, mk)) {
-            sph |= 1 << k;
-            sp->m[k] = mk;
+            plain.sphere |= 1 << k;
+        } else if (k8 && shade_plain_plane(o, mk)) {
+            plain.plane |= 1 << k;
+        } else if (k8 && shade_plain_torus(o, mk)) {
+            plain.torus |= 1 << k;
         } else {
             ray rk = ray8_get(p, k);
             shade_prepare(ctx, &rk, &hit[k], &done[k]);
         }
     }
+    int vector = plain.sphere | plain.plane | plain.torus;
     sp->inside = 0;
-    if (sph)
-        k8->prepare(s, p, sph, hit, sp);
-    for (int m = found & ~sph; m; m &= m - 1) {
+    if (vector)
+        k8->prepare(s, p, plain, hit, sp);
+    for (int m = found & ~vector; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         shade8_put(sp, k, &done[k]);
     }
-    sp->lanewise = (found & ~sph) != 0;
+    sp->lanewise = (found & ~vector) != 0;
 }
 
 /* The lanes of active, whose nearest hits are hit[k] for the lanes of
