@@ -34,26 +34,47 @@ __attribute__((always_inline)) static inline __m256 prepare8_at(const void *cons
                 : simd8_at(b, off);
 }
 
-/* What a kind of surface reads of the lanes of `lanes`: each lane's
- * shape (base + off of its object) and transform, the other lanes
- * repeating the first one's; same when every lane hit one object. */
+/* The objects a kind of surface reads for the lanes of `lanes`, each
+ * once: its shape (at byte off of the object) and transform, and the
+ * lanes that hit it (bits, and as a register's lanes). */
 typedef struct prepare8_objs {
-    const void *shape[8], *xf[8];
-    bool same;
+    int n, index[8], bits[8];
+    const char *shape[8], *xf[8];
+    __m256 sel[8];
 } prepare8_objs;
 
 __attribute__((always_inline)) static inline void
 prepare8_objects(const scene *s, const scene_hit *hit, int lanes, size_t off, prepare8_objs *o)
 {
-    int first = __builtin_ctz((unsigned)lanes), one = hit[first].object;
-    o->same = true;
-    for (int k = 0; k < 8; k++) {
-        int i = hit[lanes >> k & 1 ? k : first].object;
-        const object *ob = &s->objects[i];
-        o->same = o->same && i == one;
-        o->shape[k] = (const char *)ob + off;
-        o->xf[k] = ob->xform >= 0 ? (const void *)&s->xforms[ob->xform] : NULL;
+    o->n = 0;
+    for (int m = lanes; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m), i = hit[k].object, g = 0;
+        while (g < o->n && o->index[g] != i)
+            g++;
+        if (g == o->n) {
+            const object *ob = &s->objects[i];
+            o->index[g] = i, o->bits[g] = 0, o->n++;
+            o->shape[g] = (const char *)ob + off;
+            o->xf[g] = ob->xform >= 0 ? (const char *)&s->xforms[ob->xform] : NULL;
+        }
+        o->bits[g] |= 1 << k;
     }
+    for (int g = 1; g < o->n; g++)
+        o->sel[g] = packet_lanes(o->bits[g]);
+}
+
+/* The float at byte off of each lane's object's shape (or transform,
+ * xf): one broadcast for each object, blended in by its lanes (the lanes
+ * of no object take the first one's). */
+__attribute__((always_inline)) static inline __m256 prepare8_field(const prepare8_objs *o, bool xf,
+                                                                   size_t off)
+{
+    const char *const *b = xf ? o->xf : o->shape;
+    __m256 v = _mm256_broadcast_ss((const float *)(const void *)(b[0] + off));
+    for (int g = 1; g < o->n; g++)
+        v = _mm256_blendv_ps(v, _mm256_broadcast_ss((const float *)(const void *)(b[g] + off)),
+                             o->sel[g]);
+    return v;
 }
 
 /* a ? b : c lane by lane, for the lanes of the mask a. */
@@ -71,10 +92,10 @@ prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, __m256 tt, cons
 {
     prepare8_objs o;
     prepare8_objects(s, hit, lanes, offsetof(object, shape.sphere), &o);
-    __m256 rad = prepare8_at(o.shape, o.same, offsetof(struct sphere, radius)), c[3], q[3];
+    __m256 rad = prepare8_field(&o, false, offsetof(struct sphere, radius)), c[3], q[3];
     __m256 n[3], p[3];
     for (int i = 0; i < 3; i++) {
-        c[i] = prepare8_at(o.shape, o.same, offsetof(struct sphere, center) + (size_t)i * 4);
+        c[i] = prepare8_field(&o, false, offsetof(struct sphere, center) + (size_t)i * 4);
         q[i] = _mm256_sub_ps(_mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt)), c[i]);
     }
     prepare8_norm(q, n);
@@ -95,8 +116,8 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const
     prepare8_objects(s, hit, lanes, offsetof(object, shape.plane), &o);
     __m256 pt[3], n[3], p[3], v[3];
     for (int i = 0; i < 3; i++) {
-        pt[i] = prepare8_at(o.shape, o.same, offsetof(struct plane, point) + (size_t)i * 4);
-        n[i] = prepare8_at(o.shape, o.same, offsetof(struct plane, normal) + (size_t)i * 4);
+        pt[i] = prepare8_field(&o, false, offsetof(struct plane, point) + (size_t)i * 4);
+        n[i] = prepare8_field(&o, false, offsetof(struct plane, normal) + (size_t)i * 4);
         p[i] = _mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt));
         v[i] = _mm256_sub_ps(p[i], pt[i]);
     }
@@ -108,17 +129,24 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const
     prepare8_put(m, n, N);
 }
 
-/* Row r of the matrix at byte off of each lane's transform times (x, y,
- * z, w), as mat4_point (w) or mat4_vector (no w) sum it. */
-__attribute__((always_inline)) static inline __m256 prepare8_row(const prepare8_objs *o, size_t off,
-                                                                 int r, const __m256 v[3], bool w)
+/* The top three rows of the matrix at byte off of each lane's transform. */
+__attribute__((always_inline)) static inline void prepare8_matrix(const prepare8_objs *o, size_t off,
+                                                                  __m256 a[3][4])
 {
-    __m256 a[4];
-    for (int c = 0; c < (w ? 4 : 3); c++)
-        a[c] = prepare8_at(o->xf, o->same, off + (size_t)(r * 4 + c) * 4);
-    __m256 s = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], v[0]), _mm256_mul_ps(a[1], v[1])),
-                             _mm256_mul_ps(a[2], v[2]));
-    return w ? _mm256_add_ps(s, a[3]) : s;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            a[r][c] = prepare8_field(o, true, off + (size_t)(r * 4 + c) * 4);
+}
+
+/* Row r of a times (x, y, z, w), as mat4_point (w) or mat4_vector (no w)
+ * sum it. */
+__attribute__((always_inline)) static inline __m256 prepare8_row(__m256 a[3][4], int r,
+                                                                 const __m256 v[3], bool w)
+{
+    __m256 s = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(a[r][0], v[0]), _mm256_mul_ps(a[r][1], v[1])),
+        _mm256_mul_ps(a[r][2], v[2]));
+    return w ? _mm256_add_ps(s, a[r][3]) : s;
 }
 
 static inline td prepare8_wide(__m256 v)
@@ -147,11 +175,11 @@ __attribute__((always_inline)) static inline void prepare8_nearest(const prepare
                                                                    __m256 p[3], __m256 n[3])
 {
     const td zero = t8_zero(), one = t8_k(1.0);
-    td R = prepare8_wide(prepare8_at(o->shape, o->same, offsetof(struct torus, major)));
-    td rm = prepare8_wide(prepare8_at(o->shape, o->same, offsetof(struct torus, minor)));
+    td R = prepare8_wide(prepare8_field(o, false, offsetof(struct torus, major)));
+    td rm = prepare8_wide(prepare8_field(o, false, offsetof(struct torus, minor)));
     td c[3], q[3];
     for (int i = 0; i < 3; i++) {
-        c[i] = prepare8_wide(prepare8_at(o->shape, o->same, offsetof(struct torus, center) + (size_t)i * 4));
+        c[i] = prepare8_wide(prepare8_field(o, false, offsetof(struct torus, center) + (size_t)i * 4));
         q[i] = t8_sub(prepare8_wide(lp[i]), c[i]);
     }
     td rho = t8_sqrt(t8_add(t8_mul(q[0], q[0]), t8_mul(q[2], q[2])));
@@ -191,19 +219,18 @@ prepare8_torus(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const
 {
     prepare8_objs o;
     prepare8_objects(s, hit, lanes, offsetof(object, shape.torus), &o);
-    __m256 lp[3], p[3], n[3], xn[3], wp[3], wn[3];
-    for (int r = 0; r < 3; r++) {
-        __m256 lo = prepare8_row(&o, offsetof(xform, inv), r, org, true);
-        lp[r] = _mm256_add_ps(lo, _mm256_mul_ps(prepare8_row(&o, offsetof(xform, inv), r, d, false), tt));
-    }
+    __m256 lp[3], p[3], n[3], xn[3], wp[3], wn[3], inv[3][4], fwd[3][4];
+    prepare8_matrix(&o, offsetof(xform, inv), inv);
+    for (int r = 0; r < 3; r++)
+        lp[r] = _mm256_add_ps(prepare8_row(inv, r, org, true),
+                              _mm256_mul_ps(prepare8_row(inv, r, d, false), tt));
     prepare8_nearest(&o, lp, p, n);
+    prepare8_matrix(&o, offsetof(xform, fwd), fwd);
     for (int c = 0; c < 3; c++) { /* the inverse's transpose */
-        __m256 a[3];
-        for (int r = 0; r < 3; r++)
-            a[r] = prepare8_at(o.xf, o.same, offsetof(xform, inv) + (size_t)(r * 4 + c) * 4);
-        xn[c] = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], n[0]), _mm256_mul_ps(a[1], n[1])),
-                              _mm256_mul_ps(a[2], n[2]));
-        wp[c] = prepare8_row(&o, offsetof(xform, fwd), c, p, true);
+        xn[c] = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(inv[0][c], n[0]), _mm256_mul_ps(inv[1][c], n[1])),
+            _mm256_mul_ps(inv[2][c], n[2]));
+        wp[c] = prepare8_row(fwd, c, p, true);
     }
     prepare8_norm(xn, wn);
     __m256 m = packet_lanes(lanes);
