@@ -399,11 +399,11 @@ bool csg_hit_lane(const csg *c, const ray *r, const csg_spans8 *pre, int k, shap
 
 /* The leaf's surface, carried into the csg's space and turned when the
  * leaf is flipped. */
-void csg_surface(const csg *c, const ray *r, const shape_hit *hit, surface *out)
+void csg_surface(const csg *c, const ray *r, const shape_hit *hit, bool uv, surface *out)
 {
     const csg_leaf *l = &c->leaves[hit->leaf];
     ray lr = leaf_ray(l, r);
-    shape_surface(&l->shape, &lr, hit, out);
+    (uv ? shape_surface : shape_surface_no_uv)(&l->shape, &lr, hit, out);
     if (l->moved) {
         out->p = mat4_point(&l->x.fwd, out->p);
         out->n = v3_norm(xform_normal(&l->x, out->n));

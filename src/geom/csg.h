@@ -118,7 +118,9 @@ int csg8_hit_avx2(const csg *c, const ray8 *r, int active, shape_hit *hit);
 int csg8_hit_avx512(const csg *c, const ray8 *r, int active, shape_hit *hit);
 int csg8_occluded_avx2(const csg *c, const ray8 *r, int active);
 int csg8_occluded_avx512(const csg *c, const ray8 *r, int active);
-void csg_surface(const csg *c, const ray *r, const shape_hit *hit, surface *out);
+/* The hit leaf's surface, with (u, v) where uv is set (shape_surface), else
+ * without (shape_surface_no_uv). */
+void csg_surface(const csg *c, const ray *r, const shape_hit *hit, bool uv, surface *out);
 /* Membership of a point, for tests: the tree on the leaves' answers. */
 bool csg_contains(const csg *c, const bool *leaf_inside);
 

@@ -83,6 +83,9 @@ void shape_surface_no_uv(const shape *s, const ray *r, const shape_hit *hit, sur
     case SHAPE_TORUS:
         torus_surface_no_uv(&s->torus, ray_at(r, hit->t), out);
         break;
+    case SHAPE_CSG:
+        csg_surface(s->csg, r, hit, false, out);
+        return;
     case SHAPE_PLANE:
     case SHAPE_QUAD:
     case SHAPE_BOX:
@@ -90,7 +93,6 @@ void shape_surface_no_uv(const shape *s, const ray *r, const shape_hit *hit, sur
     case SHAPE_DISK:
     case SHAPE_POLYHEDRON:
     case SHAPE_MESH:
-    case SHAPE_CSG:
     case SHAPE_COUNT:
         shape_surface(s, r, hit, out);
         return;
@@ -136,7 +138,7 @@ void shape_surface(const shape *s, const ray *r, const shape_hit *hit, surface *
         mesh_surface(s->mesh, p, hit, out);
         return;
     case SHAPE_CSG:
-        csg_surface(s->csg, r, hit, out);
+        csg_surface(s->csg, r, hit, true, out);
         return;
     case SHAPE_COUNT:
         break;
