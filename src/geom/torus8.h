@@ -27,6 +27,8 @@
 typedef __m512d td;
 typedef __mmask8 tk;
 static inline td t8_load(const float *p) { return _mm512_cvtps_pd(_mm256_loadu_ps(p)); }
+static inline td t8_widen(__m256 v) { return _mm512_cvtps_pd(v); }
+static inline __m256 t8_narrow(td a) { return _mm512_cvtpd_ps(a); }
 static inline td t8_add(td a, td b) { return _mm512_add_pd(a, b); }
 static inline td t8_sub(td a, td b) { return _mm512_sub_pd(a, b); }
 static inline td t8_mul(td a, td b) { return _mm512_mul_pd(a, b); }
@@ -75,6 +77,15 @@ typedef td tk;
 static inline td t8_load(const float *p)
 {
     return (td){_mm256_cvtps_pd(_mm_loadu_ps(p)), _mm256_cvtps_pd(_mm_loadu_ps(p + 4))};
+}
+static inline td t8_widen(__m256 v)
+{
+    return (td){_mm256_cvtps_pd(_mm256_castps256_ps128(v)),
+                _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1))};
+}
+static inline __m256 t8_narrow(td a)
+{
+    return _mm256_set_m128(_mm256_cvtpd_ps(a.hi), _mm256_cvtpd_ps(a.lo));
 }
 static inline td t8_add(td a, td b) { return T8_BOTH(_mm256_add_pd, a, b); }
 static inline td t8_sub(td a, td b) { return T8_BOTH(_mm256_sub_pd, a, b); }
@@ -297,11 +308,43 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     t8_store(out->x, found);
 }
 
+/* torus_blocks_at_once (torus.c) for the lanes of `lanes`, from the
+ * quartic cq (its c[4] 1), the segment (t0, hi, len) and the entry
+ * point's and the direction's y: the same doubles and floats lane by
+ * lane. */
+static inline int t8_blocks_at_once(const td *cq, td hi, td t0, td len, td py, td uy,
+                                    const ray8 *r, int lanes)
+{
+    const td zero = t8_zero();
+    td t1 = t8_add(t0, t8_div(hi, len));
+    __m256 from = t8_narrow(t0), to = t8_narrow(t8_add(t1, t8_mul(t8_k(1e-9), t8_abs(t1))));
+    lanes &= _mm256_movemask_ps(_mm256_cmp_ps(from, _mm256_loadu_ps(r->tmin), _CMP_GT_OQ)) &
+             _mm256_movemask_ps(_mm256_cmp_ps(to, _mm256_loadu_ps(r->tmax), _CMP_LT_OQ));
+    if (!lanes)
+        return 0;
+    td x = t8_div(t8_neg(py), uy);
+    tk in = tk_and(t8_cmp(uy, zero, _CMP_NEQ_UQ), t8_cmp(x, zero, _CMP_GT_OQ));
+    in = tk_and(in, t8_cmp(x, hi, _CMP_LT_OQ));
+    /* dips_below */
+    td h2 = t8_mul(hi, hi), one = t8_k(1.0);
+    td size = t8_add(t8_add(t8_add(t8_add(t8_abs(cq[0]), t8_abs(t8_mul(cq[1], hi))),
+                                   t8_abs(t8_mul(cq[2], h2))),
+                            t8_abs(t8_mul(t8_mul(cq[3], h2), hi))),
+                     t8_abs(t8_mul(t8_mul(one, h2), h2)));
+    td m = t8_mul(t8_k(1e-9), size);
+    const td c[5] = {cq[0], cq[1], cq[2], cq[3], one};
+    in = tk_and(in, tk_and(t8_cmp(cq[0], m, _CMP_GT_OQ),
+                           t8_cmp(t8_eval(c, 4, x), t8_neg(m), _CMP_LT_OQ)));
+    return lanes & tk_bits(in);
+}
+
 /* The rays of active against the torus's bounds: those whose segment
  * survives, with q[k] set for them; with first, the search for each one's
- * first root begun (t8_first_root). */
+ * first root begun (t8_first_root); with at_once, the lanes
+ * torus_blocks_at_once finds blocked put there and left out of the
+ * search. */
 static inline int torus8_setup(const struct torus *s, const ray8 *r, int active, torus_quartic *q,
-                               torus_first *first)
+                               torus_first *first, int *at_once)
 {
     if (!active)
         return 0;
@@ -339,8 +382,11 @@ static inline int torus8_setup(const struct torus *s, const ray8 *r, int active,
     c[0] = t8_sub(t8_mul(beta, beta),
                   t8_mul(t8_k(k), t8_add(t8_mul(p[0], p[0]), t8_mul(p[2], p[2]))));
     td hi = t8_mul(t8_sub(t1, t0), len);
+    int once = at_once ? t8_blocks_at_once(c, hi, t0, len, p[1], u[1], r, live) : 0;
+    if (at_once)
+        *at_once = once;
     if (first)
-        t8_first_root(c, hi, tk_lanes(live), first);
+        t8_first_root(c, hi, tk_lanes(live & ~once), first);
     double cv[4][8], t0v[8], lenv[8], hiv[8];
     double pyv[8], uyv[8];
     for (int i = 0; i < 4; i++)
@@ -381,7 +427,7 @@ static inline int torus8_hit(const struct torus *s, const ray8 *r, int active, s
 {
     torus_quartic q[8];
     torus_first first = {0, 0, {0}};
-    int live = torus8_setup(s, r, active, q, &first);
+    int live = torus8_setup(s, r, active, q, &first, NULL);
     int found = 0;
     for (int m = live; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -398,12 +444,12 @@ static inline int torus8_occluded(const struct torus *s, const ray8 *r, int acti
 {
     torus_quartic q[8];
     torus_first first = {0, 0, {0}};
-    int blocked = 0;
-    for (int m = torus8_setup(s, r, active, q, &first); m; m &= m - 1) {
+    int once = 0, live = torus8_setup(s, r, active, q, &first, &once);
+    int blocked = once;
+    for (int m = live & ~once; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
-        blocked |= (torus_blocks_at_once(&q[k], &one) ||
-                     torus8_lane(&first, k, &q[k], &one, NULL)) << k;
+        blocked |= torus8_lane(&first, k, &q[k], &one, NULL) << k;
     }
     return blocked;
 }

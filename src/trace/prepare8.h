@@ -149,25 +149,6 @@ __attribute__((always_inline)) static inline __m256 prepare8_row(__m256 a[3][4],
     return w ? _mm256_add_ps(s, a[r][3]) : s;
 }
 
-static inline td prepare8_wide(__m256 v)
-{
-#if defined(__AVX512F__)
-    return _mm512_cvtps_pd(v);
-#else
-    return (td){_mm256_cvtps_pd(_mm256_castps256_ps128(v)),
-                _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1))};
-#endif
-}
-
-static inline __m256 prepare8_narrow(td v)
-{
-#if defined(__AVX512F__)
-    return _mm512_cvtpd_ps(v);
-#else
-    return _mm256_set_m128(_mm256_cvtpd_ps(v.hi), _mm256_cvtpd_ps(v.lo));
-#endif
-}
-
 /* torus_nearest of the torus's local points lp: the nearest point p and
  * the unit normal n there, both in the torus's space. */
 __attribute__((always_inline)) static inline void prepare8_nearest(const prepare8_objs *o,
@@ -175,12 +156,12 @@ __attribute__((always_inline)) static inline void prepare8_nearest(const prepare
                                                                    __m256 p[3], __m256 n[3])
 {
     const td zero = t8_zero(), one = t8_k(1.0);
-    td R = prepare8_wide(prepare8_field(o, false, offsetof(struct torus, major)));
-    td rm = prepare8_wide(prepare8_field(o, false, offsetof(struct torus, minor)));
+    td R = t8_widen(prepare8_field(o, false, offsetof(struct torus, major)));
+    td rm = t8_widen(prepare8_field(o, false, offsetof(struct torus, minor)));
     td c[3], q[3];
     for (int i = 0; i < 3; i++) {
-        c[i] = prepare8_wide(prepare8_field(o, false, offsetof(struct torus, center) + (size_t)i * 4));
-        q[i] = t8_sub(prepare8_wide(lp[i]), c[i]);
+        c[i] = t8_widen(prepare8_field(o, false, offsetof(struct torus, center) + (size_t)i * 4));
+        q[i] = t8_sub(t8_widen(lp[i]), c[i]);
     }
     td rho = t8_sqrt(t8_add(t8_mul(q[0], q[0]), t8_mul(q[2], q[2])));
     tk off_axis = t8_cmp(rho, zero, _CMP_GT_OQ);
@@ -205,8 +186,8 @@ __attribute__((always_inline)) static inline void prepare8_nearest(const prepare
     inv = t8_mul(inv, sgn);
     td w[3] = {w0, q[1], w2}, up[3] = {zero, one, zero};
     for (int i = 0; i < 3; i++) {
-        p[i] = prepare8_narrow(t8_add(e[i], c[i]));
-        n[i] = prepare8_narrow(t8_pick(some, t8_mul(w[i], inv), up[i]));
+        p[i] = t8_narrow(t8_add(e[i], c[i]));
+        n[i] = t8_narrow(t8_pick(some, t8_mul(w[i], inv), up[i]));
     }
 }
 
