@@ -25,70 +25,100 @@ __attribute__((always_inline)) static inline void prepare8_norm(const __m256 a[3
         out[c] = _mm256_blendv_ps(a[c], _mm256_mul_ps(a[c], inv), pos);
 }
 
-/* The float at byte off of each lane's b[k], or of b[0] alone when the
- * lanes share it. */
-__attribute__((always_inline)) static inline __m256 prepare8_at(const void *const b[8], bool same,
-                                                                size_t off)
+/* The lanes of `lanes` grouped by the record each reads (at[k], a
+ * pointer): each record once, with its lanes (bits, and as a register's
+ * lanes). */
+typedef struct prepare8_groups {
+    int n, bits[8];
+    const char *at[8];
+    __m256 sel[8];
+} prepare8_groups;
+
+/* One group: every lane of `lanes` reads at. */
+static inline void prepare8_one(const char *at, int lanes, prepare8_groups *g)
 {
-    return same ? _mm256_broadcast_ss((const float *)(const void *)((const char *)b[0] + off))
-                : simd8_at(b, off);
+    g->n = 1, g->at[0] = at, g->bits[0] = lanes;
+}
+
+__attribute__((always_inline)) static inline void
+prepare8_group(const char *const at[8], int lanes, prepare8_groups *g)
+{
+    g->n = 0;
+    for (int m = lanes; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m), i = 0;
+        while (i < g->n && g->at[i] != at[k])
+            i++;
+        if (i == g->n)
+            g->at[i] = at[k], g->bits[i] = 0, g->n++;
+        g->bits[i] |= 1 << k;
+    }
+    for (int i = 1; i < g->n; i++)
+        g->sel[i] = packet_lanes(g->bits[i]);
+}
+
+/* The float at byte off of each lane's record (of base[i] + off for group
+ * i): one broadcast for each, blended in by its lanes (the lanes of no
+ * group take the first one's). */
+__attribute__((always_inline)) static inline __m256
+prepare8_read(const prepare8_groups *g, const char *const base[8], size_t off)
+{
+    __m256 v = _mm256_broadcast_ss((const float *)(const void *)(base[0] + off));
+    for (int i = 1; i < g->n; i++)
+        v = _mm256_blendv_ps(v, _mm256_broadcast_ss((const float *)(const void *)(base[i] + off)),
+                             g->sel[i]);
+    return v;
 }
 
 /* The objects a kind of surface reads for the lanes of `lanes`, each
- * once: its shape (at byte off of the object) and transform, and the
- * lanes that hit it (bits, and as a register's lanes). */
+ * once: its shape (at byte off of the object) and transform. */
 typedef struct prepare8_objs {
-    int n, index[8], bits[8];
+    prepare8_groups g;
     const char *shape[8], *xf[8];
-    __m256 sel[8];
 } prepare8_objs;
 
 __attribute__((always_inline)) static inline void
 prepare8_objects(const scene *s, const scene_hit *hit, int lanes, size_t off, prepare8_objs *o)
 {
-    o->n = 0;
-    for (int m = lanes; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m), i = hit[k].object, g = 0;
-        while (g < o->n && o->index[g] != i)
-            g++;
-        if (g == o->n) {
-            const object *ob = &s->objects[i];
-            o->index[g] = i, o->bits[g] = 0, o->n++;
-            o->shape[g] = (const char *)ob + off;
-            o->xf[g] = ob->xform >= 0 ? (const char *)&s->xforms[ob->xform] : NULL;
+    int one = hit[__builtin_ctz((unsigned)lanes)].object, other = 0;
+    for (int m = lanes & (lanes - 1); m; m &= m - 1) /* the commonest case: one object */
+        other |= hit[__builtin_ctz((unsigned)m)].object ^ one;
+    if (!other) {
+        prepare8_one((const char *)&s->objects[one], lanes, &o->g);
+    } else {
+        const char *ob[8];
+        for (int m = lanes; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            ob[k] = (const char *)&s->objects[hit[k].object];
         }
-        o->bits[g] |= 1 << k;
+        prepare8_group(ob, lanes, &o->g);
     }
-    for (int g = 1; g < o->n; g++)
-        o->sel[g] = packet_lanes(o->bits[g]);
+    for (int i = 0; i < o->g.n; i++) {
+        const object *x = (const object *)(const void *)o->g.at[i];
+        o->shape[i] = o->g.at[i] + off;
+        o->xf[i] = x->xform >= 0 ? (const char *)&s->xforms[x->xform] : NULL;
+    }
 }
 
-/* The float at byte off of each lane's object's shape (or transform,
- * xf): one broadcast for each object, blended in by its lanes (the lanes
- * of no object take the first one's). */
 __attribute__((always_inline)) static inline __m256 prepare8_field(const prepare8_objs *o, bool xf,
                                                                    size_t off)
 {
-    const char *const *b = xf ? o->xf : o->shape;
-    __m256 v = _mm256_broadcast_ss((const float *)(const void *)(b[0] + off));
-    for (int g = 1; g < o->n; g++)
-        v = _mm256_blendv_ps(v, _mm256_broadcast_ss((const float *)(const void *)(b[g] + off)),
-                             o->sel[g]);
-    return v;
+    return prepare8_read(&o->g, xf ? o->xf : o->shape, off);
 }
 
-/* a ? b : c lane by lane, for the lanes of the mask a. */
-__attribute__((always_inline)) static inline void prepare8_put(__m256 lanes, const __m256 b[3],
-                                                               __m256 c[3])
+/* b into c for the lanes of `lanes`; all of c where they are every lane
+ * being prepared (all). */
+__attribute__((always_inline)) static inline void prepare8_put(int lanes, int all,
+                                                               const __m256 b[3], __m256 c[3])
 {
+    __m256 m = packet_lanes(lanes);
     for (int i = 0; i < 3; i++)
-        c[i] = _mm256_blendv_ps(c[i], b[i], lanes);
+        c[i] = lanes == all ? b[i] : _mm256_blendv_ps(c[i], b[i], m);
 }
 
 /* shade_prepare's sphere: sphere_surface_plain at ray_at(t). */
 __attribute__((always_inline)) static inline void
-prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const __m256 org[3],
-                const __m256 d[3], __m256 P[3], __m256 N[3])
+prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+                const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
 {
     prepare8_objs o;
     prepare8_objects(s, hit, lanes, offsetof(object, shape.sphere), &o);
@@ -101,16 +131,15 @@ prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, __m256 tt, cons
     prepare8_norm(q, n);
     for (int i = 0; i < 3; i++)
         p[i] = _mm256_add_ps(c[i], _mm256_mul_ps(n[i], rad));
-    __m256 m = packet_lanes(lanes);
-    prepare8_put(m, p, P);
-    prepare8_put(m, n, N);
+    prepare8_put(lanes, all, p, P);
+    prepare8_put(lanes, all, n, N);
 }
 
 /* plain_surface's plane: ray_at(t) moved onto the plane (plane_onto); its
  * normal. */
 __attribute__((always_inline)) static inline void
-prepare8_plane(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const __m256 org[3],
-               const __m256 d[3], __m256 P[3], __m256 N[3])
+prepare8_plane(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+               const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
 {
     prepare8_objs o;
     prepare8_objects(s, hit, lanes, offsetof(object, shape.plane), &o);
@@ -124,9 +153,8 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const
     __m256 k = _mm256_xor_ps(simd8_dot(v, n), _mm256_set1_ps(-0.0f)); /* -(v . n) */
     for (int i = 0; i < 3; i++)
         p[i] = _mm256_add_ps(p[i], _mm256_mul_ps(n[i], k));
-    __m256 m = packet_lanes(lanes);
-    prepare8_put(m, p, P);
-    prepare8_put(m, n, N);
+    prepare8_put(lanes, all, p, P);
+    prepare8_put(lanes, all, n, N);
 }
 
 /* The top three rows of the matrix at byte off of each lane's transform. */
@@ -195,8 +223,8 @@ __attribute__((always_inline)) static inline void prepare8_nearest(const prepare
  * there at t (torus_nearest), its normal through the transform
  * (xform_normal) made unit, and the point back in the world. */
 __attribute__((always_inline)) static inline void
-prepare8_torus(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const __m256 org[3],
-               const __m256 d[3], __m256 P[3], __m256 N[3])
+prepare8_torus(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+               const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
 {
     prepare8_objs o;
     prepare8_objects(s, hit, lanes, offsetof(object, shape.torus), &o);
@@ -214,9 +242,8 @@ prepare8_torus(const scene *s, const scene_hit *hit, int lanes, __m256 tt, const
         wp[c] = prepare8_row(fwd, c, p, true);
     }
     prepare8_norm(xn, wn);
-    __m256 m = packet_lanes(lanes);
-    prepare8_put(m, wp, P);
-    prepare8_put(m, wn, N);
+    prepare8_put(lanes, all, wp, P);
+    prepare8_put(lanes, all, wn, N);
 }
 
 /* prepare (bounce8_api.h): each kind's point and normal (the two normals
@@ -226,26 +253,35 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
                                                            shade8 *sp)
 {
     int all = kinds.sphere | kinds.plane | kinds.torus;
-    const void *m[8], *t[8];
-    for (int k = 0, first = __builtin_ctz((unsigned)all); k < 8; k++) {
-        int j = all >> k & 1 ? k : first;
-        m[k] = sp->m[j], t[k] = &hit[j].h.t;
-    }
+    const void *t[8];
+    for (int k = 0, first = __builtin_ctz((unsigned)all); k < 8; k++)
+        t[k] = &hit[all >> k & 1 ? k : first].h.t;
     const __m256 sign = _mm256_set1_ps(-0.0f), one = _mm256_set1_ps(1.0f);
     __m256 tt = simd8_at(t, 0), col[3];
+    prepare8_groups mg; /* the lanes' materials: most often the packet's one */
+    if (sp->same) {
+        prepare8_one((const char *)sp->same, all, &mg);
+    } else {
+        const char *mat[8];
+        for (int m = all; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            mat[k] = (const char *)sp->m[k];
+        }
+        prepare8_group(mat, all, &mg);
+    }
     for (int i = 0; i < 3; i++)
-        col[i] = prepare8_at(m, sp->same != NULL, offsetof(material, color) + (size_t)i * 4);
+        col[i] = prepare8_read(&mg, mg.at, offsetof(material, color) + (size_t)i * 4);
     __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
     __m256 org[3] = {_mm256_loadu_ps(p->ox), _mm256_loadu_ps(p->oy), _mm256_loadu_ps(p->oz)};
     __m256 P[3], N[3], dn[3];
     for (int i = 0; i < 3; i++)
         P[i] = N[i] = _mm256_setzero_ps();
     if (kinds.sphere)
-        prepare8_sphere(s, hit, kinds.sphere, tt, org, d, P, N);
+        prepare8_sphere(s, hit, kinds.sphere, all, tt, org, d, P, N);
     if (kinds.plane)
-        prepare8_plane(s, hit, kinds.plane, tt, org, d, P, N);
+        prepare8_plane(s, hit, kinds.plane, all, tt, org, d, P, N);
     if (kinds.torus)
-        prepare8_torus(s, hit, kinds.torus, tt, org, d, P, N);
+        prepare8_torus(s, hit, kinds.torus, all, tt, org, d, P, N);
     prepare8_norm(d, dn);
     __m256 inside = _mm256_cmp_ps(simd8_dot(dn, N), _mm256_setzero_ps(), _CMP_GT_OQ);
     for (int i = 0; i < 3; i++) {
