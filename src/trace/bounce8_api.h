@@ -26,9 +26,9 @@ typedef struct shade8_plain {
 
 typedef struct shade8_kernels {
     /* shade_prepare for the lanes of kinds (not empty), whose materials
-     * are sp->m[k] (set), from their rays (lanes of p) and hits: each
-     * field of sp stored whole, the other lanes holding numbers, and
-     * sp->inside's bits of those lanes set. */
+     * are sp->m[k] (set, and sp->same: shading.h), from their rays (lanes
+     * of p) and hits: each field of sp stored whole, the other lanes
+     * holding numbers, and sp->inside's bits of those lanes set. */
     void (*prepare)(const struct glint_scene *s, const ray8 *p, shade8_plain kinds,
                     const struct scene_hit *hit, shade8 *sp);
     /* whitted.c's split for the lanes of found: kr, kt and tdir; gt = kt

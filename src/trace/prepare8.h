@@ -125,7 +125,8 @@ prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, int all, __m256
     __m256 rad = prepare8_field(&o, false, offsetof(struct sphere, radius)), c[3], q[3];
     __m256 n[3], p[3];
     for (int i = 0; i < 3; i++) {
-        c[i] = prepare8_field(&o, false, offsetof(struct sphere, center) + (size_t)i * 4);
+        size_t at = offsetof(struct sphere, center) + (size_t)i * sizeof(float);
+        c[i] = prepare8_field(&o, false, at);
         q[i] = _mm256_sub_ps(_mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt)), c[i]);
     }
     prepare8_norm(q, n);
@@ -145,8 +146,9 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, int all, __m256 
     prepare8_objects(s, hit, lanes, offsetof(object, shape.plane), &o);
     __m256 pt[3], n[3], p[3], v[3];
     for (int i = 0; i < 3; i++) {
-        pt[i] = prepare8_field(&o, false, offsetof(struct plane, point) + (size_t)i * 4);
-        n[i] = prepare8_field(&o, false, offsetof(struct plane, normal) + (size_t)i * 4);
+        size_t at = (size_t)i * sizeof(float);
+        pt[i] = prepare8_field(&o, false, offsetof(struct plane, point) + at);
+        n[i] = prepare8_field(&o, false, offsetof(struct plane, normal) + at);
         p[i] = _mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt));
         v[i] = _mm256_sub_ps(p[i], pt[i]);
     }
@@ -158,12 +160,12 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, int all, __m256 
 }
 
 /* The top three rows of the matrix at byte off of each lane's transform. */
-__attribute__((always_inline)) static inline void prepare8_matrix(const prepare8_objs *o, size_t off,
-                                                                  __m256 a[3][4])
+__attribute__((always_inline)) static inline void
+prepare8_matrix(const prepare8_objs *o, size_t off, __m256 a[3][4])
 {
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 4; c++)
-            a[r][c] = prepare8_field(o, true, off + (size_t)(r * 4 + c) * 4);
+            a[r][c] = prepare8_field(o, true, off + (size_t)(r * 4 + c) * sizeof(float));
 }
 
 /* Row r of a times (x, y, z, w), as mat4_point (w) or mat4_vector (no w)
@@ -188,7 +190,8 @@ __attribute__((always_inline)) static inline void prepare8_nearest(const prepare
     td rm = t8_widen(prepare8_field(o, false, offsetof(struct torus, minor)));
     td c[3], q[3];
     for (int i = 0; i < 3; i++) {
-        c[i] = t8_widen(prepare8_field(o, false, offsetof(struct torus, center) + (size_t)i * 4));
+        size_t at = offsetof(struct torus, center) + (size_t)i * sizeof(float);
+        c[i] = t8_widen(prepare8_field(o, false, at));
         q[i] = t8_sub(t8_widen(lp[i]), c[i]);
     }
     td rho = t8_sqrt(t8_add(t8_mul(q[0], q[0]), t8_mul(q[2], q[2])));
@@ -270,7 +273,7 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
         prepare8_group(mat, all, &mg);
     }
     for (int i = 0; i < 3; i++)
-        col[i] = prepare8_read(&mg, mg.at, offsetof(material, color) + (size_t)i * 4);
+        col[i] = prepare8_read(&mg, mg.at, offsetof(material, color) + (size_t)i * sizeof(float));
     __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
     __m256 org[3] = {_mm256_loadu_ps(p->ox), _mm256_loadu_ps(p->oy), _mm256_loadu_ps(p->oz)};
     __m256 P[3], N[3], dn[3];
