@@ -203,15 +203,23 @@ static inline td t8_eval(const td *c, int degree, td x)
 
 /* roots_quartic_above (core/roots.h) for the lanes of `lanes`: those whose
  * quartic c provably stays above zero on [0, hi]. */
-static inline tk t8_above(const td *c, td hi, tk lanes)
+/* The quartic c's terms at hi (a[i] = c[i] hi^i) and the margin 1e-9
+ * times the sum of their sizes, as roots_quartic_above and torus.c's
+ * dips_below form them. */
+static inline td t8_margin(const td *c, td hi, td a[5])
 {
     td h2 = t8_mul(hi, hi);
-    td a[5] = {c[0], t8_mul(c[1], hi), t8_mul(c[2], h2), t8_mul(t8_mul(c[3], h2), hi),
-               t8_mul(t8_mul(c[4], h2), h2)};
+    a[0] = c[0], a[1] = t8_mul(c[1], hi), a[2] = t8_mul(c[2], h2);
+    a[3] = t8_mul(t8_mul(c[3], h2), hi), a[4] = t8_mul(t8_mul(c[4], h2), h2);
     td size = t8_abs(a[0]);
     for (int i = 1; i < 5; i++)
         size = t8_add(size, t8_abs(a[i]));
-    td m = t8_mul(t8_k(1e-9), size);
+    return t8_mul(t8_k(1e-9), size);
+}
+
+static inline tk t8_above(const td *c, td hi, tk lanes)
+{
+    td a[5], m = t8_margin(c, hi, a);
     td b[5] = {a[0], t8_add(a[0], t8_mul(t8_k(0.25), a[1])),
                t8_add(t8_add(a[0], t8_mul(t8_k(0.5), a[1])), t8_mul(a[2], t8_k(1.0 / 6.0))),
                t8_add(t8_add(t8_add(a[0], t8_mul(t8_k(0.75), a[1])), t8_mul(t8_k(0.5), a[2])),
@@ -326,13 +334,8 @@ static inline int t8_blocks_at_once(const td *cq, td hi, td t0, td len, td py, t
     tk in = tk_and(t8_cmp(uy, zero, _CMP_NEQ_UQ), t8_cmp(x, zero, _CMP_GT_OQ));
     in = tk_and(in, t8_cmp(x, hi, _CMP_LT_OQ));
     /* dips_below */
-    td h2 = t8_mul(hi, hi), one = t8_k(1.0);
-    td size = t8_add(t8_add(t8_add(t8_add(t8_abs(cq[0]), t8_abs(t8_mul(cq[1], hi))),
-                                   t8_abs(t8_mul(cq[2], h2))),
-                            t8_abs(t8_mul(t8_mul(cq[3], h2), hi))),
-                     t8_abs(t8_mul(t8_mul(one, h2), h2)));
-    td m = t8_mul(t8_k(1e-9), size);
-    const td c[5] = {cq[0], cq[1], cq[2], cq[3], one};
+    const td c[5] = {cq[0], cq[1], cq[2], cq[3], t8_k(1.0)};
+    td a[5], m = t8_margin(c, hi, a);
     in = tk_and(in, tk_and(t8_cmp(cq[0], m, _CMP_GT_OQ),
                            t8_cmp(t8_eval(c, 4, x), t8_neg(m), _CMP_LT_OQ)));
     return lanes & tk_bits(in);
