@@ -78,8 +78,11 @@ static float random_ior(rng *g)
 /* A material drawn at random. reflect reaches 1.25 and tints exceed 1,
  * beyond what scene files allow, as the internal API does not refuse
  * them (adc_keep's shares are scaled for such materials). tex, when >=
- * 0, is a chequer that a few take: their spheres are then prepared lane
- * by lane among the kernel's. */
+ * 0, is the first of three textures that a few take (random_scene): two
+ * chequers on (u, v), which the kernels look up on quads, one of them so
+ * fine that its squares' numbers pass 2^53, and stripes in object space,
+ * which they leave to the lane-by-lane path, as they leave every
+ * textured sphere, box and cylinder. */
 static material random_material(rng *g, int tex)
 {
     material m = material_default();
@@ -105,7 +108,7 @@ static material random_material(rng *g, int tex)
     if (chance(g, 0.2f))
         m.emission = random_color(g, 0.0f, 0.4f);
     if (tex >= 0 && chance(g, 0.1f))
-        m.texture = tex;
+        m.texture = tex + pick(g, 3);
     return m;
 }
 
@@ -126,6 +129,19 @@ static int object_material(scene *s, rng *g, const int shared[3], int tex)
     if (chance(g, 0.55f))
         return shared[pick(g, 3)];
     material m = random_material(g, tex);
+    int i = scene_add_material(s, &m);
+    cr_assert_geq(i, 0);
+    return i;
+}
+
+/* A quad's material: object_material's, or in scenes with textures
+ * (tex >= 0) often one of its own that takes one of them. */
+static int quad_material(scene *s, rng *g, const int shared[3], int tex)
+{
+    if (tex < 0 || chance(g, 0.5f))
+        return object_material(s, g, shared, tex);
+    material m = random_material(g, -1);
+    m.texture = tex + pick(g, 3);
     int i = scene_add_material(s, &m);
     cr_assert_geq(i, 0);
     return i;
@@ -183,9 +199,9 @@ static float shared_materials(scene *s, rng *g, int shared[3])
 
 /* Many unturned spheres, so that packets mix objects and materials; a
  * few large ones, which packets meet whole; turned (and stretched)
- * spheres, quads and boxes, some turned; turned tori; sometimes a floor
- * and a tilted wall (the planes and tori that are plain, shading.h, are
- * prepared eight lanes at once: trace/prepare8.h). */
+ * spheres; quads, boxes and cylinders, some turned; turned tori;
+ * sometimes a floor and a tilted wall (the surfaces that are plain,
+ * shading.h, are prepared eight lanes at once: trace/prepare8.h). */
 static void add_shapes(scene *s, rng *g, const int shared[3], int tex)
 {
     for (int i = 0, n = 26 + pick(g, 14); i < n; i++) {
@@ -205,7 +221,7 @@ static void add_shapes(scene *s, rng *g, const int shared[3], int tex)
         shape q = shape_quad(random_place(g), v3(uniform(g, 1, 4), uniform(g, -1, 1), 0.5f),
                              v3(uniform(g, -0.5f, 0.5f), uniform(g, 1, 3), uniform(g, -1, 1)));
         int x = chance(g, 0.3f) ? random_xform(s, g, v3s(0.0f), false) : -1;
-        cr_assert_geq(scene_add_object(s, &q, object_material(s, g, shared, tex), x), 0);
+        cr_assert_geq(scene_add_object(s, &q, quad_material(s, g, shared, tex), x), 0);
     }
     for (int i = 0, n = 2 + pick(g, 3); i < n; i++) {
         vec3 lo = random_place(g);
@@ -219,6 +235,12 @@ static void add_shapes(scene *s, rng *g, const int shared[3], int tex)
         }
         shape b = shape_box(lo, hi);
         cr_assert_geq(scene_add_object(s, &b, object_material(s, g, shared, tex), x), 0);
+    }
+    for (int i = 0, n = 2 + pick(g, 3); i < n; i++) { /* cylinders, some turned or open */
+        shape c = shape_cylinder(random_place(g), uniform(g, 0.3f, 1.2f), uniform(g, 0.5f, 3.0f),
+                                 chance(g, 0.7f));
+        int x = chance(g, 0.4f) ? random_xform(s, g, v3s(0.0f), chance(g, 0.5f)) : -1;
+        cr_assert_geq(scene_add_object(s, &c, object_material(s, g, shared, tex), x), 0);
     }
     for (int i = 0, n = 2 + pick(g, 4); i < n; i++) { /* turned tori, some stretched */
         shape t = shape_torus(v3s(0.0f), uniform(g, 0.6f, 1.6f), uniform(g, 0.15f, 0.5f));
@@ -332,7 +354,17 @@ static scene *random_scene(uint64_t seed, glint_settings *st)
     scene *s = scene_new();
     cr_assert_not_null(s);
     texture checker = texture_checker(v3(0.9f, 0.2f, 0.1f), v3(0.1f, 0.3f, 0.9f), 8.0f, 4.0f);
-    int tex = chance(&g, 0.5f) ? scene_add_texture(s, &checker) : -1, shared[3];
+    /* its x passes 2^53, where pattern_checker's sum in doubles rounds,
+     * and for u above 0.8 overflows to infinity */
+    texture fine = texture_checker(v3(0.2f, 0.8f, 0.3f), v3(1.0f, 0.9f, 0.2f), 3e38f, -2.5f);
+    fine.offset = v3(1e38f, 0.5f, 3.0f);
+    texture stripes = texture_pattern(TEXTURE_STRIPES);
+    int tex = -1, shared[3];
+    if (chance(&g, 0.5f)) {
+        tex = scene_add_texture(s, &checker);
+        cr_assert(scene_add_texture(s, &fine) == tex + 1 &&
+                  scene_add_texture(s, &stripes) == tex + 2);
+    }
     float boundary = shared_materials(s, &g, shared);
     add_shapes(s, &g, shared, tex);
     add_camera(s, &g);
@@ -371,6 +403,7 @@ static const char *shape_name(shape_kind k)
            : k == SHAPE_BOX  ? "box"
            : k == SHAPE_PLANE ? "plane"
            : k == SHAPE_TORUS ? "torus"
+           : k == SHAPE_CYLINDER ? "cylinder"
                               : "other";
 }
 

@@ -1,119 +1,21 @@
 /* prepare8: a packet's shading points eight lanes at once (bounce8_api.h:
- * prepare) where its rays hit one of shade_prepare's plain surfaces
- * (shading.h): an untextured, unturned sphere (shade_prepare's inline
- * case), an untextured, unturned plane, or an untextured torus turned by a
- * fixed transform (shading.c: plain_surface). Lane by lane the same
- * floats as those, in the same order (no fused multiply-adds): the
- * torus's nearest point in doubles, as torus_nearest (geom/shape_inline.h)
- * works it out. For translation units compiled with AVX2 (whitted_<isa>.c). */
+ * prepare) where its rays hit one of the plain surfaces of shading.h: an
+ * untextured, unturned sphere (shade_prepare's inline case), an
+ * untextured, unturned plane, or an untextured torus turned by a fixed
+ * transform (shading.c: plain_surface); an unturned quad, untextured or
+ * with a flat chequer, and an untextured box or cylinder, turned by a
+ * fixed transform or not (shade_prepare_surface's general way). Lane by
+ * lane the same floats as those, in the same order (no fused
+ * multiply-adds): the torus's nearest point in doubles, as torus_nearest
+ * (geom/shape_inline.h) works it out. For translation units compiled with
+ * AVX2 (whitted_<isa>.c). */
 #ifndef GLINT_TRACE_PREPARE8_H
 #define GLINT_TRACE_PREPARE8_H
 
-#include "geom/mesh_packet.h" /* packet_lanes */
-#include "geom/torus8.h"      /* eight lanes of doubles */
-#include "scene/scene.h"
+#include "geom/torus8.h" /* eight lanes of doubles */
+#include "shade/pattern.h"
 #include "trace/bounce8_api.h"
-#include "trace/simd8.h"
-
-/* v3_norm lane by lane: a * (1 / |a|) where |a| > 0, else a. */
-__attribute__((always_inline)) static inline void prepare8_norm(const __m256 a[3], __m256 out[3])
-{
-    __m256 l = _mm256_sqrt_ps(simd8_dot(a, a));
-    __m256 pos = _mm256_cmp_ps(l, _mm256_setzero_ps(), _CMP_GT_OQ);
-    __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), l);
-    for (int c = 0; c < 3; c++)
-        out[c] = _mm256_blendv_ps(a[c], _mm256_mul_ps(a[c], inv), pos);
-}
-
-/* The lanes of `lanes` grouped by the record each reads (at[k], a
- * pointer): each record once, with its lanes (bits, and as a register's
- * lanes). */
-typedef struct prepare8_groups {
-    int n, bits[8];
-    const char *at[8];
-    __m256 sel[8];
-} prepare8_groups;
-
-/* One group: every lane of `lanes` reads at. */
-static inline void prepare8_one(const char *at, int lanes, prepare8_groups *g)
-{
-    g->n = 1, g->at[0] = at, g->bits[0] = lanes;
-}
-
-__attribute__((always_inline)) static inline void
-prepare8_group(const char *const at[8], int lanes, prepare8_groups *g)
-{
-    g->n = 0;
-    for (int m = lanes; m; m &= m - 1) {
-        int k = __builtin_ctz((unsigned)m), i = 0;
-        while (i < g->n && g->at[i] != at[k])
-            i++;
-        if (i == g->n)
-            g->at[i] = at[k], g->bits[i] = 0, g->n++;
-        g->bits[i] |= 1 << k;
-    }
-    for (int i = 1; i < g->n; i++)
-        g->sel[i] = packet_lanes(g->bits[i]);
-}
-
-/* The float at byte off of each lane's record (of base[i] + off for group
- * i): one broadcast for each, blended in by its lanes (the lanes of no
- * group take the first one's). */
-__attribute__((always_inline)) static inline __m256
-prepare8_read(const prepare8_groups *g, const char *const base[8], size_t off)
-{
-    __m256 v = _mm256_broadcast_ss((const float *)(const void *)(base[0] + off));
-    for (int i = 1; i < g->n; i++)
-        v = _mm256_blendv_ps(v, _mm256_broadcast_ss((const float *)(const void *)(base[i] + off)),
-                             g->sel[i]);
-    return v;
-}
-
-/* The objects a kind of surface reads for the lanes of `lanes`, each
- * once: its shape (at byte off of the object) and transform. */
-typedef struct prepare8_objs {
-    prepare8_groups g;
-    const char *shape[8], *xf[8];
-} prepare8_objs;
-
-__attribute__((always_inline)) static inline void
-prepare8_objects(const scene *s, const scene_hit *hit, int lanes, size_t off, prepare8_objs *o)
-{
-    int one = hit[__builtin_ctz((unsigned)lanes)].object, other = 0;
-    for (int m = lanes & (lanes - 1); m; m &= m - 1) /* the commonest case: one object */
-        other |= hit[__builtin_ctz((unsigned)m)].object ^ one;
-    if (!other) {
-        prepare8_one((const char *)&s->objects[one], lanes, &o->g);
-    } else {
-        const char *ob[8];
-        for (int m = lanes; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            ob[k] = (const char *)&s->objects[hit[k].object];
-        }
-        prepare8_group(ob, lanes, &o->g);
-    }
-    for (int i = 0; i < o->g.n; i++) {
-        const object *x = (const object *)(const void *)o->g.at[i];
-        o->shape[i] = o->g.at[i] + off;
-        o->xf[i] = x->xform >= 0 ? (const char *)&s->xforms[x->xform] : NULL;
-    }
-}
-
-__attribute__((always_inline)) static inline __m256 prepare8_field(const prepare8_objs *o, bool xf,
-                                                                   size_t off)
-{
-    return prepare8_read(&o->g, xf ? o->xf : o->shape, off);
-}
-
-/* b into c for the lanes of `lanes`; all of c where they are every lane
- * being prepared (all). */
-__attribute__((always_inline)) static inline void prepare8_put(int lanes, int all,
-                                                               const __m256 b[3], __m256 c[3])
-{
-    __m256 m = packet_lanes(lanes);
-    for (int i = 0; i < 3; i++)
-        c[i] = lanes == all ? b[i] : _mm256_blendv_ps(c[i], b[i], m);
-}
+#include "trace/prepare8_read.h"
 
 /* shade_prepare's sphere: sphere_surface_plain at ray_at(t). */
 __attribute__((always_inline)) static inline void
@@ -159,26 +61,6 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, int all, __m256 
     prepare8_put(lanes, all, n, N);
 }
 
-/* The top three rows of the matrix at byte off of each lane's transform. */
-__attribute__((always_inline)) static inline void
-prepare8_matrix(const prepare8_objs *o, size_t off, __m256 a[3][4])
-{
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 4; c++)
-            a[r][c] = prepare8_field(o, true, off + (size_t)(r * 4 + c) * sizeof(float));
-}
-
-/* Row r of a times (x, y, z, w), as mat4_point (w) or mat4_vector (no w)
- * sum it. */
-__attribute__((always_inline)) static inline __m256 prepare8_row(__m256 a[3][4], int r,
-                                                                 const __m256 v[3], bool w)
-{
-    __m256 s = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(a[r][0], v[0]), _mm256_mul_ps(a[r][1], v[1])),
-        _mm256_mul_ps(a[r][2], v[2]));
-    return w ? _mm256_add_ps(s, a[r][3]) : s;
-}
-
 /* torus_nearest of the torus's local points lp: the nearest point p and
  * the unit normal n there, both in the torus's space. */
 __attribute__((always_inline)) static inline void prepare8_nearest(const prepare8_objs *o,
@@ -222,23 +104,30 @@ __attribute__((always_inline)) static inline void prepare8_nearest(const prepare
     }
 }
 
-/* plain_surface's torus: the ray in the torus's space, the nearest point
- * there at t (torus_nearest), its normal through the transform
- * (xform_normal) made unit, and the point back in the world. */
+/* The lanes' points at tt in their objects' space: their rays through
+ * the transforms' inverses (mat4_ray), then ray_at; the inverses' rows
+ * into inv. */
 __attribute__((always_inline)) static inline void
-prepare8_torus(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
-               const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
+prepare8_local(const prepare8_objs *o, __m256 tt, const __m256 org[3], const __m256 d[3],
+               __m256 inv[3][4], __m256 lp[3])
 {
-    prepare8_objs o;
-    prepare8_objects(s, hit, lanes, offsetof(object, shape.torus), &o);
-    __m256 lp[3], p[3], n[3], xn[3], wp[3], wn[3], inv[3][4], fwd[3][4];
-    prepare8_matrix(&o, offsetof(xform, inv), inv);
+    prepare8_matrix(o, offsetof(xform, inv), inv);
     for (int r = 0; r < 3; r++)
         lp[r] = _mm256_add_ps(prepare8_row(inv, r, org, true),
                               _mm256_mul_ps(prepare8_row(inv, r, d, false), tt));
-    prepare8_nearest(&o, lp, p, n);
-    prepare8_matrix(&o, offsetof(xform, fwd), fwd);
-    for (int c = 0; c < 3; c++) { /* the inverse's transpose */
+}
+
+/* Points p and normals n of the objects' space back in the world, into
+ * P and N for the lanes of `lanes`: each point through its transform
+ * (mat4_point), each normal through the inverse's transpose
+ * (xform_normal) and made unit. */
+__attribute__((always_inline)) static inline void
+prepare8_world(const prepare8_objs *o, __m256 inv[3][4], const __m256 p[3], const __m256 n[3],
+               int lanes, int all, __m256 P[3], __m256 N[3])
+{
+    __m256 fwd[3][4], xn[3], wp[3], wn[3];
+    prepare8_matrix(o, offsetof(xform, fwd), fwd);
+    for (int c = 0; c < 3; c++) {
         xn[c] = _mm256_add_ps(
             _mm256_add_ps(_mm256_mul_ps(inv[0][c], n[0]), _mm256_mul_ps(inv[1][c], n[1])),
             _mm256_mul_ps(inv[2][c], n[2]));
@@ -249,13 +138,211 @@ prepare8_torus(const scene *s, const scene_hit *hit, int lanes, int all, __m256 
     prepare8_put(lanes, all, wn, N);
 }
 
+/* plain_surface's torus: the nearest point in the torus's space at t
+ * (torus_nearest) and its normal, back in the world. */
+__attribute__((always_inline)) static inline void
+prepare8_torus(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+               const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
+{
+    prepare8_objs o;
+    prepare8_objects(s, hit, lanes, offsetof(object, shape.torus), &o);
+    __m256 lp[3], p[3], n[3], inv[3][4];
+    prepare8_local(&o, tt, org, d, inv, lp);
+    prepare8_nearest(&o, lp, p, n);
+    prepare8_world(&o, inv, p, n, lanes, all, P, N);
+}
+
+/* quad_surface: the point from the hit's (u, v) = (b1, b2), (origin +
+ * edge_u u) + edge_v v, and the quad's normal. */
+__attribute__((always_inline)) static inline void prepare8_quad(const scene *s,
+                                                                const scene_hit *hit, int lanes,
+                                                                int all, __m256 b1, __m256 b2,
+                                                                __m256 P[3], __m256 N[3])
+{
+    prepare8_objs o;
+    prepare8_objects(s, hit, lanes, offsetof(object, shape.quad), &o);
+    __m256 p[3], n[3];
+    for (int i = 0; i < 3; i++) {
+        size_t at = (size_t)i * sizeof(float);
+        __m256 org = prepare8_field(&o, false, offsetof(struct quad, origin) + at);
+        __m256 eu = prepare8_field(&o, false, offsetof(struct quad, edge_u) + at);
+        __m256 ev = prepare8_field(&o, false, offsetof(struct quad, edge_v) + at);
+        p[i] = _mm256_add_ps(_mm256_add_ps(org, _mm256_mul_ps(eu, b1)), _mm256_mul_ps(ev, b2));
+        n[i] = prepare8_field(&o, false, offsetof(struct quad, normal) + at);
+    }
+    prepare8_put(lanes, all, p, P);
+    prepare8_put(lanes, all, n, N);
+}
+
+/* box_surface at the points lp of the boxes' space, on the faces part
+ * (axis * 2 + side, side 1 the max face): each point moved onto its face
+ * exactly, the face's normal. */
+__attribute__((always_inline)) static inline void prepare8_box_at(const prepare8_objs *o,
+                                                                  __m256i part,
+                                                                  const __m256 lp[3],
+                                                                  __m256 p[3], __m256 n[3])
+{
+    __m256i axis = _mm256_srli_epi32(part, 1);
+    __m256 side = _mm256_castsi256_ps(_mm256_slli_epi32(part, 31)); /* the sign bit: side 1 */
+    __m256 out = _mm256_blendv_ps(_mm256_set1_ps(-1.0f), _mm256_set1_ps(1.0f), side);
+    for (int a = 0; a < 3; a++) {
+        __m256 on = _mm256_castsi256_ps(_mm256_cmpeq_epi32(axis, _mm256_set1_epi32(a)));
+        size_t at = (size_t)a * sizeof(float);
+        __m256 face = _mm256_blendv_ps(prepare8_field(o, false, offsetof(struct box, lo) + at),
+                                       prepare8_field(o, false, offsetof(struct box, hi) + at),
+                                       side);
+        p[a] = _mm256_blendv_ps(lp[a], face, on);
+        n[a] = _mm256_and_ps(on, out);
+    }
+}
+
+/* cylinder_surface_no_uv at the points lp of the cylinders' space: on the
+ * side (part 0) the normal out from the axis, made unit, and the point put
+ * back on the side; on a cap (1 bottom, 2 top) the point at the cap's
+ * height and the normal down or up. */
+__attribute__((always_inline)) static inline void
+prepare8_cylinder_at(const prepare8_objs *o, __m256i part, const __m256 lp[3], __m256 p[3],
+                     __m256 n[3])
+{
+    const __m256 zero = _mm256_setzero_ps();
+    __m256 b[3], sn[3];
+    for (int i = 0; i < 3; i++) {
+        size_t at = offsetof(struct cylinder, base) + (size_t)i * sizeof(float);
+        b[i] = prepare8_field(o, false, at);
+    }
+    __m256 rad = prepare8_field(o, false, offsetof(struct cylinder, radius));
+    __m256 height = prepare8_field(o, false, offsetof(struct cylinder, height));
+    __m256 side = _mm256_castsi256_ps(_mm256_cmpeq_epi32(part, _mm256_setzero_si256()));
+    __m256 top = _mm256_castsi256_ps(_mm256_cmpeq_epi32(part, _mm256_set1_epi32(2)));
+    __m256 radial[3] = {_mm256_sub_ps(lp[0], b[0]), zero, _mm256_sub_ps(lp[2], b[2])};
+    prepare8_norm(radial, sn);
+    __m256 cap_y = _mm256_add_ps(b[1], _mm256_and_ps(top, height));
+    __m256 up = _mm256_blendv_ps(_mm256_set1_ps(-1.0f), _mm256_set1_ps(1.0f), top);
+    p[0] = _mm256_blendv_ps(lp[0], _mm256_add_ps(b[0], _mm256_mul_ps(sn[0], rad)), side);
+    p[1] = _mm256_blendv_ps(cap_y, lp[1], side);
+    p[2] = _mm256_blendv_ps(lp[2], _mm256_add_ps(b[2], _mm256_mul_ps(sn[2], rad)), side);
+    n[0] = _mm256_and_ps(side, sn[0]);
+    n[1] = _mm256_blendv_ps(up, sn[1], side);
+    n[2] = _mm256_and_ps(side, sn[2]);
+}
+
+/* The boxes (box) or cylinders hit by the lanes of `lanes`: turned ones
+ * (turned) worked out in their objects' space and brought back, the
+ * others in the world's. */
+__attribute__((always_inline)) static inline void
+prepare8_solid(const scene *s, const scene_hit *hit, int lanes, int all, bool box, bool turned,
+               __m256 tt, __m256i part, const __m256 org[3], const __m256 d[3], __m256 P[3],
+               __m256 N[3])
+{
+    prepare8_objs o;
+    size_t off = box ? offsetof(object, shape.box) : offsetof(object, shape.cylinder);
+    prepare8_objects(s, hit, lanes, off, &o);
+    __m256 lp[3], p[3], n[3], inv[3][4];
+    if (turned)
+        prepare8_local(&o, tt, org, d, inv, lp);
+    else
+        for (int i = 0; i < 3; i++)
+            lp[i] = _mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt));
+    if (box)
+        prepare8_box_at(&o, part, lp, p, n);
+    else
+        prepare8_cylinder_at(&o, part, lp, p, n);
+    if (turned) {
+        prepare8_world(&o, inv, p, n, lanes, all, P, N);
+    } else {
+        prepare8_put(lanes, all, p, P);
+        prepare8_put(lanes, all, n, N);
+    }
+}
+
+/* What prepare8_checker reads of a material's chequer: its scale and
+ * offset, and its colours at 0 and at 1 (color_map_eval). */
+typedef struct prepare8_chequer {
+    float scale[3], offset[3], even[3], odd[3];
+} prepare8_chequer;
+
+/* texture_eval of each lane's flat chequer (shading.h: shade_flat_checker)
+ * at its quad's (u, v) = (b1, b2), into tex, 1 where the lane's material
+ * (groups mg) has none; false, tex untouched, where no lane's has one.
+ * The parity of the squares in whole numbers where the three coordinates
+ * are below 2^24 (every float from there up is even), as pattern_checker
+ * finds it; otherwise by pattern_checker itself. */
+__attribute__((always_inline)) static inline bool prepare8_checker(const scene *s,
+                                                                   const prepare8_groups *mg,
+                                                                   __m256 b1, __m256 b2,
+                                                                   __m256 tex[3])
+{
+    prepare8_chequer c[8];
+    const char *at[8];
+    int textured = 0;
+    for (int i = 0; i < mg->n; i++) {
+        const material *m = (const material *)(const void *)mg->at[i];
+        at[i] = (const char *)&c[i];
+        memset(&c[i], 0, sizeof c[i]);
+        if (m->texture < 0)
+            continue;
+        const texture *t = &s->textures[m->texture];
+        vec3 e = color_map_eval(&t->pattern.map, 0.0f), f = color_map_eval(&t->pattern.map, 1.0f);
+        for (int j = 0; j < 3; j++) {
+            c[i].scale[j] = v3_at(t->scale, j), c[i].offset[j] = v3_at(t->offset, j);
+            c[i].even[j] = v3_at(e, j), c[i].odd[j] = v3_at(f, j);
+        }
+        textured |= mg->bits[i];
+    }
+    if (!textured)
+        return false;
+    __m256 src[3] = {b1, b2, _mm256_setzero_ps()}, q[3];
+    __m256i sum = _mm256_setzero_si256();
+    __m256 small = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    const __m256 abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    for (int j = 0; j < 3; j++) {
+        size_t k = (size_t)j * sizeof(float);
+        q[j] = _mm256_add_ps(
+            _mm256_mul_ps(src[j], prepare8_read(mg, at, offsetof(prepare8_chequer, scale) + k)),
+            prepare8_read(mg, at, offsetof(prepare8_chequer, offset) + k));
+        sum = _mm256_add_epi32(sum, _mm256_cvttps_epi32(_mm256_floor_ps(q[j])));
+        small = _mm256_and_ps(small, _mm256_cmp_ps(_mm256_and_ps(q[j], abs),
+                                                   _mm256_set1_ps(0x1p24f), _CMP_LT_OQ));
+    }
+    __m256 odd = _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(sum, _mm256_set1_epi32(1)), _mm256_set1_epi32(1)));
+    int far = textured & ~_mm256_movemask_ps(small);
+    if (far) { /* pattern_checker, lane by lane */
+        float qs[3][8];
+        int32_t o[8];
+        for (int j = 0; j < 3; j++)
+            _mm256_storeu_ps(qs[j], q[j]);
+        _mm256_storeu_si256((__m256i *)(void *)o, _mm256_castps_si256(odd));
+        for (int m = far; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            o[k] = pattern_checker(v3(qs[0][k], qs[1][k], qs[2][k]), false) != 0.0f ? -1 : 0;
+        }
+        odd = _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)o));
+    }
+    __m256 has = packet_lanes(textured);
+    for (int j = 0; j < 3; j++) {
+        size_t k = (size_t)j * sizeof(float);
+        __m256 col = _mm256_blendv_ps(prepare8_read(mg, at, offsetof(prepare8_chequer, even) + k),
+                                      prepare8_read(mg, at, offsetof(prepare8_chequer, odd) + k),
+                                      odd);
+        tex[j] = _mm256_blendv_ps(_mm256_set1_ps(1.0f), col, has);
+    }
+    return true;
+}
+
+/* The float at byte off of each lane's hit (of its field t, hit[k].h.t
+ * at t[k]), as eight loads; an int's bits with an int's offset. */
+#define PREPARE8_HIT(t, field) \
+    simd8_at(t, offsetof(scene_hit, h.field) - offsetof(scene_hit, h.t))
+
 /* prepare (bounce8_api.h): each kind's point and normal (the two normals
- * are here the same), then facing. */
+ * are here the same), the chequers of the quads, then facing. */
 __attribute__((always_inline)) static inline void prepare8(const scene *s, const ray8 *p,
                                                            shade8_plain kinds, const scene_hit *hit,
                                                            shade8 *sp)
 {
-    int all = kinds.sphere | kinds.plane | kinds.torus;
+    int solid = kinds.box | kinds.cylinder;
+    int all = kinds.sphere | kinds.plane | kinds.torus | kinds.quad | solid;
     const void *t[8];
     for (int k = 0, first = __builtin_ctz((unsigned)all); k < 8; k++)
         t[k] = &hit[all >> k & 1 ? k : first].h.t;
@@ -273,7 +360,8 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
         prepare8_group(mat, all, &mg);
     }
     for (int i = 0; i < 3; i++)
-        col[i] = prepare8_read(&mg, mg.at, offsetof(material, color) + (size_t)i * sizeof(float));
+        col[i] = _mm256_mul_ps(
+            prepare8_read(&mg, mg.at, offsetof(material, color) + (size_t)i * sizeof(float)), one);
     __m256 d[3] = {_mm256_loadu_ps(p->dx), _mm256_loadu_ps(p->dy), _mm256_loadu_ps(p->dz)};
     __m256 org[3] = {_mm256_loadu_ps(p->ox), _mm256_loadu_ps(p->oy), _mm256_loadu_ps(p->oz)};
     __m256 P[3], N[3], dn[3];
@@ -285,6 +373,27 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
         prepare8_plane(s, hit, kinds.plane, all, tt, org, d, P, N);
     if (kinds.torus)
         prepare8_torus(s, hit, kinds.torus, all, tt, org, d, P, N);
+    if (kinds.quad) {
+        __m256 b1 = PREPARE8_HIT(t, b1), b2 = PREPARE8_HIT(t, b2), tex[3];
+        prepare8_quad(s, hit, kinds.quad, all, b1, b2, P, N);
+        if (prepare8_checker(s, &mg, b1, b2, tex))
+            for (int i = 0; i < 3; i++)
+                col[i] = _mm256_mul_ps(col[i], tex[i]);
+    }
+    if (solid) {
+        __m256i part = _mm256_castps_si256(PREPARE8_HIT(t, part));
+        int box = kinds.box & ~kinds.turned, cyl = kinds.cylinder & ~kinds.turned;
+        if (box)
+            prepare8_solid(s, hit, box, all, true, false, tt, part, org, d, P, N);
+        if (kinds.box & kinds.turned)
+            prepare8_solid(s, hit, kinds.box & kinds.turned, all, true, true, tt, part, org, d,
+                           P, N);
+        if (cyl)
+            prepare8_solid(s, hit, cyl, all, false, false, tt, part, org, d, P, N);
+        if (kinds.cylinder & kinds.turned)
+            prepare8_solid(s, hit, kinds.cylinder & kinds.turned, all, false, true, tt, part, org,
+                           d, P, N);
+    }
     prepare8_norm(d, dn);
     __m256 inside = _mm256_cmp_ps(simd8_dot(dn, N), _mm256_setzero_ps(), _CMP_GT_OQ);
     for (int i = 0; i < 3; i++) {
@@ -293,7 +402,7 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
         _mm256_storeu_ps(sp->n[i], f);
         _mm256_storeu_ps(sp->ng[i], f);
         _mm256_storeu_ps(sp->d[i], dn[i]);
-        _mm256_storeu_ps(sp->base[i], _mm256_mul_ps(col[i], one));
+        _mm256_storeu_ps(sp->base[i], col[i]);
     }
     sp->inside = (sp->inside & ~all) | (_mm256_movemask_ps(inside) & all);
 }

@@ -265,17 +265,17 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int dept
 }
 
 /* shade_prepare for the lanes of found into sp: those on plain surfaces
- * (shading.h: untextured spheres and planes, unturned, and tori turned by
- * a fixed transform) eight at a time where the path has the kernels, any
- * other lane one by one as the lanes are looked at, each object read
- * once. */
+ * (shading.h: untextured spheres and planes, unturned; tori turned by a
+ * fixed transform; quads, boxes and cylinders) eight at a time where the
+ * path has the kernels, any other lane one by one as the lanes are looked
+ * at, each object read once. */
 static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit hit[8],
                      shade8 *sp)
 {
     const scene *s = ctx->scene;
     const shade8_kernels *k8 = kernels8(ctx);
     shade_point done[8];
-    shade8_plain plain = {0, 0, 0};
+    shade8_plain plain = {0, 0, 0, 0, 0, 0, 0};
     sp->same = found ? scene_hit_material(s, &hit[__builtin_ctz((unsigned)found)]) : NULL;
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -289,12 +289,18 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
             plain.plane |= 1 << k;
         } else if (k8 && shade_plain_torus(o, mk)) {
             plain.torus |= 1 << k;
+        } else if (k8 && shade_plain_quad(s, o, mk)) {
+            plain.quad |= 1 << k;
+        } else if (k8 && shade_plain_solid(o, mk)) {
+            *(o->shape.kind == SHAPE_BOX ? &plain.box : &plain.cylinder) |= 1 << k;
+            plain.turned |= (o->xform >= 0) << k;
         } else {
             ray rk = ray8_get(p, k);
             shade_prepare(ctx, &rk, &hit[k], &done[k]);
         }
     }
-    int vector = plain.sphere | plain.plane | plain.torus;
+    int vector = plain.sphere | plain.plane | plain.torus | plain.quad | plain.box |
+                 plain.cylinder;
     sp->inside = 0;
     if (vector)
         k8->prepare(s, p, plain, hit, sp);
