@@ -397,8 +397,11 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
     prepare8_norm(d, dn);
     __m256 inside = _mm256_cmp_ps(simd8_dot(dn, N), _mm256_setzero_ps(), _CMP_GT_OQ);
     for (int i = 0; i < 3; i++) {
-        __m256 f = _mm256_blendv_ps(N[i], _mm256_xor_ps(N[i], sign), inside);
-        _mm256_storeu_ps(sp->p[i], P[i]);
+        __m256 f = _mm256_blendv_ps(N[i], _mm256_xor_ps(N[i], sign), inside), pi = P[i];
+        /* through a register: else the stores of P's lanes, kept on the
+         * stack, are merged into wider copies that wait for them */
+        __asm__("" : "+x"(pi));
+        _mm256_storeu_ps(sp->p[i], pi);
         _mm256_storeu_ps(sp->n[i], f);
         _mm256_storeu_ps(sp->ng[i], f);
         _mm256_storeu_ps(sp->d[i], dn[i]);

@@ -105,8 +105,9 @@ __attribute__((always_inline)) static inline void prepare8_put(int lanes, int al
                                                                const __m256 b[3], __m256 c[3])
 {
     __m256 m = packet_lanes(lanes);
+    (void)all;
     for (int i = 0; i < 3; i++)
-        c[i] = lanes == all ? b[i] : _mm256_blendv_ps(c[i], b[i], m);
+        c[i] = _mm256_blendv_ps(c[i], b[i], m);
 }
 
 /* The top three rows of the matrix at byte off of each lane's transform. */
