@@ -19,7 +19,7 @@
 
 /* shade_prepare's sphere: sphere_surface_plain at ray_at(t). */
 __attribute__((always_inline)) static inline void
-prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, __m256 tt,
                 const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
 {
     prepare8_objs o;
@@ -34,14 +34,14 @@ prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, int all, __m256
     prepare8_norm(q, n);
     for (int i = 0; i < 3; i++)
         p[i] = _mm256_add_ps(c[i], _mm256_mul_ps(n[i], rad));
-    prepare8_put(lanes, all, p, P);
-    prepare8_put(lanes, all, n, N);
+    prepare8_put(lanes, p, P);
+    prepare8_put(lanes, n, N);
 }
 
 /* plain_surface's plane: ray_at(t) moved onto the plane (plane_onto); its
  * normal. */
 __attribute__((always_inline)) static inline void
-prepare8_plane(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+prepare8_plane(const scene *s, const scene_hit *hit, int lanes, __m256 tt,
                const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
 {
     prepare8_objs o;
@@ -57,8 +57,8 @@ prepare8_plane(const scene *s, const scene_hit *hit, int lanes, int all, __m256 
     __m256 k = _mm256_xor_ps(simd8_dot(v, n), _mm256_set1_ps(-0.0f)); /* -(v . n) */
     for (int i = 0; i < 3; i++)
         p[i] = _mm256_add_ps(p[i], _mm256_mul_ps(n[i], k));
-    prepare8_put(lanes, all, p, P);
-    prepare8_put(lanes, all, n, N);
+    prepare8_put(lanes, p, P);
+    prepare8_put(lanes, n, N);
 }
 
 /* torus_nearest of the torus's local points lp: the nearest point p and
@@ -123,7 +123,7 @@ prepare8_local(const prepare8_objs *o, __m256 tt, const __m256 org[3], const __m
  * (xform_normal) and made unit. */
 __attribute__((always_inline)) static inline void
 prepare8_world(const prepare8_objs *o, __m256 inv[3][4], const __m256 p[3], const __m256 n[3],
-               int lanes, int all, __m256 P[3], __m256 N[3])
+               int lanes, __m256 P[3], __m256 N[3])
 {
     __m256 fwd[3][4], xn[3], wp[3], wn[3];
     prepare8_matrix(o, offsetof(xform, fwd), fwd);
@@ -134,14 +134,14 @@ prepare8_world(const prepare8_objs *o, __m256 inv[3][4], const __m256 p[3], cons
         wp[c] = prepare8_row(fwd, c, p, true);
     }
     prepare8_norm(xn, wn);
-    prepare8_put(lanes, all, wp, P);
-    prepare8_put(lanes, all, wn, N);
+    prepare8_put(lanes, wp, P);
+    prepare8_put(lanes, wn, N);
 }
 
 /* plain_surface's torus: the nearest point in the torus's space at t
  * (torus_nearest) and its normal, back in the world. */
 __attribute__((always_inline)) static inline void
-prepare8_torus(const scene *s, const scene_hit *hit, int lanes, int all, __m256 tt,
+prepare8_torus(const scene *s, const scene_hit *hit, int lanes, __m256 tt,
                const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
 {
     prepare8_objs o;
@@ -149,15 +149,14 @@ prepare8_torus(const scene *s, const scene_hit *hit, int lanes, int all, __m256 
     __m256 lp[3], p[3], n[3], inv[3][4];
     prepare8_local(&o, tt, org, d, inv, lp);
     prepare8_nearest(&o, lp, p, n);
-    prepare8_world(&o, inv, p, n, lanes, all, P, N);
+    prepare8_world(&o, inv, p, n, lanes, P, N);
 }
 
 /* quad_surface: the point from the hit's (u, v) = (b1, b2), (origin +
  * edge_u u) + edge_v v, and the quad's normal. */
-__attribute__((always_inline)) static inline void prepare8_quad(const scene *s,
-                                                                const scene_hit *hit, int lanes,
-                                                                int all, __m256 b1, __m256 b2,
-                                                                __m256 P[3], __m256 N[3])
+__attribute__((always_inline)) static inline void
+prepare8_quad(const scene *s, const scene_hit *hit, int lanes, __m256 b1, __m256 b2, __m256 P[3],
+              __m256 N[3])
 {
     prepare8_objs o;
     prepare8_objects(s, hit, lanes, offsetof(object, shape.quad), &o);
@@ -170,8 +169,8 @@ __attribute__((always_inline)) static inline void prepare8_quad(const scene *s,
         p[i] = _mm256_add_ps(_mm256_add_ps(org, _mm256_mul_ps(eu, b1)), _mm256_mul_ps(ev, b2));
         n[i] = prepare8_field(&o, false, offsetof(struct quad, normal) + at);
     }
-    prepare8_put(lanes, all, p, P);
-    prepare8_put(lanes, all, n, N);
+    prepare8_put(lanes, p, P);
+    prepare8_put(lanes, n, N);
 }
 
 /* box_surface at the points lp of the boxes' space, on the faces part
@@ -230,7 +229,7 @@ prepare8_cylinder_at(const prepare8_objs *o, __m256i part, const __m256 lp[3], _
  * (turned) worked out in their objects' space and brought back, the
  * others in the world's. */
 __attribute__((always_inline)) static inline void
-prepare8_solid(const scene *s, const scene_hit *hit, int lanes, int all, bool box, bool turned,
+prepare8_solid(const scene *s, const scene_hit *hit, int lanes, bool box, bool turned,
                __m256 tt, __m256i part, const __m256 org[3], const __m256 d[3], __m256 P[3],
                __m256 N[3])
 {
@@ -248,10 +247,10 @@ prepare8_solid(const scene *s, const scene_hit *hit, int lanes, int all, bool bo
     else
         prepare8_cylinder_at(&o, part, lp, p, n);
     if (turned) {
-        prepare8_world(&o, inv, p, n, lanes, all, P, N);
+        prepare8_world(&o, inv, p, n, lanes, P, N);
     } else {
-        prepare8_put(lanes, all, p, P);
-        prepare8_put(lanes, all, n, N);
+        prepare8_put(lanes, p, P);
+        prepare8_put(lanes, n, N);
     }
 }
 
@@ -368,31 +367,30 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
     for (int i = 0; i < 3; i++)
         P[i] = N[i] = _mm256_setzero_ps();
     if (kinds.sphere)
-        prepare8_sphere(s, hit, kinds.sphere, all, tt, org, d, P, N);
+        prepare8_sphere(s, hit, kinds.sphere, tt, org, d, P, N);
     if (kinds.plane)
-        prepare8_plane(s, hit, kinds.plane, all, tt, org, d, P, N);
+        prepare8_plane(s, hit, kinds.plane, tt, org, d, P, N);
     if (kinds.torus)
-        prepare8_torus(s, hit, kinds.torus, all, tt, org, d, P, N);
+        prepare8_torus(s, hit, kinds.torus, tt, org, d, P, N);
     if (kinds.quad) {
         __m256 b1 = PREPARE8_HIT(t, b1), b2 = PREPARE8_HIT(t, b2), tex[3];
-        prepare8_quad(s, hit, kinds.quad, all, b1, b2, P, N);
+        prepare8_quad(s, hit, kinds.quad, b1, b2, P, N);
         if (prepare8_checker(s, &mg, b1, b2, tex))
             for (int i = 0; i < 3; i++)
                 col[i] = _mm256_mul_ps(col[i], tex[i]);
     }
     if (solid) {
         __m256i part = _mm256_castps_si256(PREPARE8_HIT(t, part));
-        int box = kinds.box & ~kinds.turned, cyl = kinds.cylinder & ~kinds.turned;
+        int box = kinds.box & ~kinds.turned, turned_box = kinds.box & kinds.turned;
+        int cyl = kinds.cylinder & ~kinds.turned, turned_cyl = kinds.cylinder & kinds.turned;
         if (box)
-            prepare8_solid(s, hit, box, all, true, false, tt, part, org, d, P, N);
-        if (kinds.box & kinds.turned)
-            prepare8_solid(s, hit, kinds.box & kinds.turned, all, true, true, tt, part, org, d,
-                           P, N);
+            prepare8_solid(s, hit, box, true, false, tt, part, org, d, P, N);
+        if (turned_box)
+            prepare8_solid(s, hit, turned_box, true, true, tt, part, org, d, P, N);
         if (cyl)
-            prepare8_solid(s, hit, cyl, all, false, false, tt, part, org, d, P, N);
-        if (kinds.cylinder & kinds.turned)
-            prepare8_solid(s, hit, kinds.cylinder & kinds.turned, all, false, true, tt, part, org,
-                           d, P, N);
+            prepare8_solid(s, hit, cyl, false, false, tt, part, org, d, P, N);
+        if (turned_cyl)
+            prepare8_solid(s, hit, turned_cyl, false, true, tt, part, org, d, P, N);
     }
     prepare8_norm(d, dn);
     __m256 inside = _mm256_cmp_ps(simd8_dot(dn, N), _mm256_setzero_ps(), _CMP_GT_OQ);

@@ -99,13 +99,14 @@ __attribute__((always_inline)) static inline __m256 prepare8_field(const prepare
     return prepare8_read(&o->g, xf ? o->xf : o->shape, off);
 }
 
-/* b into c for the lanes of `lanes`; all of c where they are every lane
- * being prepared (all). */
-__attribute__((always_inline)) static inline void prepare8_put(int lanes, int all,
-                                                               const __m256 b[3], __m256 c[3])
+/* b into c for the lanes of `lanes`, blended in whatever lanes they are:
+ * assigned whole where they were all the lanes, c and b were copied
+ * through the stack in wider moves than they were stored in, which
+ * waited for those stores. */
+__attribute__((always_inline)) static inline void prepare8_put(int lanes, const __m256 b[3],
+                                                               __m256 c[3])
 {
     __m256 m = packet_lanes(lanes);
-    (void)all;
     for (int i = 0; i < 3; i++)
         c[i] = _mm256_blendv_ps(c[i], b[i], m);
 }
