@@ -38,13 +38,17 @@ __attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx
 static vec3 crossings_filter(const scene *s, const ray *sr, const scene_crossings *cross)
 {
     vec3 filter = v3s(1.0f);
-    float dlen = v3_len(sr->d), t_prev = 0.0f;
+    float dlen = -1.0f, t_prev = 0.0f; /* the ray's length, once an absorber needs it */
     for (int i = 0; i < cross->n; i++) {
         const scene_hit *hit = &cross->hit[i];
         const material *m = scene_hit_material(s, hit);
         filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
-        if (material_absorbs(m))
+        if (material_absorbs(m)) {
+            /* worked out only here: its square root, on the ray just put
+             * together, held up every crossing ray that needs none */
+            dlen = dlen < 0.0f ? v3_len(sr->d) : dlen;
             filter = v3_mul(filter, shadow_absorb(s, sr, hit, m, t_prev, dlen));
+        }
         if (v3_max_comp(filter) <= 0.0f)
             return filter;
         t_prev = hit->h.t;
