@@ -19,6 +19,7 @@
 #include <string.h>
 #include "accel/isa.h"
 #include "core/rng.h"
+#include "geom/csg.h"
 #include "glint.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -197,6 +198,46 @@ static float shared_materials(scene *s, rng *g, int shared[3])
     return boundary;
 }
 
+/* A few csg objects: (box & sphere) - a hole (a cylinder, a sphere or a
+ * torus), or their union, unturned, moved, or turned and stretched; some
+ * leaves turned in the csg's space, and some of their own materials (the
+ * kernels prepare the hits on unturned spheres, boxes and cylinders, and
+ * leave the others, and textured ones, to the lane-by-lane path). */
+static void add_csgs(scene *s, rng *g, const int shared[3], int tex)
+{
+    for (int i = 0, n = 2 + pick(g, 3); i < n; i++) {
+        csg *c = calloc(1, sizeof *c);
+        cr_assert_not_null(c);
+        float e = uniform(g, 0.4f, 0.9f);
+        shape box = shape_box(v3s(-e), v3s(e)), ball = shape_sphere(v3s(0.0f), e * 1.35f);
+        int kind = pick(g, 3);
+        shape hole = kind == 0   ? shape_cylinder(v3(0, -2, 0), e * 0.5f, 4.0f, chance(g, 0.7f))
+                     : kind == 1 ? shape_sphere(v3(0, e, 0), e * 0.6f)
+                                 : shape_torus(v3(0, e * 0.8f, 0), e * 0.7f, e * 0.25f);
+        xform tilt = xform_rotate(v3(1, 0, 0), uniform(g, 10, 80));
+        int mat = object_material(s, g, shared, tex);
+        int32_t both[2] = {csg_add_leaf(c, &box, NULL, mat),
+                           csg_add_leaf(c, &ball, chance(g, 0.3f) ? &tilt : NULL,
+                                        chance(g, 0.5f) ? mat : object_material(s, g, shared, tex))};
+        int32_t ops[2] = {csg_add_node(c, CSG_INTERSECTION, both, 2),
+                          csg_add_leaf(c, &hole, chance(g, 0.3f) ? &tilt : NULL,
+                                       object_material(s, g, shared, tex))};
+        csg_add_node(c, chance(g, 0.75f) ? CSG_DIFFERENCE : CSG_UNION, ops, 2);
+        csg_finish(c);
+        cr_assert_geq(scene_add_csg(s, c), 0);
+        int x = -1;
+        if (chance(g, 0.4f)) {
+            xform t = xform_translate(random_place(g));
+            x = scene_add_xform(s, &t);
+            cr_assert_geq(x, 0);
+        } else if (chance(g, 0.6f)) {
+            x = random_xform(s, g, random_place(g), chance(g, 0.5f));
+        }
+        shape sh = shape_csg(c);
+        cr_assert_geq(scene_add_object(s, &sh, -1, x), 0);
+    }
+}
+
 /* Many unturned spheres, so that packets mix objects and materials; a
  * few large ones, which packets meet whole; turned (and stretched)
  * spheres; quads, boxes and cylinders, some turned; turned tori;
@@ -367,6 +408,7 @@ static scene *random_scene(uint64_t seed, glint_settings *st)
     }
     float boundary = shared_materials(s, &g, shared);
     add_shapes(s, &g, shared, tex);
+    add_csgs(s, &g, shared, tex);
     add_camera(s, &g);
     add_lights(s, &g);
     add_air(s, &g);
@@ -404,6 +446,7 @@ static const char *shape_name(shape_kind k)
            : k == SHAPE_PLANE ? "plane"
            : k == SHAPE_TORUS ? "torus"
            : k == SHAPE_CYLINDER ? "cylinder"
+           : k == SHAPE_CSG ? "csg"
                               : "other";
 }
 

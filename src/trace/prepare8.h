@@ -12,31 +12,11 @@
 #ifndef GLINT_TRACE_PREPARE8_H
 #define GLINT_TRACE_PREPARE8_H
 
+#include "geom/csg.h"
 #include "geom/torus8.h" /* eight lanes of doubles */
 #include "shade/pattern.h"
 #include "trace/bounce8_api.h"
 #include "trace/prepare8_read.h"
-
-/* shade_prepare's sphere: sphere_surface_plain at ray_at(t). */
-__attribute__((always_inline)) static inline void
-prepare8_sphere(const scene *s, const scene_hit *hit, int lanes, __m256 tt,
-                const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
-{
-    prepare8_objs o;
-    prepare8_objects(s, hit, lanes, offsetof(object, shape.sphere), &o);
-    __m256 rad = prepare8_field(&o, false, offsetof(struct sphere, radius)), c[3], q[3];
-    __m256 n[3], p[3];
-    for (int i = 0; i < 3; i++) {
-        size_t at = offsetof(struct sphere, center) + (size_t)i * sizeof(float);
-        c[i] = prepare8_field(&o, false, at);
-        q[i] = _mm256_sub_ps(_mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt)), c[i]);
-    }
-    prepare8_norm(q, n);
-    for (int i = 0; i < 3; i++)
-        p[i] = _mm256_add_ps(c[i], _mm256_mul_ps(n[i], rad));
-    prepare8_put(lanes, p, P);
-    prepare8_put(lanes, n, N);
-}
 
 /* plain_surface's plane: ray_at(t) moved onto the plane (plane_onto); its
  * normal. */
@@ -225,32 +205,107 @@ prepare8_cylinder_at(const prepare8_objs *o, __m256i part, const __m256 lp[3], _
     n[2] = _mm256_and_ps(side, sn[2]);
 }
 
-/* The boxes (box) or cylinders hit by the lanes of `lanes`: turned ones
- * (turned) worked out in their objects' space and brought back, the
- * others in the world's. */
+/* sphere_surface_plain at the points lp of the spheres' space: the unit
+ * normal from the centre, and the point put back on the sphere. */
+__attribute__((always_inline)) static inline void prepare8_sphere_at(const prepare8_objs *o,
+                                                                     const __m256 lp[3],
+                                                                     __m256 p[3], __m256 n[3])
+{
+    __m256 rad = prepare8_field(o, false, offsetof(struct sphere, radius)), c[3], q[3];
+    for (int i = 0; i < 3; i++) {
+        size_t at = offsetof(struct sphere, center) + (size_t)i * sizeof(float);
+        c[i] = prepare8_field(o, false, at);
+        q[i] = _mm256_sub_ps(lp[i], c[i]);
+    }
+    prepare8_norm(q, n);
+    for (int i = 0; i < 3; i++)
+        p[i] = _mm256_add_ps(c[i], _mm256_mul_ps(n[i], rad));
+}
+
+/* The solids a packet's lanes hit, by kind. */
+enum { PREPARE8_SPHERE, PREPARE8_BOX, PREPARE8_CYLINDER, PREPARE8_SOLIDS };
+
+/* The solids of `kind` hit by the lanes of `lanes`, their shapes read
+ * through sh and, where they are turned (turned), their transforms
+ * through xo: each point and normal worked out in its shape's space, the
+ * normals of the lanes of flip turned round (a csg leaf's), and brought
+ * back to the world. */
 __attribute__((always_inline)) static inline void
-prepare8_solid(const scene *s, const scene_hit *hit, int lanes, bool box, bool turned,
+prepare8_solid_in(const prepare8_objs *sh, const prepare8_objs *xo, int lanes, int kind,
+                  bool turned, int flip, __m256 tt, __m256i part, const __m256 org[3],
+                  const __m256 d[3], __m256 P[3], __m256 N[3])
+{
+    __m256 lp[3], p[3], n[3], inv[3][4];
+    if (turned)
+        prepare8_local(xo, tt, org, d, inv, lp);
+    else
+        for (int i = 0; i < 3; i++)
+            lp[i] = _mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt));
+    if (kind == PREPARE8_SPHERE)
+        prepare8_sphere_at(sh, lp, p, n);
+    else if (kind == PREPARE8_BOX)
+        prepare8_box_at(sh, part, lp, p, n);
+    else
+        prepare8_cylinder_at(sh, part, lp, p, n);
+    if (flip) {
+        __m256 f = packet_lanes(flip);
+        for (int i = 0; i < 3; i++)
+            n[i] = _mm256_blendv_ps(n[i], _mm256_xor_ps(n[i], _mm256_set1_ps(-0.0f)), f);
+    }
+    if (turned) {
+        prepare8_world(xo, inv, p, n, lanes, P, N);
+    } else {
+        prepare8_put(lanes, p, P);
+        prepare8_put(lanes, n, N);
+    }
+}
+
+/* The spheres, boxes or cylinders (kind) hit by the lanes of `lanes`,
+ * turned ones (turned) worked out in their objects' space: shade_prepare's
+ * sphere (sphere_surface_plain at ray_at(t)), box_surface's and
+ * cylinder_surface_no_uv's points. */
+__attribute__((always_inline)) static inline void
+prepare8_solid(const scene *s, const scene_hit *hit, int lanes, int kind, bool turned,
                __m256 tt, __m256i part, const __m256 org[3], const __m256 d[3], __m256 P[3],
                __m256 N[3])
 {
     prepare8_objs o;
-    size_t off = box ? offsetof(object, shape.box) : offsetof(object, shape.cylinder);
+    size_t off = kind == PREPARE8_SPHERE ? offsetof(object, shape.sphere)
+                 : kind == PREPARE8_BOX  ? offsetof(object, shape.box)
+                                         : offsetof(object, shape.cylinder);
     prepare8_objects(s, hit, lanes, off, &o);
-    __m256 lp[3], p[3], n[3], inv[3][4];
-    if (turned)
-        prepare8_local(&o, tt, org, d, inv, lp);
-    else
-        for (int i = 0; i < 3; i++)
-            lp[i] = _mm256_add_ps(org[i], _mm256_mul_ps(d[i], tt));
-    if (box)
-        prepare8_box_at(&o, part, lp, p, n);
-    else
-        prepare8_cylinder_at(&o, part, lp, p, n);
-    if (turned) {
-        prepare8_world(&o, inv, p, n, lanes, P, N);
-    } else {
-        prepare8_put(lanes, p, P);
-        prepare8_put(lanes, n, N);
+    prepare8_solid_in(&o, &o, lanes, kind, turned, 0, tt, part, org, d, P, N);
+}
+
+/* csg_surface for the csg objects hit by the lanes of `lanes` (turned ones
+ * if turned), whose hits are on leaves that are spheres, boxes or
+ * cylinders in the csg's space (shading.h: shade_plain_leaf): each kind of
+ * leaf's lanes together, every leaf read once. */
+__attribute__((always_inline)) static inline void
+prepare8_csg(const scene *s, const scene_hit *hit, int lanes, bool turned, __m256 tt,
+             __m256i part, const __m256 org[3], const __m256 d[3], __m256 P[3], __m256 N[3])
+{
+    prepare8_objs xo, sh;
+    prepare8_objects(s, hit, lanes, 0, &xo);
+    const char *leaf[8];
+    int flip = 0, of[PREPARE8_SOLIDS] = {0, 0, 0};
+    for (int m = lanes; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        const csg_leaf *l = &s->objects[hit[k].object].shape.csg->leaves[hit[k].h.leaf];
+        leaf[k] = (const char *)l;
+        flip |= l->flip << k;
+        of[l->shape.kind == SHAPE_SPHERE ? PREPARE8_SPHERE
+           : l->shape.kind == SHAPE_BOX  ? PREPARE8_BOX
+                                         : PREPARE8_CYLINDER] |= 1 << k;
+    }
+    for (int kind = 0; kind < PREPARE8_SOLIDS; kind++) {
+        if (!of[kind])
+            continue;
+        prepare8_group(leaf, of[kind], &sh.g);
+        for (int i = 0; i < sh.g.n; i++) /* the union's members all start there */
+            sh.shape[i] = sh.g.at[i] + offsetof(csg_leaf, shape.sphere);
+        prepare8_solid_in(&sh, &xo, of[kind], kind, turned, flip & of[kind], tt, part, org, d,
+                          P, N);
     }
 }
 
@@ -340,7 +395,7 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
                                                            shade8_plain kinds, const scene_hit *hit,
                                                            shade8 *sp)
 {
-    int solid = kinds.box | kinds.cylinder;
+    int solid = kinds.box | kinds.cylinder | kinds.csg;
     int all = kinds.sphere | kinds.plane | kinds.torus | kinds.quad | solid;
     const void *t[8];
     for (int k = 0, first = __builtin_ctz((unsigned)all); k < 8; k++)
@@ -367,7 +422,8 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
     for (int i = 0; i < 3; i++)
         P[i] = N[i] = _mm256_setzero_ps();
     if (kinds.sphere)
-        prepare8_sphere(s, hit, kinds.sphere, tt, org, d, P, N);
+        prepare8_solid(s, hit, kinds.sphere, PREPARE8_SPHERE, false, tt, _mm256_setzero_si256(),
+                       org, d, P, N);
     if (kinds.plane)
         prepare8_plane(s, hit, kinds.plane, tt, org, d, P, N);
     if (kinds.torus)
@@ -383,14 +439,19 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
         __m256i part = _mm256_castps_si256(PREPARE8_HIT(t, part));
         int box = kinds.box & ~kinds.turned, turned_box = kinds.box & kinds.turned;
         int cyl = kinds.cylinder & ~kinds.turned, turned_cyl = kinds.cylinder & kinds.turned;
+        int csgs = kinds.csg & ~kinds.turned, turned_csg = kinds.csg & kinds.turned;
         if (box)
-            prepare8_solid(s, hit, box, true, false, tt, part, org, d, P, N);
+            prepare8_solid(s, hit, box, PREPARE8_BOX, false, tt, part, org, d, P, N);
         if (turned_box)
-            prepare8_solid(s, hit, turned_box, true, true, tt, part, org, d, P, N);
+            prepare8_solid(s, hit, turned_box, PREPARE8_BOX, true, tt, part, org, d, P, N);
         if (cyl)
-            prepare8_solid(s, hit, cyl, false, false, tt, part, org, d, P, N);
+            prepare8_solid(s, hit, cyl, PREPARE8_CYLINDER, false, tt, part, org, d, P, N);
         if (turned_cyl)
-            prepare8_solid(s, hit, turned_cyl, false, true, tt, part, org, d, P, N);
+            prepare8_solid(s, hit, turned_cyl, PREPARE8_CYLINDER, true, tt, part, org, d, P, N);
+        if (csgs)
+            prepare8_csg(s, hit, csgs, false, tt, part, org, d, P, N);
+        if (turned_csg)
+            prepare8_csg(s, hit, turned_csg, true, tt, part, org, d, P, N);
     }
     prepare8_norm(d, dn);
     __m256 inside = _mm256_cmp_ps(simd8_dot(dn, N), _mm256_setzero_ps(), _CMP_GT_OQ);

@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include "core/ray.h"
+#include "geom/csg.h"
 #include "geom/shape_inline.h"
 #include "scene/scene.h"
 #include "trace/whitted.h"
@@ -142,6 +143,18 @@ static inline bool shade_plain_solid(const object *o, const material *m)
 {
     return (o->shape.kind == SHAPE_BOX || o->shape.kind == SHAPE_CYLINDER) &&
            !(o->xform >= 0 && o->moving) && !material_uses_uv(m);
+}
+
+/* A hit on a csg object, unturned or turned by a fixed transform, whose
+ * leaf is an untextured sphere, box or cylinder in the csg's own space
+ * (csg_surface, without a leaf transform). */
+static inline bool shade_plain_leaf(const object *o, const scene_hit *hit, const material *m)
+{
+    if (o->shape.kind != SHAPE_CSG || (o->xform >= 0 && o->moving) || material_uses_uv(m))
+        return false;
+    const csg_leaf *l = &o->shape.csg->leaves[hit->h.leaf];
+    shape_kind k = l->shape.kind;
+    return !l->moved && (k == SHAPE_SPHERE || k == SHAPE_BOX || k == SHAPE_CYLINDER);
 }
 
 /* The shading point of a hit. Inline for its commonest case, an

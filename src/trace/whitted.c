@@ -275,7 +275,7 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
     const scene *s = ctx->scene;
     const shade8_kernels *k8 = kernels8(ctx);
     shade_point done[8];
-    shade8_plain plain = {0, 0, 0, 0, 0, 0, 0};
+    shade8_plain plain = {0, 0, 0, 0, 0, 0, 0, 0};
     sp->same = found ? scene_hit_material(s, &hit[__builtin_ctz((unsigned)found)]) : NULL;
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
@@ -294,13 +294,16 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
         } else if (k8 && shade_plain_solid(o, mk)) {
             *(o->shape.kind == SHAPE_BOX ? &plain.box : &plain.cylinder) |= 1 << k;
             plain.turned |= (o->xform >= 0) << k;
+        } else if (k8 && shade_plain_leaf(o, &hit[k], mk)) {
+            plain.csg |= 1 << k;
+            plain.turned |= (o->xform >= 0) << k;
         } else {
             ray rk = ray8_get(p, k);
             shade_prepare(ctx, &rk, &hit[k], &done[k]);
         }
     }
     int vector = plain.sphere | plain.plane | plain.torus | plain.quad | plain.box |
-                 plain.cylinder;
+                 plain.cylinder | plain.csg;
     sp->inside = 0;
     if (vector)
         k8->prepare(s, p, plain, hit, sp);
