@@ -79,11 +79,12 @@ static float random_ior(rng *g)
 /* A material drawn at random. reflect reaches 1.25 and tints exceed 1,
  * beyond what scene files allow, as the internal API does not refuse
  * them (adc_keep's shares are scaled for such materials). tex, when >=
- * 0, is the first of three textures that a few take (random_scene): two
+ * 0, is the first of five textures that a few take (random_scene): two
  * chequers on (u, v), which the kernels look up on quads, one of them so
- * fine that its squares' numbers pass 2^53, and stripes in object space,
+ * fine that its squares' numbers pass 2^53; stripes in object space,
  * which they leave to the lane-by-lane path, as they leave every
- * textured sphere, box and cylinder. */
+ * textured sphere, box and cylinder; and two images (add_images), which
+ * they look up on quads too. */
 static material random_material(rng *g, int tex)
 {
     material m = material_default();
@@ -109,7 +110,7 @@ static material random_material(rng *g, int tex)
     if (chance(g, 0.2f))
         m.emission = random_color(g, 0.0f, 0.4f);
     if (tex >= 0 && chance(g, 0.1f))
-        m.texture = tex + pick(g, 3);
+        m.texture = tex + pick(g, 5);
     return m;
 }
 
@@ -142,7 +143,7 @@ static int quad_material(scene *s, rng *g, const int shared[3], int tex)
     if (tex < 0 || chance(g, 0.5f))
         return object_material(s, g, shared, tex);
     material m = random_material(g, -1);
-    m.texture = tex + pick(g, 3);
+    m.texture = tex + pick(g, 5);
     int i = scene_add_material(s, &m);
     cr_assert_geq(i, 0);
     return i;
@@ -216,9 +217,9 @@ static void add_csgs(scene *s, rng *g, const int shared[3], int tex)
                                  : shape_torus(v3(0, e * 0.8f, 0), e * 0.7f, e * 0.25f);
         xform tilt = xform_rotate(v3(1, 0, 0), uniform(g, 10, 80));
         int mat = object_material(s, g, shared, tex);
+        int ball_mat = chance(g, 0.5f) ? mat : object_material(s, g, shared, tex);
         int32_t both[2] = {csg_add_leaf(c, &box, NULL, mat),
-                           csg_add_leaf(c, &ball, chance(g, 0.3f) ? &tilt : NULL,
-                                        chance(g, 0.5f) ? mat : object_material(s, g, shared, tex))};
+                           csg_add_leaf(c, &ball, chance(g, 0.3f) ? &tilt : NULL, ball_mat)};
         int32_t ops[2] = {csg_add_node(c, CSG_INTERSECTION, both, 2),
                           csg_add_leaf(c, &hole, chance(g, 0.3f) ? &tilt : NULL,
                                        object_material(s, g, shared, tex))};
@@ -384,6 +385,35 @@ static void add_air(scene *s, rng *g)
     scene_set_fog(s, &f);
 }
 
+/* Textures first to first + 1: two small images, one of stored bytes
+ * clamped and one of linear floats repeating, each scaled and moved so
+ * that their texels' indices run past both edges (one far enough out,
+ * past 1e9, that image_bilinear takes texel (0, 0)). */
+static void add_images(scene *s, rng *g, int first)
+{
+    for (int i = 0; i < 2; i++) {
+        image img = {5 + i * 2, 3 + i * 4, NULL, NULL};
+        size_t n = (size_t)img.width * (size_t)img.height * 3;
+        if (i == 0) {
+            img.rgb = malloc(n);
+            cr_assert_not_null(img.rgb);
+            for (size_t k = 0; k < n; k++)
+                img.rgb[k] = (uint8_t)(rng_float(g) * 255.0f);
+        } else {
+            img.linear = malloc(n * sizeof(float));
+            cr_assert_not_null(img.linear);
+            for (size_t k = 0; k < n; k++)
+                img.linear[k] = uniform(g, 0.0f, 1.5f);
+        }
+        texture t = texture_image(scene_add_image(s, &img));
+        t.image.wrap_u = i ? WRAP_REPEAT : WRAP_CLAMP;
+        t.image.wrap_v = t.image.wrap_u;
+        t.scale = i ? v3(2.5f, -1.5f, 1.0f) : v3(1.3f, 2e9f, 1.0f);
+        t.offset = v3(-0.2f, 0.35f, 0.0f);
+        cr_assert_eq(scene_add_texture(s, &t), first + i);
+    }
+}
+
 /* Scene `seed`, built on the active path, with the settings to render it
  * by into *st: 64 x 48, 1 or 4 samples (grid or jitter), depth 6, one
  * thread or two, alpha in a third; adaptive depth control at the
@@ -405,6 +435,7 @@ static scene *random_scene(uint64_t seed, glint_settings *st)
         tex = scene_add_texture(s, &checker);
         cr_assert(scene_add_texture(s, &fine) == tex + 1 &&
                   scene_add_texture(s, &stripes) == tex + 2);
+        add_images(s, &g, tex + 3);
     }
     float boundary = shared_materials(s, &g, shared);
     add_shapes(s, &g, shared, tex);

@@ -148,10 +148,10 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
 
 /* Defines shade8_kernels_<isa>. */
 #define BOUNCE8_KERNELS(isa)                                                                   \
-    static void prepare_##isa(const scene *s, const ray8 *p, shade8_plain kinds,              \
-                              const scene_hit *hit, shade8 *sp)                                \
+    static void prepare_##isa(const scene *s, const float decode[256], const ray8 *p,         \
+                              shade8_plain kinds, const scene_hit *hit, shade8 *sp)            \
     {                                                                                          \
-        prepare8(s, p, kinds, hit, sp);                                                        \
+        prepare8(s, decode, p, kinds, hit, sp);                                                \
     }                                                                                          \
     static int split_##isa(const shade8 *sp, int found, float kr[8], float kt[8], float gt[8], \
                            color8 *tdir, int *transmits)                                   \

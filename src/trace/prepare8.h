@@ -14,9 +14,9 @@
 
 #include "geom/csg.h"
 #include "geom/torus8.h" /* eight lanes of doubles */
-#include "shade/pattern.h"
 #include "trace/bounce8_api.h"
 #include "trace/prepare8_read.h"
+#include "trace/prepare8_texture.h"
 
 /* plain_surface's plane: ray_at(t) moved onto the plane (plane_onto); its
  * normal. */
@@ -309,81 +309,6 @@ prepare8_csg(const scene *s, const scene_hit *hit, int lanes, bool turned, __m25
     }
 }
 
-/* What prepare8_checker reads of a material's chequer: its scale and
- * offset, and its colours at 0 and at 1 (color_map_eval). */
-typedef struct prepare8_chequer {
-    float scale[3], offset[3], even[3], odd[3];
-} prepare8_chequer;
-
-/* texture_eval of each lane's flat chequer (shading.h: shade_flat_checker)
- * at its quad's (u, v) = (b1, b2), into tex, 1 where the lane's material
- * (groups mg) has none; false, tex untouched, where no lane's has one.
- * The parity of the squares in whole numbers where the three coordinates
- * are below 2^24 (every float from there up is even), as pattern_checker
- * finds it; otherwise by pattern_checker itself. */
-__attribute__((always_inline)) static inline bool prepare8_checker(const scene *s,
-                                                                   const prepare8_groups *mg,
-                                                                   __m256 b1, __m256 b2,
-                                                                   __m256 tex[3])
-{
-    prepare8_chequer c[8];
-    const char *at[8];
-    int textured = 0;
-    for (int i = 0; i < mg->n; i++) {
-        const material *m = (const material *)(const void *)mg->at[i];
-        at[i] = (const char *)&c[i];
-        memset(&c[i], 0, sizeof c[i]);
-        if (m->texture < 0)
-            continue;
-        const texture *t = &s->textures[m->texture];
-        vec3 e = color_map_eval(&t->pattern.map, 0.0f), f = color_map_eval(&t->pattern.map, 1.0f);
-        for (int j = 0; j < 3; j++) {
-            c[i].scale[j] = v3_at(t->scale, j), c[i].offset[j] = v3_at(t->offset, j);
-            c[i].even[j] = v3_at(e, j), c[i].odd[j] = v3_at(f, j);
-        }
-        textured |= mg->bits[i];
-    }
-    if (!textured)
-        return false;
-    __m256 src[3] = {b1, b2, _mm256_setzero_ps()}, q[3];
-    __m256i sum = _mm256_setzero_si256();
-    __m256 small = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-    const __m256 abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
-    for (int j = 0; j < 3; j++) {
-        size_t k = (size_t)j * sizeof(float);
-        q[j] = _mm256_add_ps(
-            _mm256_mul_ps(src[j], prepare8_read(mg, at, offsetof(prepare8_chequer, scale) + k)),
-            prepare8_read(mg, at, offsetof(prepare8_chequer, offset) + k));
-        sum = _mm256_add_epi32(sum, _mm256_cvttps_epi32(_mm256_floor_ps(q[j])));
-        small = _mm256_and_ps(small, _mm256_cmp_ps(_mm256_and_ps(q[j], abs),
-                                                   _mm256_set1_ps(0x1p24f), _CMP_LT_OQ));
-    }
-    __m256 odd = _mm256_castsi256_ps(
-        _mm256_cmpeq_epi32(_mm256_and_si256(sum, _mm256_set1_epi32(1)), _mm256_set1_epi32(1)));
-    int far = textured & ~_mm256_movemask_ps(small);
-    if (far) { /* pattern_checker, lane by lane */
-        float qs[3][8];
-        int32_t o[8];
-        for (int j = 0; j < 3; j++)
-            _mm256_storeu_ps(qs[j], q[j]);
-        _mm256_storeu_si256((__m256i *)(void *)o, _mm256_castps_si256(odd));
-        for (int m = far; m; m &= m - 1) {
-            int k = __builtin_ctz((unsigned)m);
-            o[k] = pattern_checker(v3(qs[0][k], qs[1][k], qs[2][k]), false) != 0.0f ? -1 : 0;
-        }
-        odd = _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)o));
-    }
-    __m256 has = packet_lanes(textured);
-    for (int j = 0; j < 3; j++) {
-        size_t k = (size_t)j * sizeof(float);
-        __m256 col = _mm256_blendv_ps(prepare8_read(mg, at, offsetof(prepare8_chequer, even) + k),
-                                      prepare8_read(mg, at, offsetof(prepare8_chequer, odd) + k),
-                                      odd);
-        tex[j] = _mm256_blendv_ps(_mm256_set1_ps(1.0f), col, has);
-    }
-    return true;
-}
-
 /* The float at byte off of each lane's hit (of its field t, hit[k].h.t
  * at t[k]), as eight loads; an int's bits with an int's offset. */
 #define PREPARE8_HIT(t, field) \
@@ -391,9 +316,9 @@ __attribute__((always_inline)) static inline bool prepare8_checker(const scene *
 
 /* prepare (bounce8_api.h): each kind's point and normal (the two normals
  * are here the same), the chequers of the quads, then facing. */
-__attribute__((always_inline)) static inline void prepare8(const scene *s, const ray8 *p,
-                                                           shade8_plain kinds, const scene_hit *hit,
-                                                           shade8 *sp)
+__attribute__((always_inline)) static inline void prepare8(const scene *s, const float decode[256],
+                                                           const ray8 *p, shade8_plain kinds,
+                                                           const scene_hit *hit, shade8 *sp)
 {
     int solid = kinds.box | kinds.cylinder | kinds.csg;
     int all = kinds.sphere | kinds.plane | kinds.torus | kinds.quad | solid;
@@ -431,7 +356,7 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
     if (kinds.quad) {
         __m256 b1 = PREPARE8_HIT(t, b1), b2 = PREPARE8_HIT(t, b2), tex[3];
         prepare8_quad(s, hit, kinds.quad, b1, b2, P, N);
-        if (prepare8_checker(s, &mg, b1, b2, tex))
+        if (prepare8_texture(s, decode, &mg, b1, b2, tex))
             for (int i = 0; i < 3; i++)
                 col[i] = _mm256_mul_ps(col[i], tex[i]);
     }

@@ -121,22 +121,26 @@ static inline bool shade_plain_torus(const object *o, const material *m)
     return o->xform >= 0 && !o->moving && o->shape.kind == SHAPE_TORUS && !material_uses_uv(m);
 }
 
-/* Whether texture t is a chequer on (u, v) that no transform moves: the
- * one texture the packet kernels look up themselves (trace/prepare8.h). */
-static inline bool shade_flat_checker(const texture *t)
+/* Whether texture t is one the packet kernels look up themselves
+ * (trace/prepare8_texture.h): a chequer or an image on (u, v), which no
+ * transform moves. */
+static inline bool shade_flat_texture(const texture *t)
 {
-    return t->kind == TEXTURE_CHECKER && t->space == SPACE_UV && !t->has_xform;
+    if (t->space != SPACE_UV || t->has_xform)
+        return false;
+    return t->kind == TEXTURE_CHECKER ||
+           (t->kind == TEXTURE_IMAGE && t->image.mapping == MAPPING_UV);
 }
 
 /* The shapes the packet kernels also prepare, though shade_prepare takes
  * them the general way (shade_prepare_surface): an unturned quad,
- * untextured or with a flat chequer (shade_flat_checker) and unbumped; a
+ * untextured or with a flat texture (shade_flat_texture) and unbumped; a
  * box or a cylinder, untextured, unturned or turned by a fixed
  * transform. */
 static inline bool shade_plain_quad(const scene *s, const object *o, const material *m)
 {
     return o->xform < 0 && o->shape.kind == SHAPE_QUAD && m->bump < 0 &&
-           (m->texture < 0 || shade_flat_checker(&s->textures[m->texture]));
+           (m->texture < 0 || shade_flat_texture(&s->textures[m->texture]));
 }
 
 static inline bool shade_plain_solid(const object *o, const material *m)
