@@ -218,6 +218,13 @@ static void mix8(const trace_ctx *ctx, const shade8 *sp, int keep, bool reflect,
     }
 }
 
+/* Whether a segment inside material m changes the light it carries
+ * (shade_segment_crossed, without fog). */
+static inline bool absorbs_inside(const material *m)
+{
+    return m->transmit > 0.0f && material_absorbs(m);
+}
+
 /* trace_rest for the lanes of `found`, with their local light in c. */
 static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int depth,
                   const scene_hit hit[8], const shade8 *sp, color8 *c, color8 *out)
@@ -244,15 +251,18 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int dept
         for (int k = 0; k < 8; k++)
             ls->weight[k] = share[k];
     }
-    int crossed = 0; /* lanes whose segment runs through fog or a transmitting object */
+    /* lanes whose segment runs through fog or inside a transmitting object
+     * that absorbs (shade_segment_crossed leaves any other's colour as it
+     * is) */
+    int crossed = 0;
     if (ctx->scene->fog.kind != FOG_NONE)
         crossed = found;
     else if (sp->same)
-        crossed = sp->same->transmit > 0.0f ? found & sp->inside : 0;
+        crossed = absorbs_inside(sp->same) ? found & sp->inside : 0;
     else
         for (int m = found & sp->inside; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
-            crossed |= (sp->m[k]->transmit > 0.0f) << k;
+            crossed |= absorbs_inside(sp->m[k]) << k;
         }
     *out = *c;
     for (int m = crossed; m; m &= m - 1) {
