@@ -394,10 +394,12 @@ static glint_rc build(scene *s, glint_error *err)
     if (rc != GLINT_OK)
         return rc;
     s->flat = s->bvh.nnodes == 0 || s->bvh.leaf_root;
-    s->any_transmit = s->any_reflect = false;
+    s->any_transmit = s->any_reflect = s->any_absorb = false;
     for (int i = 0; i < s->nmaterials; i++) {
-        s->any_transmit = s->any_transmit || s->materials[i].transmit > 0.0f;
-        s->any_reflect = s->any_reflect || s->materials[i].reflect > 0.0f;
+        const material *m = &s->materials[i];
+        s->any_transmit = s->any_transmit || m->transmit > 0.0f;
+        s->any_reflect = s->any_reflect || m->reflect > 0.0f;
+        s->any_absorb = s->any_absorb || (m->transmit > 0.0f && material_absorbs(m));
     }
     s->built = true;
     return GLINT_OK;

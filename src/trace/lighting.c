@@ -34,7 +34,8 @@ __attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx
 }
 
 /* What reaches the end of shadow ray sr through its crossings of
- * transmitting objects, which filter the light in order along the ray. */
+ * transmitting objects, which filter the light in order along the ray;
+ * sr may be NULL where no material absorbs (scene.any_absorb). */
 static vec3 crossings_filter(const scene *s, const ray *sr, const scene_crossings *cross)
 {
     vec3 filter = v3s(1.0f);
@@ -190,9 +191,14 @@ static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vis8 *vis)
             color8_put(&vis->filter, k, v3s(blocked >> k & 1 ? 0.0f : 1.0f));
     for (int m = vis->filtered; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
-        ray sr = ray8_get(p, k);
-        color8_put(&vis->filter, k,
-                   alone >> k & 1 ? shadow_filter(s, &sr) : crossings_filter(s, &sr, &cross[k]));
+        vec3 f;
+        if (!(alone >> k & 1) && !s->any_absorb) { /* the ray itself is not needed */
+            f = crossings_filter(s, NULL, &cross[k]);
+        } else {
+            ray sr = ray8_get(p, k);
+            f = alone >> k & 1 ? shadow_filter(s, &sr) : crossings_filter(s, &sr, &cross[k]);
+        }
+        color8_put(&vis->filter, k, f);
     }
     ctx->shadow_rays += (uint64_t)ray8_count(need);
 }
