@@ -231,6 +231,14 @@ bool scene_shadow(const scene *s, const ray *r, scene_crossings *out);
  * scene's transmitting objects are few only they are asked, a sphere for
  * the eight rays in one test on the eight-wide paths. */
 int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_crossings out[8]);
+/* The commonest case of scene_shadow_unblocked8, where the transmitting
+ * objects are few unturned spheres tested eight rays at once: for each ray
+ * of lanes that crosses one of them only, that object in obj[k] and its
+ * crossings (1 or 2) in count[k]; count[k] 0 for a ray that crosses none.
+ * Returns the rays that cross more than one, or all of lanes where the
+ * transmitting objects are not such spheres: scene_shadow_unblocked8's. */
+int scene_shadow_one_crossed8(const scene *s, const ray8 *r, int lanes, int32_t obj[8],
+                              int count[8]);
 
 /* Surface at a hit, in world space, normals unit and outward; (u, v) may
  * be left 0 where the hit's material does not use them (material_uses_uv).

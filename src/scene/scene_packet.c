@@ -338,6 +338,33 @@ static void crossings8_object(const scene *s, int i, const ray8 *r, int lanes,
     }
 }
 
+int scene_shadow_one_crossed8(const scene *s, const ray8 *r, int lanes, int32_t obj[8],
+                              int count[8])
+{
+    if (s->ncrossed < 0)
+        return lanes;
+    int seen = 0, more = 0;
+    for (int i = 0; i < s->ncrossed; i++) {
+        const object *o = &s->objects[s->crossed[i]];
+        float t[2][8];
+        int took[2];
+        if (!(o->shape.kind == SHAPE_SPHERE && o->xform < 0 &&
+              sphere_crossings8(s, &o->shape.sphere, r, lanes, t, took)))
+            return lanes;
+        int met = took[0] | took[1];
+        more |= met & seen;
+        for (int m = met & ~seen; m; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            obj[k] = s->crossed[i];
+            count[k] = (took[0] >> k & 1) + (took[1] >> k & 1);
+        }
+        seen |= met;
+    }
+    for (int m = lanes & ~seen; m; m &= m - 1)
+        count[__builtin_ctz((unsigned)m)] = 0;
+    return more;
+}
+
 int scene_shadow_unblocked8(const scene *s, const ray8 *r, int lanes, scene_crossings out[8])
 {
     int blocked = 0;

@@ -57,6 +57,22 @@ static vec3 crossings_filter(const scene *s, const ray *sr, const scene_crossing
     return filter;
 }
 
+/* crossings_filter for a ray that crosses object obj only, count times
+ * (0 to 2), whose material does not absorb. */
+static vec3 one_object_filter(const scene *s, int32_t obj, int count)
+{
+    vec3 filter = v3s(1.0f);
+    if (!count)
+        return filter;
+    const material *m = &s->materials[s->objects[obj].material];
+    for (int i = 0; i < count; i++) {
+        filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
+        if (v3_max_comp(filter) <= 0.0f)
+            return filter;
+    }
+    return filter;
+}
+
 /* What reaches the end of shadow ray sr (lighting_shadow). */
 static vec3 shadow_filter(const scene *s, const ray *sr)
 {
@@ -177,12 +193,24 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
 static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vis8 *vis)
 {
     const scene *s = ctx->scene;
-    int blocked = 0, crosses = 0, alone = need;
+    int blocked = 0, crosses = 0, alone = need, listed = 0;
     scene_crossings cross[8];
+    int32_t obj[8];
+    int count[8];
     if (ray8_three_or_more(need) && scene_shadow8(s, p, need, &blocked, &crosses)) {
         alone = 0;
-        if (crosses) /* their crossings together, which filter each */
-            blocked |= scene_shadow_unblocked8(s, p, crosses, cross);
+        /* their crossings together, which filter each: listed in order
+         * along each ray only where it crosses more than one object, or
+         * one that absorbs */
+        if (crosses)
+            listed = scene_shadow_one_crossed8(s, p, crosses, obj, count);
+        for (int m = crosses & ~listed; m && s->any_absorb; m &= m - 1) {
+            int k = __builtin_ctz((unsigned)m);
+            if (count[k] && material_absorbs(&s->materials[s->objects[obj[k]].material]))
+                listed |= 1 << k;
+        }
+        if (listed)
+            blocked |= scene_shadow_unblocked8(s, p, listed, cross);
     }
     vis->blocked = blocked;
     vis->filtered = need & (alone | (crosses & ~blocked)); /* the lanes that need their ray */
@@ -192,7 +220,9 @@ static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vis8 *vis)
     for (int m = vis->filtered; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         vec3 f;
-        if (!(alone >> k & 1) && !s->any_absorb) { /* the ray itself is not needed */
+        if (!(alone >> k & 1) && !(listed >> k & 1)) {
+            f = one_object_filter(s, obj[k], count[k]);
+        } else if (!(alone >> k & 1) && !s->any_absorb) { /* the ray itself is not needed */
             f = crossings_filter(s, NULL, &cross[k]);
         } else {
             ray sr = ray8_get(p, k);
