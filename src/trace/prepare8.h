@@ -3,7 +3,8 @@
  * untextured, unturned sphere (shade_prepare's inline case), an
  * untextured, unturned plane, or an untextured torus turned by a fixed
  * transform (shading.c: plain_surface); an unturned quad, untextured or
- * with a flat chequer, and an untextured box or cylinder, turned by a
+ * with a flat texture (prepare8_texture.h), an untextured box or
+ * cylinder, and a csg object's sphere, box or cylinder leaf, turned by a
  * fixed transform or not (shade_prepare_surface's general way). Lane by
  * lane the same floats as those, in the same order (no fused
  * multiply-adds): the torus's nearest point in doubles, as torus_nearest
