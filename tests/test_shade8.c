@@ -640,6 +640,66 @@ static int same_film_on_every_path(uint64_t seed)
     return failed;
 }
 
+/* A transmitting csg (clear glass, no absorption) with an opaque,
+ * absorbing box among its operands, over a floor, among small spheres
+ * that make the camera rays go in packets: the shadow rays through it
+ * cross the box too, whose absorption reads the ray (a packet's filter
+ * once took the ray as not needed there, and crashed); every path
+ * renders the scalar path's bytes. */
+Test(shade8, absorbing_opaque_part_of_a_glass_csg)
+{
+    glint_film ref = {0};
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = scene_new();
+        cr_assert_not_null(s);
+        material floor = material_default(), glass = material_default(), dark = floor;
+        glass.transmit = 0.9f, glass.ior = 1.0f;
+        dark.color = v3s(0.5f), dark.absorption = v3s(0.5f);
+        int mf = scene_add_material(s, &floor), mg = scene_add_material(s, &glass);
+        int md = scene_add_material(s, &dark);
+        shape ground = shape_plane(v3s(0.0f), v3(0, 1, 0));
+        cr_assert_geq(scene_add_object(s, &ground, mf, -1), 0);
+        csg *c = calloc(1, sizeof *c);
+        cr_assert_not_null(c);
+        shape box = shape_box(v3(-2, 3, -2), v3(2, 3.5f, 2)), ball = shape_sphere(v3(3, 1, 0), 0.5f);
+        int32_t both[2] = {csg_add_leaf(c, &box, NULL, md), csg_add_leaf(c, &ball, NULL, mg)};
+        csg_add_node(c, CSG_UNION, both, 2);
+        csg_finish(c);
+        cr_assert_geq(scene_add_csg(s, c), 0);
+        shape sh = shape_csg(c);
+        cr_assert_geq(scene_add_object(s, &sh, -1, -1), 0);
+        for (int i = 0; i < 20; i++) {
+            shape b = shape_sphere(v3(-6.0f + 0.6f * (float)i, 0.2f, -4), 0.2f);
+            cr_assert_geq(scene_add_object(s, &b, mf, -1), 0);
+        }
+        light l = light_point(v3(0, 8, 0), v3s(1.0f), v3(1, 0, 0));
+        cr_assert_geq(scene_add_light(s, &l), 0);
+        camera cam = {.eye = v3(0, 3, 8), .target = v3s(0.0f), .up = v3(0, 1, 0), .hfov = 50,
+                      .projection = CAMERA_PERSPECTIVE};
+        scene_set_camera(s, &cam);
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        glint_settings st;
+        glint_scene_settings(s, &st, NULL);
+        st.width = 64, st.height = 64, st.samples = 1, st.max_depth = 3, st.threads = 1;
+        glint_film film = {0};
+        cr_assert_eq(glint_render(s, &st, NULL, &film, NULL, &err), GLINT_OK, "%s", err.msg);
+        if (!ref.rgb) {
+            ref = film;
+        } else {
+            long count, at = first_difference(ref.rgb, film.rgb, 3L * 64 * 64, &count);
+            cr_expect_eq(at, -1, "%s: %ld floats differ from the scalar path's, the first %ld",
+                         accel_isa_name((accel_isa)path), count, at);
+            glint_film_free(&film);
+        }
+        scene_free(s);
+    }
+    glint_film_free(&ref);
+    accel_isa_force(ACCEL_AUTO);
+}
+
 /* Scenes 1 to 24, about 40 ms each on all four paths, optimised; or 1 to
  * GLINT_SHADE8_SEEDS for a longer search. */
 Test(shade8, random_materials_render_the_same_on_every_path)

@@ -399,7 +399,7 @@ static glint_rc build(scene *s, glint_error *err)
         const material *m = &s->materials[i];
         s->any_transmit = s->any_transmit || m->transmit > 0.0f;
         s->any_reflect = s->any_reflect || m->reflect > 0.0f;
-        s->any_absorb = s->any_absorb || (m->transmit > 0.0f && material_absorbs(m));
+        s->any_absorb = s->any_absorb || material_absorbs(m);
     }
     s->built = true;
     return GLINT_OK;

@@ -70,7 +70,8 @@ struct glint_scene {
     bool built;
     bool any_transmit; /* some material has transmit > 0 (by scene_build) */
     bool any_reflect;  /* some material has reflect > 0 (by scene_build) */
-    bool any_absorb;   /* some material has transmit > 0 and absorbs (by scene_build) */
+    bool any_absorb;   /* some material absorbs, transmitting or not: an opaque part of a
+                          transmitting csg or mesh is crossed too (by scene_build) */
     /* The objects that transmit, in order, when there are at most
      * SCENE_FEW_CROSSED; ncrossed -1 when there are more (by scene_build). */
     int32_t crossed[SCENE_FEW_CROSSED];

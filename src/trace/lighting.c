@@ -35,7 +35,8 @@ __attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx
 
 /* What reaches the end of shadow ray sr through its crossings of
  * transmitting objects, which filter the light in order along the ray;
- * sr may be NULL where no material absorbs (scene.any_absorb). */
+ * sr may be NULL where no material at all absorbs (scene.any_absorb: the
+ * crossings of a transmitting csg or mesh include its opaque parts). */
 static vec3 crossings_filter(const scene *s, const ray *sr, const scene_crossings *cross)
 {
     vec3 filter = v3s(1.0f);
