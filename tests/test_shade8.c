@@ -663,7 +663,8 @@ Test(shade8, absorbing_opaque_part_of_a_glass_csg)
         cr_assert_geq(scene_add_object(s, &ground, mf, -1), 0);
         csg *c = calloc(1, sizeof *c);
         cr_assert_not_null(c);
-        shape box = shape_box(v3(-2, 3, -2), v3(2, 3.5f, 2)), ball = shape_sphere(v3(3, 1, 0), 0.5f);
+        shape box = shape_box(v3(-2, 3, -2), v3(2, 3.5f, 2));
+        shape ball = shape_sphere(v3(3, 1, 0), 0.5f);
         int32_t both[2] = {csg_add_leaf(c, &box, NULL, md), csg_add_leaf(c, &ball, NULL, mg)};
         csg_add_node(c, CSG_UNION, both, 2);
         csg_finish(c);
