@@ -319,9 +319,11 @@ Test(mpi, a_killed_image_resumes_from_its_resume_file)
         cr_skip_test("the optimised build's run covers this (a render of seconds there)");
     char out[8192];
     /* a render long enough that the stop comes well before its end, even
-     * on a loaded machine (the reference on every core: the same bytes) */
+     * on a loaded machine (the reference on every core: the same bytes):
+     * about 6 s for the two ranks on one thread each here; at 144 samples
+     * a pixel, 1.5 s, the job sometimes finished before the stop */
     const char *script =
-        "O='-q -t 1 -r 512x384 -s 144'; $GLINT $O -t 0 -o g.png || exit 1; "
+        "O='-q -t 1 -r 512x384 -s 576'; $GLINT $O -t 0 -o g.png || exit 1; "
         "$MPIRUN -n 2 $MPI $O -o m.png & job=$!; "
         "n=0; while [ ! -e m.png.resume ] && [ $n -lt 1200 ]; do sleep 0.05; n=$((n+1)); done; "
         "kill -TERM $job; wait $job 2>/dev/null; "
