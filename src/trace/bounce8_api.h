@@ -19,9 +19,8 @@ typedef struct bounce8_from {
 } bounce8_from;
 
 /* The lanes of a packet whose hits are on shade_prepare's plain surfaces
- * (shading.h), by kind; of the boxes', cylinders' (shade_plain_solid) and
- * csg leaves' (shade_plain_leaf), those whose objects are turned in
- * `turned` too. */
+ * (shading.h), by kind, and in `turned` those whose objects are turned
+ * (which the boxes, cylinders and csg leaves are prepared by). */
 typedef struct shade8_plain {
     int sphere, plane, torus, quad, box, cylinder, csg, turned;
 } shade8_plain;

@@ -33,6 +33,12 @@ __attribute__((always_inline)) static inline ray shadow_ray(const trace_ctx *ctx
     return sr;
 }
 
+/* The light a crossing of material m lets through of filter. */
+static inline vec3 crossing_step(vec3 filter, const material *m)
+{
+    return v3_scale(v3_mul(filter, m->tint), m->transmit);
+}
+
 /* What reaches the end of shadow ray sr through its crossings of
  * transmitting objects, which filter the light in order along the ray;
  * sr may be NULL where no material at all absorbs (scene.any_absorb: the
@@ -44,7 +50,7 @@ static vec3 crossings_filter(const scene *s, const ray *sr, const scene_crossing
     for (int i = 0; i < cross->n; i++) {
         const scene_hit *hit = &cross->hit[i];
         const material *m = scene_hit_material(s, hit);
-        filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
+        filter = crossing_step(filter, m);
         if (material_absorbs(m)) {
             /* worked out only here: its square root, on the ray just put
              * together, held up every crossing ray that needs none */
@@ -67,7 +73,7 @@ static vec3 one_object_filter(const scene *s, int32_t obj, int count)
         return filter;
     const material *m = &s->materials[s->objects[obj].material];
     for (int i = 0; i < count; i++) {
-        filter = v3_scale(v3_mul(filter, m->tint), m->transmit);
+        filter = crossing_step(filter, m);
         if (v3_max_comp(filter) <= 0.0f)
             return filter;
     }

@@ -189,10 +189,18 @@ vec3 shade_segment_crossed(const scene *s, const ray *r, float t, const shade_po
 
 /* shade_segment_crossed, or c at once where the segment crosses neither
  * fog nor a transmitting object's inside. */
+/* Whether a segment inside material m changes the light it carries:
+ * inside a transmitting material that absorbs (shade_segment_crossed
+ * leaves the colour of any other as it is, and fogs none). */
+static inline bool shade_absorbs_inside(const material *m)
+{
+    return m->transmit > 0.0f && material_absorbs(m);
+}
+
 static inline vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp,
                                  vec3 c)
 {
-    if (s->fog.kind == FOG_NONE && !(sp && sp->inside && sp->m->transmit > 0.0f))
+    if (s->fog.kind == FOG_NONE && !(sp && sp->inside && shade_absorbs_inside(sp->m)))
         return c;
     return shade_segment_crossed(s, r, t, sp, c);
 }

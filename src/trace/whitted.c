@@ -218,13 +218,6 @@ static void mix8(const trace_ctx *ctx, const shade8 *sp, int keep, bool reflect,
     }
 }
 
-/* Whether a segment inside material m changes the light it carries
- * (shade_segment_crossed, without fog). */
-static inline bool absorbs_inside(const material *m)
-{
-    return m->transmit > 0.0f && material_absorbs(m);
-}
-
 /* trace_rest for the lanes of `found`, with their local light in c. */
 static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int depth,
                   const scene_hit hit[8], const shade8 *sp, color8 *c, color8 *out)
@@ -258,11 +251,11 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int dept
     if (ctx->scene->fog.kind != FOG_NONE)
         crossed = found;
     else if (sp->same)
-        crossed = absorbs_inside(sp->same) ? found & sp->inside : 0;
+        crossed = shade_absorbs_inside(sp->same) ? found & sp->inside : 0;
     else
         for (int m = found & sp->inside; m; m &= m - 1) {
             int k = __builtin_ctz((unsigned)m);
-            crossed |= absorbs_inside(sp->m[k]) << k;
+            crossed |= shade_absorbs_inside(sp->m[k]) << k;
         }
     *out = *c;
     for (int m = crossed; m; m &= m - 1) {
@@ -272,6 +265,30 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int dept
         color8_put(out, k, shade_segment_crossed(ctx->scene, &rk, hit[k].h.t, &spk,
                                                  color8_get(c, k)));
     }
+}
+
+/* Puts lane `bit`, whose hit on object o of material m is on one of the
+ * plain surfaces (shading.h), into its kind's lanes of *plain; false for
+ * any other hit. */
+static bool plain_lane(const scene *s, const object *o, const scene_hit *hit,
+                       const material *m, int bit, shade8_plain *plain)
+{
+    if (shade_plain_sphere(o, m))
+        plain->sphere |= bit;
+    else if (shade_plain_plane(o, m))
+        plain->plane |= bit;
+    else if (shade_plain_torus(o, m))
+        plain->torus |= bit;
+    else if (shade_plain_quad(s, o, m))
+        plain->quad |= bit;
+    else if (shade_plain_solid(o, m))
+        *(o->shape.kind == SHAPE_BOX ? &plain->box : &plain->cylinder) |= bit;
+    else if (shade_plain_leaf(o, hit, m))
+        plain->csg |= bit;
+    else
+        return false;
+    plain->turned |= o->xform >= 0 ? bit : 0;
+    return true;
 }
 
 /* shade_prepare for the lanes of found into sp: those on plain surfaces
@@ -293,21 +310,7 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
         const material *mk = scene_hit_material(s, &hit[k]);
         sp->same = mk == sp->same ? mk : NULL;
         sp->m[k] = mk;
-        if (k8 && shade_plain_sphere(o, mk)) {
-            plain.sphere |= 1 << k;
-        } else if (k8 && shade_plain_plane(o, mk)) {
-            plain.plane |= 1 << k;
-        } else if (k8 && shade_plain_torus(o, mk)) {
-            plain.torus |= 1 << k;
-        } else if (k8 && shade_plain_quad(s, o, mk)) {
-            plain.quad |= 1 << k;
-        } else if (k8 && shade_plain_solid(o, mk)) {
-            *(o->shape.kind == SHAPE_BOX ? &plain.box : &plain.cylinder) |= 1 << k;
-            plain.turned |= (o->xform >= 0) << k;
-        } else if (k8 && shade_plain_leaf(o, &hit[k], mk)) {
-            plain.csg |= 1 << k;
-            plain.turned |= (o->xform >= 0) << k;
-        } else {
+        if (!k8 || !plain_lane(s, o, &hit[k], mk, 1 << k, &plain)) {
             ray rk = ray8_get(p, k);
             shade_prepare(ctx, &rk, &hit[k], &done[k]);
         }
