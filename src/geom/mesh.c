@@ -20,7 +20,7 @@ static glint_rc make_blocks(mesh *m, glint_error *err)
         for (int k = 0; k < b->width; k++)
             if (*bvhw_child(b, i, k) < 0)
                 n += (bvhw_count(b, i, k) + 3) / 4;
-    m->blocks = aligned_alloc(16, (n ? n : 1) * sizeof *m->blocks);
+    m->blocks = aligned_alloc(64, (n ? n : 1) * sizeof *m->blocks);
     if (!m->blocks)
         return err_nomem(err);
     memset(m->blocks, 0, (n ? n : 1) * sizeof *m->blocks);

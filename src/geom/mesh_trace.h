@@ -23,6 +23,18 @@ typedef struct mesh_leaf_ctx {
     tri4_ray q;
 } mesh_leaf_ctx;
 
+/* Field by field: q is left unset until the first leaf (an initialiser
+ * would clear it for every ray, most of which never need it). */
+__attribute__((always_inline)) static inline void mesh_leaf_ctx_init(mesh_leaf_ctx *c, const mesh *m,
+                                                                     const ray *r, shape_hit *hit)
+{
+    c->m = m;
+    c->r = r;
+    c->hit = hit;
+    c->best = -1;
+    c->ready = false;
+}
+
 __attribute__((always_inline)) static inline const tri4_ray *mesh_leaf_ray(mesh_leaf_ctx *c)
 {
     if (!c->ready) {
@@ -143,14 +155,16 @@ __attribute__((always_inline)) static inline bool mesh_leaf_all(void *ctx, uint3
 #define MESH_KERNELS(isa, width)                                                               \
     bool mesh_intersect_##isa(const mesh *m, const ray *r, shape_hit *hit)                     \
     {                                                                                          \
-        mesh_leaf_ctx c = {.m = m, .r = r, .hit = hit, .best = -1};                            \
+        mesh_leaf_ctx c;                                                                       \
+        mesh_leaf_ctx_init(&c, m, r, hit);                                                     \
         float tmax = r->tmax;                                                                  \
         return wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, false,                \
                              mesh_leaf_closest, &c);                                           \
     }                                                                                          \
     bool mesh_occluded_##isa(const mesh *m, const ray *r)                                      \
     {                                                                                          \
-        mesh_leaf_ctx c = {.m = m, .r = r, .best = -1};                                        \
+        mesh_leaf_ctx c;                                                                       \
+        mesh_leaf_ctx_init(&c, m, r, NULL);                                                    \
         float tmax = r->tmax;                                                                  \
         return wide_traverse(&m->bvh, width, r->o, r->d, r->tmin, &tmax, true, mesh_leaf_any,  \
                              &c);                                                              \

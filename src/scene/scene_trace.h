@@ -19,8 +19,10 @@
  * the direction is transformed without renormalising. */
 __attribute__((always_inline)) static inline ray scene_object_ray(const scene *s, const object *o, const ray *r)
 {
-    if (o->xform < 0)
-        return *r;
+    if (o->xform < 0) /* field by field: a block copy (rep movs, which a profile-guided
+                         build can choose) leaves its 4-byte stores for the wider reads of
+                         the ray that follow to wait on */
+        return (ray){.o = r->o, .tmin = r->tmin, .d = r->d, .tmax = r->tmax, .time = r->time};
     if (__builtin_expect(o->moving, 0)) {
         xform x = scene_object_xform_at(s, o, r->time);
         return mat4_ray(&x.inv, r);
@@ -47,7 +49,9 @@ __attribute__((always_inline)) static inline bool scene_hit_object(const scene *
     ray lr = scene_object_ray(s, o, r);
     lr.tmin = tmin;
     lr.tmax = next_up(*tmax);
-    shape_hit h = {0};
+    shape_hit h; /* t is set by a hit; the rest cleared one by one (a block clear, rep stos
+                    in a profile-guided build, cost more than the test of a small object) */
+    h.part = 0, h.b1 = 0.0f, h.b2 = 0.0f, h.leaf = 0;
     if (!shape_intersect_inline(&o->shape, &lr, &h) ||
         !(h.t < *tmax || (h.t == *tmax && i < hit->object)))
         return false;
@@ -140,7 +144,9 @@ __attribute__((always_inline)) static inline bool scene_shadow_object(scene_shad
                 continue;
             if (out->n == SCENE_SHADOW_MAX)
                 return true;
-            out->hit[out->n++] = (scene_hit){{.t = root[k]}, i}; /* as sphere_hit's */
+            scene_hit *x = &out->hit[out->n++]; /* as sphere_hit's, field by field (a */
+            x->h.t = root[k], x->h.part = 0, x->h.leaf = 0; /* block clear: rep stos) */
+            x->h.b1 = x->h.b2 = 0.0f, x->object = i;
             lr.tmin = scene_cross_next(c, root[k]);
         }
         return false;
