@@ -67,9 +67,10 @@ __attribute__((always_inline)) static inline bool mesh_leaf_closest(void *ctx, u
         } else
 #endif
             mask = tri4_intersect(q, blk, tmin, next_up(*tmax), t, b1, b2);
-        for (int k = 0; mask; k++, mask >>= 1) {
+        for (; mask; mask &= mask - 1) { /* the lanes hit, lowest first */
+            int k = __builtin_ctz((unsigned)mask);
             int32_t id = blk[k >> 2].id[k & 3];
-            if ((mask & 1) && (t[k] < *tmax || (t[k] == *tmax && id < c->best))) {
+            if (t[k] < *tmax || (t[k] == *tmax && id < c->best)) {
                 *tmax = t[k];
                 c->best = id;
                 c->hit->t = t[k];
