@@ -181,7 +181,8 @@ else ifeq ($(SAN),0)
 ifneq ($(PGO),0)
 $(PGO_OBJ): CFLAGS += -fprofile-use -fprofile-partial-training $(PGO_IDS) -Wno-missing-profile
 $(PGO_OBJ): $(BUILD)/pgo.stamp
-$(BUILD)/pgo.stamp: $(LIB_SRC) $(APP_SRC) $(CLI_SRC) $(shell find src include -name '*.h') \
+$(BUILD)/pgo.stamp: $(BUILD)/flags.stamp \
+                    $(LIB_SRC) $(APP_SRC) $(CLI_SRC) $(shell find src include -name '*.h') \
                     $(shell find scenes -type f) scripts/pgo-train \
                     scenes/textures/flag.png scenes/textures/globe.png
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/pgo PGO=generate $(BUILD)/pgo/glint
@@ -219,6 +220,22 @@ $(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/obj/src/cli/h
 	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
+
+# Objects are made again when the flags they are compiled with change (an
+# edit of the flags here, or flags given on make's command line), not only
+# when their sources do: $(BUILD)/flags.stamp holds the flags of the last
+# build in that folder and is rewritten only when they differ. (Expanded
+# here, once: a prerequisite would otherwise see the flags of whichever
+# object asked for it first.)
+FLAGS_NOW := $(CC) $(CPPFLAGS) $(CFLAGS) | $(LIB_CFLAGS) | $(SDL_CFLAGS) | $(MPI_CFLAGS) | \
+             $(KERNEL_FLAGS_avx2) | $(KERNEL_FLAGS_avx512) | PGO=$(PGO) SAN=$(SAN)
+BENCH_OBJ := $(patsubst bench/%.c,$(BUILD)/obj/bench/%.o,$(wildcard bench/*.c))
+$(LIB_OBJ) $(APP_OBJ) $(CLI_OBJ) $(TEST_OBJ) $(DIST_OBJ) $(BENCH_OBJ): $(BUILD)/flags.stamp
+.PHONY: FORCE
+FORCE:
+$(BUILD)/flags.stamp: FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' '$(FLAGS_NOW)' | cmp -s - $@ 2>/dev/null || printf '%s\n' '$(FLAGS_NOW)' >$@
 
 $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
