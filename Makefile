@@ -179,7 +179,8 @@ LDFLAGS += -fprofile-generate
 $(PGO_OBJ): Makefile # counts made with other flags would not fit
 else ifeq ($(SAN),0)
 ifneq ($(PGO),0)
-$(PGO_OBJ): CFLAGS += -fprofile-use -fprofile-partial-training $(PGO_IDS) -Wno-missing-profile
+PGO_USE_FLAGS := -fprofile-use -fprofile-partial-training $(PGO_IDS) -Wno-missing-profile
+$(PGO_OBJ): CFLAGS += $(PGO_USE_FLAGS)
 $(PGO_OBJ): $(BUILD)/pgo.stamp
 $(BUILD)/pgo.stamp: $(BUILD)/flags.stamp \
                     $(LIB_SRC) $(APP_SRC) $(CLI_SRC) $(shell find src include -name '*.h') \
@@ -224,18 +225,19 @@ $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
 # Objects are made again when the flags they are compiled with change (an
 # edit of the flags here, or flags given on make's command line), not only
 # when their sources do: $(BUILD)/flags.stamp holds the flags of the last
-# build in that folder and is rewritten only when they differ. (Expanded
-# here, once: a prerequisite would otherwise see the flags of whichever
-# object asked for it first.)
+# make in that folder, compared and rewritten while this file is read
+# (expanded once, here: a prerequisite would otherwise see the flags of
+# whichever object asked for it first; and no rule that always runs, so
+# `make -n` and `make -q` still say what is out of date).
 FLAGS_NOW := $(CC) $(CPPFLAGS) $(CFLAGS) | $(LIB_CFLAGS) | $(SDL_CFLAGS) | $(MPI_CFLAGS) | \
-             $(KERNEL_FLAGS_avx2) | $(KERNEL_FLAGS_avx512) | PGO=$(PGO) SAN=$(SAN)
+             $(KERNEL_FLAGS_avx2) | $(KERNEL_FLAGS_avx512) | $(PGO_USE_FLAGS) | \
+             PGO=$(PGO) SAN=$(SAN) | $(CURDIR)
+ifneq ($(strip $(file <$(BUILD)/flags.stamp)),$(strip $(FLAGS_NOW)))
+$(shell mkdir -p $(BUILD))
+$(file >$(BUILD)/flags.stamp,$(FLAGS_NOW))
+endif
 BENCH_OBJ := $(patsubst bench/%.c,$(BUILD)/obj/bench/%.o,$(wildcard bench/*.c))
 $(LIB_OBJ) $(APP_OBJ) $(CLI_OBJ) $(TEST_OBJ) $(DIST_OBJ) $(BENCH_OBJ): $(BUILD)/flags.stamp
-.PHONY: FORCE
-FORCE:
-$(BUILD)/flags.stamp: FORCE
-	@mkdir -p $(@D)
-	@printf '%s\n' '$(FLAGS_NOW)' | cmp -s - $@ 2>/dev/null || printf '%s\n' '$(FLAGS_NOW)' >$@
 
 $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
