@@ -149,7 +149,7 @@ __attribute__((always_inline)) static inline int bounce8(const bounce8_from *f, 
 /* Defines shade8_kernels_<isa>. */
 #define BOUNCE8_KERNELS(isa)                                                                   \
     static void prepare_##isa(const scene *s, const float decode[256], const ray8 *p,         \
-                              shade8_plain kinds, const scene_hit *hit, shade8 *sp)            \
+                              const shade8_plain *kinds, const scene_hit *hit, shade8 *sp)     \
     {                                                                                          \
         prepare8(s, decode, p, kinds, hit, sp);                                                \
     }                                                                                          \

@@ -32,7 +32,7 @@ typedef struct shade8_kernels {
      * of p) and hits: each field of sp stored whole, the other lanes
      * holding numbers, and sp->inside's bits of those lanes set. */
     void (*prepare)(const struct glint_scene *s, const float decode[256], const ray8 *p,
-                    shade8_plain kinds, const struct scene_hit *hit, shade8 *sp);
+                    const shade8_plain *kinds, const struct scene_hit *hit, shade8 *sp);
     /* whitted.c's split for the lanes of found: kr, kt and tdir; gt = kt
      * times the tint's largest component; returns the lanes with kr > 0,
      * those with kt > 0 in *transmits. */

@@ -318,11 +318,12 @@ prepare8_csg(const scene *s, const scene_hit *hit, int lanes, bool turned, __m25
 /* prepare (bounce8_api.h): each kind's point and normal (the two normals
  * are here the same), the chequers of the quads, then facing. */
 __attribute__((always_inline)) static inline void prepare8(const scene *s, const float decode[256],
-                                                           const ray8 *p, shade8_plain kinds,
+                                                           const ray8 *p,
+                                                           const shade8_plain *kinds,
                                                            const scene_hit *hit, shade8 *sp)
 {
-    int solid = kinds.box | kinds.cylinder | kinds.csg;
-    int all = kinds.sphere | kinds.plane | kinds.torus | kinds.quad | solid;
+    int solid = kinds->box | kinds->cylinder | kinds->csg;
+    int all = kinds->sphere | kinds->plane | kinds->torus | kinds->quad | solid;
     const void *t[8];
     for (int k = 0, first = __builtin_ctz((unsigned)all); k < 8; k++)
         t[k] = &hit[all >> k & 1 ? k : first].h.t;
@@ -347,25 +348,25 @@ __attribute__((always_inline)) static inline void prepare8(const scene *s, const
     __m256 P[3], N[3], dn[3];
     for (int i = 0; i < 3; i++)
         P[i] = N[i] = _mm256_setzero_ps();
-    if (kinds.sphere)
-        prepare8_solid(s, hit, kinds.sphere, PREPARE8_SPHERE, false, tt, _mm256_setzero_si256(),
+    if (kinds->sphere)
+        prepare8_solid(s, hit, kinds->sphere, PREPARE8_SPHERE, false, tt, _mm256_setzero_si256(),
                        org, d, P, N);
-    if (kinds.plane)
-        prepare8_plane(s, hit, kinds.plane, tt, org, d, P, N);
-    if (kinds.torus)
-        prepare8_torus(s, hit, kinds.torus, tt, org, d, P, N);
-    if (kinds.quad) {
+    if (kinds->plane)
+        prepare8_plane(s, hit, kinds->plane, tt, org, d, P, N);
+    if (kinds->torus)
+        prepare8_torus(s, hit, kinds->torus, tt, org, d, P, N);
+    if (kinds->quad) {
         __m256 b1 = PREPARE8_HIT(t, b1), b2 = PREPARE8_HIT(t, b2), tex[3];
-        prepare8_quad(s, hit, kinds.quad, b1, b2, P, N);
+        prepare8_quad(s, hit, kinds->quad, b1, b2, P, N);
         if (prepare8_texture(s, decode, &mg, b1, b2, tex))
             for (int i = 0; i < 3; i++)
                 col[i] = _mm256_mul_ps(col[i], tex[i]);
     }
     if (solid) {
         __m256i part = _mm256_castps_si256(PREPARE8_HIT(t, part));
-        int box = kinds.box & ~kinds.turned, turned_box = kinds.box & kinds.turned;
-        int cyl = kinds.cylinder & ~kinds.turned, turned_cyl = kinds.cylinder & kinds.turned;
-        int csgs = kinds.csg & ~kinds.turned, turned_csg = kinds.csg & kinds.turned;
+        int box = kinds->box & ~kinds->turned, turned_box = kinds->box & kinds->turned;
+        int cyl = kinds->cylinder & ~kinds->turned, turned_cyl = kinds->cylinder & kinds->turned;
+        int csgs = kinds->csg & ~kinds->turned, turned_csg = kinds->csg & kinds->turned;
         if (box)
             prepare8_solid(s, hit, box, PREPARE8_BOX, false, tt, part, org, d, P, N);
         if (turned_box)

@@ -319,7 +319,8 @@ static void prepare8(trace_ctx *ctx, const ray8 *p, int found, const scene_hit h
                  plain.cylinder | plain.csg;
     sp->inside = 0;
     if (vector)
-        k8->prepare(s, ctx->decode, p, plain, hit, sp);
+        k8->prepare(s, ctx->decode, p, &plain, hit, sp); /* by address: plain_lane's
+            4-byte stores, read back as one 32-byte copy, waited to reach the cache */
     for (int m = found & ~vector; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         shade8_put(sp, k, &done[k]);
