@@ -176,7 +176,6 @@ PGO_IDS := --param=profile-func-internal-id=1
 ifeq ($(SAN)$(PGO),0generate)
 CFLAGS  += -fprofile-generate -fprofile-update=single $(PGO_IDS)
 LDFLAGS += -fprofile-generate
-$(PGO_OBJ): Makefile # counts made with other flags would not fit
 else ifeq ($(SAN),0)
 ifneq ($(PGO),0)
 PGO_USE_FLAGS := -fprofile-use -fprofile-partial-training $(PGO_IDS) -Wno-missing-profile

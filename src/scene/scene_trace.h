@@ -49,9 +49,8 @@ __attribute__((always_inline)) static inline bool scene_hit_object(const scene *
     ray lr = scene_object_ray(s, o, r);
     lr.tmin = tmin;
     lr.tmax = next_up(*tmax);
-    shape_hit h; /* t is set by a hit; the rest cleared one by one (a block clear, rep stos
-                    in a profile-guided build, cost more than the test of a small object) */
-    h.part = 0, h.b1 = 0.0f, h.b2 = 0.0f, h.leaf = 0;
+    shape_hit h;
+    shape_hit_at(&h, 0.0f);
     if (!shape_intersect_inline(&o->shape, &lr, &h) ||
         !(h.t < *tmax || (h.t == *tmax && i < hit->object)))
         return false;
@@ -144,9 +143,9 @@ __attribute__((always_inline)) static inline bool scene_shadow_object(scene_shad
                 continue;
             if (out->n == SCENE_SHADOW_MAX)
                 return true;
-            scene_hit *x = &out->hit[out->n++]; /* as sphere_hit's, field by field (a */
-            x->h.t = root[k], x->h.part = 0, x->h.leaf = 0; /* block clear: rep stos) */
-            x->h.b1 = x->h.b2 = 0.0f, x->object = i;
+            scene_hit *x = &out->hit[out->n++]; /* as sphere_hit's */
+            shape_hit_at(&x->h, root[k]);
+            x->object = i;
             lr.tmin = scene_cross_next(c, root[k]);
         }
         return false;

@@ -187,8 +187,6 @@ __attribute__((always_inline)) static inline void shade_prepare(trace_ctx *ctx, 
 vec3 shade_segment_crossed(const scene *s, const ray *r, float t, const shade_point *sp,
                            vec3 c);
 
-/* shade_segment_crossed, or c at once where the segment crosses neither
- * fog nor a transmitting object's inside. */
 /* Whether a segment inside material m changes the light it carries:
  * inside a transmitting material that absorbs (shade_segment_crossed
  * leaves the colour of any other as it is, and fogs none). */
@@ -197,6 +195,8 @@ static inline bool shade_absorbs_inside(const material *m)
     return m->transmit > 0.0f && material_absorbs(m);
 }
 
+/* shade_segment_crossed, or c at once where the segment crosses neither
+ * fog nor the inside of a transmitting object that absorbs. */
 static inline vec3 shade_segment(const scene *s, const ray *r, float t, const shade_point *sp,
                                  vec3 c)
 {
