@@ -77,7 +77,7 @@ typedef struct part_acc {
  * bounds without a branch: c + -0 is c (whatever its sign), c + inf is
  * inf and c + -inf is -inf, which leave a minimum and a maximum as they
  * were; so adding one or the other selects. */
-static inline int part_side(void *acc, const primref *r)
+__attribute__((always_inline)) static inline int part_side(void *acc, const primref *r)
 {
 #define I_ INFINITY
     static const float add[2][4][4] __attribute__((aligned(16))) = {

@@ -15,10 +15,10 @@
 #endif
 #include <immintrin.h>
 
-static inline __m256 ref_load(const primref *r) { return _mm256_loadu_ps(r->lo); }
+__attribute__((always_inline)) static inline __m256 ref_load(const primref *r) { return _mm256_loadu_ps(r->lo); }
 
 /* The centre of a primref, as box4_center computes it. */
-static inline __m128 ref_centre(__m256 r)
+__attribute__((always_inline)) static inline __m128 ref_centre(__m256 r)
 {
     __m128 lo = _mm256_castps256_ps128(r), nhi = _mm256_extractf128_ps(r, 1);
     return _mm_mul_ps(_mm_sub_ps(lo, nhi), _mm_set1_ps(0.5f));
@@ -26,7 +26,7 @@ static inline __m128 ref_centre(__m256 r)
 
 /* A bin takes in r: the minimum with its box, and one more in its count
  * (lane 3 of lo). */
-static inline void bin_add(float *bin, __m256 r, __m256 one)
+__attribute__((always_inline)) static inline void bin_add(float *bin, __m256 r, __m256 one)
 {
     _mm256_store_ps(bin, _mm256_add_ps(_mm256_min_ps(_mm256_load_ps(bin), r), one));
 }
@@ -98,7 +98,7 @@ void split_bin_avx2(const primref *refs, int lo, int hi, v4 cmin, v4 scale, int 
 
 /* The areas of eight boxes from their extents (x, y, z, any; of either
  * sign), as split.c's area4 computes each. */
-static inline __m256 area8(const __m128 *e)
+__attribute__((always_inline)) static inline __m256 area8(const __m128 *e)
 {
     __m256 t0 = _mm256_set_m128(e[4], e[0]), t1 = _mm256_set_m128(e[5], e[1]);
     __m256 t2 = _mm256_set_m128(e[6], e[2]), t3 = _mm256_set_m128(e[7], e[3]);
@@ -113,7 +113,7 @@ static inline __m256 area8(const __m128 *e)
 }
 
 /* A box [lo | -hi]'s extents, negated: lo - hi. */
-static inline __m128 box_nextent(__m256 b)
+__attribute__((always_inline)) static inline __m128 box_nextent(__m256 b)
 {
     return _mm_add_ps(_mm256_extractf128_ps(b, 1), _mm256_castps256_ps128(b));
 }
@@ -164,7 +164,7 @@ typedef struct part_acc8 {
 
 /* split.c's part_side, both sides at once: the centre, in both halves,
  * plus -0 on its own side and +-inf on the other. */
-static inline int part_side8(void *acc, const primref *r)
+__attribute__((always_inline)) static inline int part_side8(void *acc, const primref *r)
 {
 #define I_ INFINITY
     static const float add[2][2][8] __attribute__((aligned(32))) = {
