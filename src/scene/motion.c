@@ -64,23 +64,20 @@ aabb scene_object_bounds_of(const scene *s, const object *o, aabb b)
     return o->xform >= 0 ? shape_bounds_mapped(&o->shape, &s->xforms[o->xform].fwd) : b;
 }
 
-glint_rc scene_link_motions(scene *s, glint_error *err)
+bool scene_motions_of(const scene *s, int **of)
 {
-    int *of = malloc(sizeof *of * (size_t)(s->nxforms ? s->nxforms : 1));
-    if (!of)
-        return err_nomem(err);
+    *of = NULL;
+    if (s->anim.nmotions == 0)
+        return true;
+    *of = malloc(sizeof **of * (size_t)(s->nxforms ? s->nxforms : 1));
+    if (!*of)
+        return false;
     for (int i = 0; i < s->nxforms; i++)
-        of[i] = -1;
+        (*of)[i] = -1;
     for (int m = 0; m < s->anim.nmotions; m++)
         if (s->anim.motions[m].xform >= 0 && s->anim.motions[m].xform < s->nxforms)
-            of[s->anim.motions[m].xform] = m;
-    for (int i = 0; i < s->nobjects; i++) {
-        object *o = &s->objects[i];
-        o->motion = o->xform >= 0 && o->xform < s->nxforms ? of[o->xform] : -1;
-        o->moving = o->motion >= 0 && s->shutter_seconds > 0.0f;
-    }
-    free(of);
-    return GLINT_OK;
+            (*of)[s->anim.motions[m].xform] = m;
+    return true;
 }
 
 camera scene_camera_at(const scene *s, float t)

@@ -342,11 +342,40 @@ static aabb object_bounds(const scene *s, object *o)
     return scene_object_bounds_of(s, o, b);
 }
 
+/* Each object's material and transform checked, what scene_build notes
+ * of it (transmits, motion, moving, crossed, origin) and its world bounds
+ * in s->bounds; *nb: how many are bounded, *dear: how many of those are
+ * dear to test. of: from scene_motions_of. */
+static glint_rc build_objects(scene *s, const int *of, int *nb, int *dear, glint_error *err)
+{
+    s->ncrossed = 0;
+    for (int i = 0; i < s->nobjects; i++) {
+        object *o = &s->objects[i];
+        o->transmits = false;
+        if (o->material >= 0 && o->material < s->nmaterials)
+            o->transmits = s->materials[o->material].transmit > 0.0f;
+        else if (!materials_ok(s, &o->shape, o->material, &o->transmits))
+            return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
+        if (o->xform >= s->nxforms)
+            return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
+        if (o->transmits && s->ncrossed >= 0)
+            s->ncrossed = s->ncrossed < SCENE_FEW_CROSSED ? s->ncrossed + 1 : -1;
+        if (o->transmits && s->ncrossed > 0)
+            s->crossed[s->ncrossed - 1] = i;
+        scene_link_motion(s, of, o);
+        aabb b = object_bounds(s, o);
+        s->bounds[i] = b;
+        if (!object_unbounded(b)) {
+            ++*nb;
+            *dear += object_is_dear(o);
+        }
+    }
+    return GLINT_OK;
+}
+
 static glint_rc build(scene *s, glint_error *err)
 {
     glint_rc rc = check_shading(s, err);
-    if (rc == GLINT_OK)
-        rc = scene_link_motions(s, err);
     if (rc != GLINT_OK)
         return rc;
     /* The arrays of the last build are kept when they are large enough:
@@ -368,28 +397,13 @@ static glint_rc build(scene *s, glint_error *err)
         s->unbounded = unbounded;
         s->cap_bounds = n;
     }
-    int nb = 0, dear = 0;
-    s->ncrossed = 0;
-    for (int i = 0; i < s->nobjects; i++) {
-        object *o = &s->objects[i];
-        o->transmits = false;
-        if (o->material >= 0 && o->material < s->nmaterials)
-            o->transmits = s->materials[o->material].transmit > 0.0f;
-        else if (!materials_ok(s, &o->shape, o->material, &o->transmits))
-            return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing material", i);
-        if (o->xform >= s->nxforms)
-            return err_set(err, GLINT_ERR_INPUT, "object %d refers to a missing transform", i);
-        if (o->transmits && s->ncrossed >= 0)
-            s->ncrossed = s->ncrossed < SCENE_FEW_CROSSED ? s->ncrossed + 1 : -1;
-        if (o->transmits && s->ncrossed > 0)
-            s->crossed[s->ncrossed - 1] = i;
-        aabb b = object_bounds(s, o);
-        s->bounds[i] = b;
-        if (!object_unbounded(b)) {
-            nb++;
-            dear += object_is_dear(o);
-        }
-    }
+    int *of, nb = 0, dear = 0;
+    if (!scene_motions_of(s, &of))
+        return err_nomem(err);
+    rc = build_objects(s, of, &nb, &dear, err);
+    free(of);
+    if (rc != GLINT_OK)
+        return rc;
     rc = build_accel(s, nb, dear, err);
     if (rc != GLINT_OK)
         return rc;

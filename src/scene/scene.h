@@ -169,9 +169,16 @@ camera scene_camera_at(const scene *s, float t);
 aabb scene_object_bounds(const scene *s, int i);
 /* The same for object o, whose shape's own bounds (shape_bounds) are b. */
 aabb scene_object_bounds_of(const scene *s, const object *o, aabb b);
-/* scene_build's first step: which objects have a motion, and which of
- * them move while the shutter is open. */
-glint_rc scene_link_motions(scene *s, glint_error *err);
+/* For scene_build: *of, the motion driving each transform or -1 (NULL
+ * when there are no motions); false when memory runs out. Free *of. */
+bool scene_motions_of(const scene *s, int **of);
+/* Which motion drives o's transform (of: from scene_motions_of), and
+ * whether o moves while the shutter is open. */
+static inline void scene_link_motion(const scene *s, const int *of, object *o)
+{
+    o->motion = of && o->xform >= 0 && o->xform < s->nxforms ? of[o->xform] : -1;
+    o->moving = o->motion >= 0 && s->shutter_seconds > 0.0f;
+}
 /* A moving object's transform at time t (object -> world, with inverse). */
 xform scene_object_xform_at(const scene *s, const object *o, float t);
 
