@@ -169,7 +169,11 @@ $(LIB_OBJ): CFLAGS += $(LIB_CFLAGS)
 ifeq ($(origin PGO),undefined)
 PGO := $(if $(shell $(CC) --version 2>/dev/null | grep -i clang),0,1)
 endif
-PGO_OBJ := $(LIB_OBJ) $(APP_OBJ) $(CLI_OBJ)
+# The tree builders (src/accel) are compiled without the counts: the
+# training builds only small trees, and with their counts GCC optimised the
+# builders for size (10^6 random spheres built 9% slower than without).
+PGO_UNTRAINED := $(BUILD)/obj/src/accel/%
+PGO_OBJ := $(filter-out $(PGO_UNTRAINED),$(LIB_OBJ)) $(APP_OBJ) $(CLI_OBJ)
 # (a static function's counts are found by its number in its file, not
 # by a name made from the object's path, which differs between the rounds)
 PGO_IDS := --param=profile-func-internal-id=1
@@ -230,7 +234,7 @@ $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
 # `make -n` and `make -q` still say what is out of date).
 FLAGS_NOW := $(CC) $(CPPFLAGS) $(CFLAGS) | $(LIB_CFLAGS) | $(SDL_CFLAGS) | $(MPI_CFLAGS) | \
              $(KERNEL_FLAGS_avx2) | $(KERNEL_FLAGS_avx512) | $(PGO_USE_FLAGS) | \
-             PGO=$(PGO) SAN=$(SAN) | $(CURDIR)
+             untrained: $(PGO_UNTRAINED) | PGO=$(PGO) SAN=$(SAN) | $(CURDIR)
 ifneq ($(strip $(file <$(BUILD)/flags.stamp)),$(strip $(FLAGS_NOW)))
 $(shell mkdir -p $(BUILD))
 $(file >$(BUILD)/flags.stamp,$(FLAGS_NOW))
