@@ -15,7 +15,10 @@
 #endif
 #include <immintrin.h>
 
-__attribute__((always_inline)) static inline __m256 ref_load(const primref *r) { return _mm256_loadu_ps(r->lo); }
+__attribute__((always_inline)) static inline __m256 ref_load(const primref *r)
+{
+    return _mm256_loadu_ps(r->lo);
+}
 
 /* The centre of a primref, as box4_center computes it. */
 __attribute__((always_inline)) static inline __m128 ref_centre(__m256 r)
