@@ -238,6 +238,10 @@ static size_t quantize_linear_simd(const float *src, size_t count, uint8_t *dst)
 #if defined(__SSE2__)
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f);
     for (; i + 16 <= count; i += 16) {
+        /* a page ahead: a PNG strip converts its rows between compressions
+         * that leave the cache and the prefetchers cold (row 5's 1080p image
+         * on a Xeon, Emerald Rapids: 24.7-24.9 -> 23.6-23.9 ms) */
+        _mm_prefetch((const char *)((uintptr_t)(src + i) + 4096), _MM_HINT_T0);
         __m128i q[4];
         for (int k = 0; k < 4; k++) {
             __m128 x = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(src + i + 4 * k), zero), one);
