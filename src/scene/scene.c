@@ -8,6 +8,7 @@
 
 #include "core/array.h"
 #include "core/error.h"
+#include "geom/shape_bounds.h"
 #include "scene/settings.h"
 #include "scene_surface.h"
 
@@ -332,7 +333,7 @@ static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
  * textures have their origin (texture_origin), from one shape_bounds. */
 static aabb object_bounds(const scene *s, object *o)
 {
-    aabb b = shape_bounds(&o->shape);
+    aabb b = shape_bounds_inline(&o->shape);
     if (o->shape.kind == SHAPE_PLANE)
         o->origin = o->shape.plane.point;
     else if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
