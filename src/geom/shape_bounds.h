@@ -55,7 +55,7 @@ __attribute__((always_inline)) static inline aabb shape_bounds_inline(const shap
         return s->mesh->bounds;
     case SHAPE_CONE:
         return cylinder_box(s->cone.base, fmaxf(s->cone.radius, s->cone.top_radius),
-                               s->cone.height);
+                            s->cone.height);
     case SHAPE_DISK:
         return disk_box(&s->disk);
     case SHAPE_TORUS: {

@@ -330,13 +330,13 @@ static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
 }
 
 /* Object i's world bounds (scene_object_bounds) and where its object-space
- * textures have their origin (texture_origin), from one shape_bounds. */
+ * textures have their origin (texture_origin), from one shape_bounds_inline. */
 static aabb object_bounds(const scene *s, object *o)
 {
     aabb b = shape_bounds_inline(&o->shape);
     if (o->shape.kind == SHAPE_PLANE)
         o->origin = o->shape.plane.point;
-    else if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+    else if (object_unbounded(b))
         o->origin = v3s(0.0f);
     else
         o->origin = v3_scale(v3_add(b.lo, b.hi), 0.5f);
