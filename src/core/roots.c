@@ -115,13 +115,14 @@ int roots_cubic(const double c[4], double lo, double hi, double out[3])
  * does, costs one more step to learn that (two dependent polynomial
  * evaluations and a division: 4% of the render of bench/README.md's
  * scene of tori). At a double root, where the steps only halve, the root
- * is within about 1e-9. */
+ * is within about 1e-9. Each step evaluates p and p' by Estrin's scheme
+ * (roots_quartic_at): the step waits on them. */
 static int convex_first(const double *c, const double *dc, double lo, double e, double f0,
                         double *root)
 {
     double s = f0 < 0.0 ? -1.0 : 1.0, x = lo, f = f0;
     for (int it = 0; it < 60; it++) {
-        double df = roots_eval(dc, 3, x);
+        double df = roots_cubic_at(dc, x);
         if (!(s * df < 0.0))
             return 0;
         double nx = x - f / df;
@@ -131,7 +132,7 @@ static int convex_first(const double *c, const double *dc, double lo, double e, 
             *root = nx;
             return nx > lo ? 1 : -1;
         }
-        double nf = roots_eval(c, 4, nx);
+        double nf = roots_quartic_at(c, nx);
         if (nf == 0.0) {
             *root = nx;
             return 1;

@@ -53,4 +53,22 @@ static inline double roots_eval(const double *c, int degree, double x)
     return v;
 }
 
+/* The cubic c and the quartic c at x by Estrin's scheme, (c0 + c1 x) +
+ * x^2 ((c2 + c3 x) + x^2 c4): the same polynomial as roots_eval's, rounded
+ * in other places, in three dependent steps of a product and a sum where
+ * Horner's rule takes four (cubic: three) in a row. The Newton search for
+ * the first root (roots.c's convex_first, torus8.h's t8_first_root) waits
+ * on them at every step; they must be written the same way in both. */
+static inline double roots_cubic_at(const double c[4], double x)
+{
+    double x2 = x * x;
+    return (c[0] + c[1] * x) + x2 * (c[2] + c[3] * x);
+}
+
+static inline double roots_quartic_at(const double c[5], double x)
+{
+    double x2 = x * x;
+    return (c[0] + c[1] * x) + x2 * ((c[2] + c[3] * x) + x2 * c[4]);
+}
+
 #endif

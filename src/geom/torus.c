@@ -41,6 +41,12 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
     double oo = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
     if (od * od < dd * (oo - ext[0] * ext[0]))
         return false;
+    /* the three reciprocals from one division: 1 / d_a is the product of
+     * the other two over that of all three, a flat axis (d_a = 0) counted
+     * as 1 (from floats, the products stay in range) */
+    double f[3] = {d[0] == 0.0 ? 1.0 : d[0], d[1] == 0.0 ? 1.0 : d[1], d[2] == 0.0 ? 1.0 : d[2]};
+    double f01 = f[0] * f[1], all = 1.0 / (f01 * f[2]);
+    double invs[3] = {f[1] * f[2] * all, f[0] * f[2] * all, f01 * all};
     double t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; a++) {
         if (d[a] == 0.0) {
@@ -48,7 +54,7 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
                 return false;
             continue;
         }
-        double inv = 1.0 / d[a];
+        double inv = invs[a];
         double ta = (-ext[a] - o[a]) * inv, tb = (ext[a] - o[a]) * inv;
         if (ta > tb) { /* (fmin and fmax are library calls) */
             double t = ta;
@@ -63,19 +69,21 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
      * R - r and R + r round the axis: a segment wholly inside the inner one
      * (down the hole) or wholly outside the outer one (past a corner of the
      * box) misses. The squared distance from the axis is a quadratic in t,
-     * largest at an end of the segment and smallest at its vertex. */
+     * largest at an end of the segment and least at its vertex, where it
+     * is qc - qb^2 / qa: compared times qa, it needs no division. */
     double qa = d[0] * d[0] + d[2] * d[2], qb = o[0] * d[0] + o[2] * d[2];
     double qc = o[0] * o[0] + o[2] * o[2];
     double e0 = qc + t0 * (2.0 * qb + t0 * qa), e1 = qc + t1 * (2.0 * qb + t1 * qa);
     double inner = R > rm ? (R - rm) * (R - rm) * 0.999 : 0.0, outer = (R + rm) * (R + rm) * 1.001;
     if (e0 < inner && e1 < inner)
         return false;
-    double tv = qa > 0.0 ? -qb / qa : t0;
-    tv = tv < t0 ? t0 : tv > t1 ? t1 : tv;
-    if (qc + tv * (2.0 * qb + tv * qa) > outer)
+    bool vertex = qa > 0.0 && t0 * qa < -qb && -qb < t1 * qa; /* within the segment */
+    double least = vertex ? qa * qc - qb * qb : e0 < e1 ? e0 : e1;
+    if (least > (vertex ? outer * qa : outer))
         return false;
     double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    double u[3] = {d[0] / len, d[1] / len, d[2] / len};
+    double il = 1.0 / len; /* one division, not three (torus8.h: each waits its turn) */
+    double u[3] = {d[0] * il, d[1] * il, d[2] * il};
     double p[3] = {o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2]};
     double b = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
     double beta = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + R * R - rm * rm;
@@ -86,6 +94,7 @@ static bool setup(const struct torus *s, const ray *r, double tmin, double tmax,
     q->c[1] = 4.0 * b * beta - 2.0 * k * (p[0] * u[0] + p[2] * u[2]);
     q->c[0] = beta * beta - k * (p[0] * p[0] + p[2] * p[2]);
     q->t0 = t0;
+    q->t1 = t1;
     q->py = p[1];
     q->uy = u[1];
     q->len = len;
@@ -145,7 +154,7 @@ static bool dips_below(const torus_quartic *q, double x)
  * that a torus blocks) has one. */
 bool torus_blocks_at_once(const torus_quartic *q, const ray *r)
 {
-    double t1 = q->t0 + q->hi / q->len;
+    double t1 = q->t1;
     if ((float)q->t0 > r->tmin && (float)(t1 + 1e-9 * fabs(t1)) < r->tmax && q->uy != 0.0) {
         double x = -q->py / q->uy;
         return x > 0.0 && x < q->hi && dips_below(q, x);

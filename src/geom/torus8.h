@@ -146,11 +146,18 @@ static inline td t8_dot(const td *a, const td *b)
  * *keep when its origin lies outside the slab. */
 static inline void t8_clip(const td *o, const td *d, const double *ext, td *t0, td *t1, tk *keep)
 {
+    /* the three reciprocals from one division, as torus.c's setup finds them */
+    td f[3];
+    for (int a = 0; a < 3; a++)
+        f[a] = t8_pick(t8_cmp(d[a], t8_zero(), _CMP_EQ_OQ), t8_k(1.0), d[a]);
+    td f01 = t8_mul(f[0], f[1]), all = t8_div(t8_k(1.0), t8_mul(f01, f[2]));
+    td invs[3] = {t8_mul(t8_mul(f[1], f[2]), all), t8_mul(t8_mul(f[0], f[2]), all),
+                  t8_mul(f01, all)};
     for (int a = 0; a < 3; a++) {
         tk flat = t8_cmp(d[a], t8_zero(), _CMP_EQ_OQ);
         tk out = t8_cmp(t8_abs(o[a]), t8_k(ext[a]), _CMP_GT_OQ);
         *keep = tk_andnot(tk_and(flat, out), *keep);
-        td inv = t8_div(t8_k(1.0), d[a]);
+        td inv = invs[a];
         td ta = t8_mul(t8_sub(t8_k(-ext[a]), o[a]), inv);
         td tb = t8_mul(t8_sub(t8_k(ext[a]), o[a]), inv);
         tk swap = t8_cmp(ta, tb, _CMP_GT_OQ);
@@ -176,12 +183,14 @@ static inline tk t8_cylinders(const td *o, const td *d, td t0, td t1, double inn
     td e1 = t8_add(qc, t8_mul(t1, t8_add(t8_mul(two, qb), t8_mul(t1, qa))));
     tk in = tk_and(t8_cmp(e0, t8_k(inner), _CMP_LT_OQ), t8_cmp(e1, t8_k(inner), _CMP_LT_OQ));
     keep = tk_andnot(in, keep);
-    td tv = t8_div(t8_neg(qb), qa);
-    tv = t8_pick(t8_cmp(qa, t8_zero(), _CMP_GT_OQ), tv, t0);
-    td clamped = t8_pick(t8_cmp(tv, t1, _CMP_GT_OQ), t1, tv);
-    tv = t8_pick(t8_cmp(tv, t0, _CMP_LT_OQ), t0, clamped);
-    td ev = t8_add(qc, t8_mul(tv, t8_add(t8_mul(two, qb), t8_mul(tv, qa))));
-    return tk_and(keep, t8_cmp(ev, t8_k(outer), _CMP_NGT_UQ));
+    td nqb = t8_neg(qb);
+    tk vertex = tk_and(t8_cmp(qa, t8_zero(), _CMP_GT_OQ),
+                       tk_and(t8_cmp(t8_mul(t0, qa), nqb, _CMP_LT_OQ),
+                              t8_cmp(nqb, t8_mul(t1, qa), _CMP_LT_OQ)));
+    td least = t8_pick(vertex, t8_sub(t8_mul(qa, qc), t8_mul(qb, qb)),
+                       t8_pick(t8_cmp(e0, e1, _CMP_LT_OQ), e0, e1));
+    td bound = t8_pick(vertex, t8_mul(t8_k(outer), qa), t8_k(outer));
+    return tk_and(keep, t8_cmp(least, bound, _CMP_NGT_UQ));
 }
 
 /* Where the search for a lane's first root got to in registers
@@ -209,6 +218,20 @@ static inline td t8_eval(const td *c, int degree, td x)
     for (int i = degree - 1; i >= 0; i--)
         v = t8_add(t8_mul(v, x), c[i]);
     return v;
+}
+
+/* roots_cubic_at and roots_quartic_at (core/roots.h) lane by lane */
+static inline td t8_cubic_at(const td *c, td x)
+{
+    td x2 = t8_mul(x, x);
+    return t8_add(t8_add(c[0], t8_mul(c[1], x)), t8_mul(x2, t8_add(c[2], t8_mul(c[3], x))));
+}
+
+static inline td t8_quartic_at(const td *c, td x)
+{
+    td x2 = t8_mul(x, x);
+    td hi = t8_add(t8_add(c[2], t8_mul(c[3], x)), t8_mul(x2, c[4]));
+    return t8_add(t8_add(c[0], t8_mul(c[1], x)), t8_mul(x2, hi));
 }
 
 /* roots_quartic_above (core/roots.h) for the lanes of `lanes`: those whose
@@ -296,7 +319,7 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
     tk last = tk_or(tk_andnot(bends, toward), tk_andnot(both, away));
     td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one); /* of p where it starts */
     tk none = tk_andnot(act, act), root = none;
-    td df = t8_eval(dc, 3, x);
+    td df = t8_cubic_at(dc, x);
     for (int it = 0; it < 60 && tk_any(act); it++) {
         tk stop = tk_and(act, t8_cmp(t8_mul(sgn, df), zero, _CMP_NLT_UQ));
         none = tk_or(none, stop);
@@ -311,7 +334,7 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
                                      _CMP_LE_OQ));
         act = tk_andnot(conv, act);
         conv = tk_and(conv, t8_cmp(nx, from, _CMP_GT_OQ)); /* else rounded onto its start */
-        td nf = t8_eval(c, 4, nx), ndf = t8_eval(dc, 3, nx); /* p' at the next step's x */
+        td nf = t8_quartic_at(c, nx), ndf = t8_cubic_at(dc, nx); /* p' at the next x */
         tk hit = tk_or(conv, tk_and(act, t8_cmp(nf, zero, _CMP_EQ_OQ)));
         root = tk_or(root, hit);
         found = t8_pick(hit, nx, found);
@@ -327,14 +350,13 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
 }
 
 /* torus_blocks_at_once (torus.c) for the lanes of `lanes`, from the
- * quartic cq (its c[4] 1), the segment (t0, hi, len) and the entry
+ * quartic cq (its c[4] 1), the segment (t0, t1; hi long) and the entry
  * point's and the direction's y: the same doubles and floats lane by
  * lane. */
-static inline int t8_blocks_at_once(const td *cq, td hi, td t0, td len, td py, td uy,
+static inline int t8_blocks_at_once(const td *cq, td hi, td t0, td t1, td py, td uy,
                                     const ray8 *r, int lanes)
 {
     const td zero = t8_zero();
-    td t1 = t8_add(t0, t8_div(hi, len));
     __m256 from = t8_narrow(t0), to = t8_narrow(t8_add(t1, t8_mul(t8_k(1e-9), t8_abs(t1))));
     lanes &= _mm256_movemask_ps(_mm256_cmp_ps(from, _mm256_loadu_ps(r->tmin), _CMP_GT_OQ)) &
              _mm256_movemask_ps(_mm256_cmp_ps(to, _mm256_loadu_ps(r->tmax), _CMP_LT_OQ));
@@ -378,9 +400,9 @@ static inline int torus8_setup(const struct torus *s, const ray8 *r, int active,
     int live = active & tk_bits(keep);
     if (!live)
         return 0;
-    td len = t8_sqrt(dd), u[3], p[3];
+    td len = t8_sqrt(dd), il = t8_div(t8_k(1.0), len), u[3], p[3];
     for (int a = 0; a < 3; a++) {
-        u[a] = t8_div(d[a], len);
+        u[a] = t8_mul(d[a], il);
         p[a] = t8_add(o[a], t8_mul(t0, d[a]));
     }
     td b = t8_dot(p, u), b4 = t8_mul(t8_k(4.0), b);
@@ -395,16 +417,17 @@ static inline int torus8_setup(const struct torus *s, const ray8 *r, int active,
     c[0] = t8_sub(t8_mul(beta, beta),
                   t8_mul(t8_k(k), t8_add(t8_mul(p[0], p[0]), t8_mul(p[2], p[2]))));
     td hi = t8_mul(t8_sub(t1, t0), len);
-    int once = at_once ? t8_blocks_at_once(c, hi, t0, len, p[1], u[1], r, live) : 0;
+    int once = at_once ? t8_blocks_at_once(c, hi, t0, t1, p[1], u[1], r, live) : 0;
     if (at_once)
         *at_once = once;
     if (first)
         t8_first_root(c, hi, tk_lanes(live & ~once), first);
-    double cv[4][8], t0v[8], lenv[8], hiv[8];
+    double cv[4][8], t0v[8], t1v[8], lenv[8], hiv[8];
     double pyv[8], uyv[8];
     for (int i = 0; i < 4; i++)
         t8_store(cv[i], c[i]);
     t8_store(t0v, t0);
+    t8_store(t1v, t1);
     t8_store(lenv, len);
     t8_store(hiv, hi);
     t8_store(pyv, p[1]);
@@ -412,7 +435,7 @@ static inline int torus8_setup(const struct torus *s, const ray8 *r, int active,
     for (int m = live; m; m &= m - 1) {
         int j = __builtin_ctz((unsigned)m);
         q[j] = (torus_quartic){{cv[0][j], cv[1][j], cv[2][j], cv[3][j], 1.0},
-                               t0v[j], lenv[j], hiv[j], pyv[j], uyv[j]};
+                               t0v[j], lenv[j], hiv[j], t1v[j], pyv[j], uyv[j]};
     }
     return live;
 }
