@@ -147,6 +147,26 @@ static int convex_first(const double *c, const double *dc, double lo, double e, 
     return -1;
 }
 
+/* The first root past convex_first's first piece [lo, bend[0]), in which
+ * it found none, when two inflections cut (lo, hi): between them p bends
+ * away from zero, so that where it has f0's sign at bend[1] it has it all
+ * the way there; from bend[1] on it bends towards zero again, and
+ * convex_first searches on up to hi. Returns as convex_first does, -1
+ * also where the inflections' signs are not as they should be. Most rays
+ * that pass a torus's near side and meet its far one come this way. */
+static int past_first_piece(const double *c, const double *dc, const double *ddc,
+                            const double bend[2], double hi, double f0, double *root)
+{
+    double f = roots_eval(c, 4, bend[1]);
+    double bent = roots_eval(ddc, 2, 0.5 * (bend[0] + bend[1]));
+    double pm = roots_eval(ddc, 2, 0.5 * (bend[1] + hi));
+    bool pos = f0 > 0.0;
+    if (f == 0.0 || bent == 0.0 || pm == 0.0 || (f > 0.0) != pos || (bent > 0.0) == pos ||
+        (pm > 0.0) != pos)
+        return -1;
+    return convex_first(c, dc, bend[1], hi, f, root);
+}
+
 /* The quartic's turning points (the cubic's roots) are found one at a
  * time, in order, and each piece between two of them is searched as soon
  * as its end is known, so asking for the first root alone skips the
@@ -186,6 +206,9 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
             if (f != 0.0 && (f > 0.0) == (f0 > 0.0) && pm != 0.0 && (pm > 0.0) == (f0 > 0.0)) {
                 int k = convex_first(c, dc, from, e, f, out);
                 if (k > 0 || (k == 0 && rest == 0))
+                    return k;
+                if (k == 0 && toward && nbend == 2 &&
+                    (k = past_first_piece(c, dc, ddc, bend, hi, f0, out)) >= 0)
                     return k;
             }
         }

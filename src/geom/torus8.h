@@ -264,10 +264,49 @@ static inline tk t8_above(const td *c, td hi, tk lanes)
     return above;
 }
 
+/* convex_first (core/roots.c) for the lanes of act, from x, where p is
+ * f, towards e: the lanes it finds without a root (it returns 0) join
+ * *none, those with one (1) *root, the root in *found; the lanes it
+ * leaves (-1) join neither. All lanes step together, each leaving the
+ * loop where convex_first returns. */
+static inline void t8_convex_first(const td *c, const td *dc, td x, td f, td e, tk act,
+                                   tk *none, tk *root, td *found)
+{
+    const td zero = t8_zero(), one = t8_k(1.0), from = x;
+    td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one); /* of p where it starts */
+    td df = t8_cubic_at(dc, x);
+    for (int it = 0; it < 60 && tk_any(act); it++) {
+        tk stop = tk_and(act, t8_cmp(t8_mul(sgn, df), zero, _CMP_NLT_UQ));
+        *none = tk_or(*none, stop);
+        act = tk_andnot(stop, act);
+        td nx = t8_sub(x, t8_div(f, df));
+        stop = tk_and(act, t8_cmp(nx, e, _CMP_NLT_UQ));
+        *none = tk_or(*none, stop);
+        act = tk_andnot(stop, act);
+        td anx = t8_abs(nx);
+        td scale = t8_pick(t8_cmp(anx, one, _CMP_GT_OQ), anx, one);
+        tk conv = tk_and(act, t8_cmp(t8_abs(t8_sub(nx, x)), t8_mul(t8_k(1e-9), scale),
+                                     _CMP_LE_OQ));
+        act = tk_andnot(conv, act);
+        conv = tk_and(conv, t8_cmp(nx, from, _CMP_GT_OQ)); /* else rounded onto its start */
+        td nf = t8_quartic_at(c, nx), ndf = t8_cubic_at(dc, nx); /* p' at the next x */
+        tk hit = tk_or(conv, tk_and(act, t8_cmp(nf, zero, _CMP_EQ_OQ)));
+        *root = tk_or(*root, hit);
+        *found = t8_pick(hit, nx, *found);
+        act = tk_andnot(hit, act);
+        act = tk_andnot(t8_cmp(t8_mul(sgn, nf), zero, _CMP_LT_OQ), act); /* bracketed */
+        x = t8_pick(act, nx, x);
+        f = t8_pick(act, nf, f);
+        df = t8_pick(act, ndf, df);
+    }
+}
+
 /* torus_solve's first steps for the lanes of `lanes`, with the quartic
  * c[0] + ... + c[3] x^3 + x^4 on (0, hi): roots_quartic_above, then
  * roots_quartic(c, 0, hi, .., 1) where it takes convex_first's path, from
- * 0 or from the first inflection (core/roots.c), with the same doubles in
+ * 0 or from the first inflection, and on from the second
+ * (past_first_piece) where the first piece has no root (core/roots.c),
+ * with the same doubles in
  * the same order lane by lane, the lanes stepping together and each
  * leaving the loop where convex_first returns. Lanes whose search leaves
  * that path (the general search, a bracket, a root rounded onto its
@@ -317,32 +356,26 @@ static inline void t8_first_root(const td *cq, td hi, tk lanes, torus_first *out
         return;
     /* no root past the piece either: no more inflections */
     tk last = tk_or(tk_andnot(bends, toward), tk_andnot(both, away));
-    td sgn = t8_pick(t8_cmp(f, zero, _CMP_LT_OQ), t8_k(-1.0), one); /* of p where it starts */
     tk none = tk_andnot(act, act), root = none;
-    td df = t8_cubic_at(dc, x);
-    for (int it = 0; it < 60 && tk_any(act); it++) {
-        tk stop = tk_and(act, t8_cmp(t8_mul(sgn, df), zero, _CMP_NLT_UQ));
-        none = tk_or(none, stop);
-        act = tk_andnot(stop, act);
-        td nx = t8_sub(x, t8_div(f, df));
-        stop = tk_and(act, t8_cmp(nx, e, _CMP_NLT_UQ));
-        none = tk_or(none, stop);
-        act = tk_andnot(stop, act);
-        td anx = t8_abs(nx);
-        td scale = t8_pick(t8_cmp(anx, one, _CMP_GT_OQ), anx, one);
-        tk conv = tk_and(act, t8_cmp(t8_abs(t8_sub(nx, x)), t8_mul(t8_k(1e-9), scale),
-                                     _CMP_LE_OQ));
-        act = tk_andnot(conv, act);
-        conv = tk_and(conv, t8_cmp(nx, from, _CMP_GT_OQ)); /* else rounded onto its start */
-        td nf = t8_quartic_at(c, nx), ndf = t8_cubic_at(dc, nx); /* p' at the next x */
-        tk hit = tk_or(conv, tk_and(act, t8_cmp(nf, zero, _CMP_EQ_OQ)));
-        root = tk_or(root, hit);
-        found = t8_pick(hit, nx, found);
-        act = tk_andnot(hit, act);
-        act = tk_andnot(t8_cmp(t8_mul(sgn, nf), zero, _CMP_LT_OQ), act); /* bracketed */
-        x = t8_pick(act, nx, x);
-        f = t8_pick(act, nf, f);
-        df = t8_pick(act, ndf, df);
+    t8_convex_first(c, dc, x, f, e, act, &none, &root, &found);
+    /* past_first_piece (core/roots.c): on from p's second inflection where
+     * the first piece, from 0, had no root and the one between the
+     * inflections can have none */
+    tk again = tk_and(none, tk_and(toward, both));
+    if (tk_any(again)) {
+        const td half = t8_k(0.5);
+        td f2 = t8_eval(c, 4, hi_r);
+        td bent = t8_eval(ddc, 2, t8_mul(half, t8_add(lo_r, hi_r)));
+        td pm2 = t8_eval(ddc, 2, t8_mul(half, t8_add(hi_r, hi)));
+        again = tk_and(again, tk_and(t8_cmp(f2, zero, _CMP_NEQ_UQ),
+                                     tk_and(t8_cmp(bent, zero, _CMP_NEQ_UQ),
+                                            t8_cmp(pm2, zero, _CMP_NEQ_UQ))));
+        again = tk_andnot(tk_xor(t8_cmp(f2, zero, _CMP_GT_OQ), pos), again);
+        again = tk_and(tk_xor(t8_cmp(bent, zero, _CMP_GT_OQ), pos), again);
+        again = tk_andnot(tk_xor(t8_cmp(pm2, zero, _CMP_GT_OQ), pos), again);
+        none = tk_andnot(again, none);
+        t8_convex_first(c, dc, hi_r, f2, hi, again, &none, &root, &found);
+        last = tk_or(last, again);
     }
     out->miss |= tk_bits(tk_and(last, none));
     out->root |= tk_bits(root);
