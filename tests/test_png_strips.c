@@ -6,7 +6,7 @@
  * whole PNG files: the same bytes for any number of threads, the pixels
  * back exactly through libspng for odd sizes, one row, one column, 16-bit
  * samples, alpha and grey, and images of many strips; a failing write
- * leaves nothing behind. */
+ * leaves nothing behind; IDAT chunks of any size cut the same stream. */
 #include <criterion/criterion.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -387,6 +387,84 @@ Test(png_strips, strips_are_cut_by_size_alone)
     /* no more than 1024 strips, however thin */
     int tall = png_strip_rows(1 << 14, 1 << 14, 4, 16);
     cr_expect_leq(((1 << 14) + tall - 1) / tall, 1024);
+}
+
+/* The chunks of a PNG in b: each one's CRC right, the IDAT chunks' data
+ * (each at most max bytes, all but the last exactly max) appended to idat;
+ * returns the number of IDAT chunks. */
+static size_t walk_chunks(const bytebuf *b, size_t max, bytebuf *idat)
+{
+    cr_assert(b->len >= 8 && memcmp(b->data, "\x89PNG\r\n\x1a\n", 8) == 0);
+    size_t at = 8, n = 0, last = 0;
+    bool ended = false;
+    while (at < b->len) {
+        cr_assert(!ended && at + 12 <= b->len, "bytes after IEND or a cut chunk at %zu", at);
+        const uint8_t *p = b->data + at;
+        size_t len = (size_t)p[0] << 24 | (size_t)p[1] << 16 | (size_t)p[2] << 8 | p[3];
+        cr_assert(at + 12 + len <= b->len);
+        uint32_t crc = (uint32_t)p[8 + len] << 24 | (uint32_t)p[9 + len] << 16 |
+                       (uint32_t)p[10 + len] << 8 | p[11 + len];
+        cr_assert_eq(crc, libdeflate_crc32(0, p + 4, 4 + len), "chunk %.4s at %zu: bad CRC",
+                     (const char *)p + 4, at);
+        if (memcmp(p + 4, "IDAT", 4) == 0) {
+            cr_assert(len >= 1 && len <= max && (n == 0 || last == max), "IDAT of %zu", len);
+            cr_assert(bytes_append(idat, p + 8, len));
+            n++, last = len;
+        }
+        ended = memcmp(p + 4, "IEND", 4) == 0;
+        at += 12 + len;
+    }
+    cr_assert(ended, "no IEND");
+    return n;
+}
+
+/* The zlib stream cut into IDAT chunks of any size: the same stream, each
+ * chunk's CRC right (over pieces of strips and of the writer's own bytes),
+ * and the pixels read back; the strips stay in their own blocks. */
+Test(png_strips, idat_chunks_of_any_size_hold_the_same_stream)
+{
+    int w = 2000, h = 300;
+    uint8_t *px = samples(w, h, 3, 8, 23);
+    int strips = (h + png_strip_rows(w, h, 3, 8) - 1) / png_strip_rows(w, h, 3, 8);
+    cr_assert_gt(strips, 2);
+    glint_error err = {0};
+    bytebuf ref = {0}, ref_idat = {0};
+    cr_assert_eq(png_encode_pixels(w, h, 3, 8, px, 2, &ref, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_eq(walk_chunks(&ref, (size_t)1 << 30, &ref_idat), 1);
+    const size_t sizes[] = {13, 1000, 4096, 65535, (size_t)1 << 30};
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+        bytelist l = {0};
+        bytebuf b = {0}, idat = {0};
+        cr_assert_eq(png_encode_chunked(w, h, 3, 8, px, 2, sizes[i], &l, &err), GLINT_OK, "%s",
+                     err.msg);
+        cr_expect_eq(l.nheld, strips, "the strips' blocks are held, not copied");
+        cr_assert(bytelist_flatten(&l, &b));
+        cr_assert_eq(b.len, bytelist_len(&l));
+        size_t n = walk_chunks(&b, sizes[i], &idat);
+        cr_expect_eq(n, (ref_idat.len + sizes[i] - 1) / sizes[i]);
+        cr_assert(idat.len == ref_idat.len && memcmp(idat.data, ref_idat.data, idat.len) == 0,
+                  "chunks of %zu: another stream", sizes[i]);
+        struct spng_ihdr ih;
+        size_t len;
+        uint8_t *got = decode_png(&b, &ih, &len);
+        cr_assert(len == (size_t)w * h * 3 && memcmp(got, px, len) == 0);
+        free(got);
+        bytes_free(&b);
+        bytes_free(&idat);
+        bytelist_free(&l);
+    }
+    bytelist l = {0};
+    cr_expect_eq(png_encode_chunked(w, h, 3, 8, px, 2, 0, &l, &err), GLINT_ERR_INPUT);
+    cr_expect_eq(png_encode_chunked(4, 4, 3, 8, px, 1, 1, &l, &err), GLINT_OK, "%s", err.msg);
+    bytebuf b = {0}, idat = {0};
+    cr_assert(bytelist_flatten(&l, &b));
+    cr_expect_gt(walk_chunks(&b, 1, &idat), 10, "one byte a chunk");
+    bytes_free(&b);
+    bytes_free(&idat);
+    bytelist_free(&l);
+    bytes_free(&ref);
+    bytes_free(&ref_idat);
+    free(px);
 }
 
 /* A film written through the file writer: the pixels back exactly (v /

@@ -36,6 +36,42 @@ bool bytes_reserve(bytebuf *b, size_t n);
 bool bytes_append(bytebuf *b, const void *data, size_t n);
 void bytes_free(bytebuf *b);
 
+/* An encoded file as pieces written in order (file_write_pieces): a
+ * PNG's compressed strips stay in the blocks their threads wrote them in,
+ * instead of being copied into one new block (on a virtual machine whose
+ * host maps fresh memory slowly, 1-2 ms a MiB, the block cost more than
+ * the copy). A piece is the list's own bytes (headers, checksums: from
+ * NULL, at an offset into own) or bytes that lie elsewhere, in blocks
+ * the list holds and frees or that outlive it. (io/bytelist.c) */
+typedef struct bytepiece {
+    const uint8_t *from; /* NULL: own.data + at */
+    size_t at, n;
+} bytepiece;
+
+typedef struct bytelist {
+    bytebuf own;
+    bytepiece *pieces;
+    int n, cap;
+    void **held; /* freed with the list */
+    int nheld, cap_held;
+} bytelist;
+
+/* n bytes copied into the list's own; false when memory runs out. */
+bool bytelist_own(bytelist *l, const void *data, size_t n);
+/* n bytes at p, which must stay there until the list is written. */
+bool bytelist_ref(bytelist *l, const void *p, size_t n);
+/* block freed with the list; when memory runs out, freed now (false). */
+bool bytelist_hold(bytelist *l, void *block);
+/* A bytebuf's bytes as the list's own, the only piece: b is taken (and
+ * freed with the list even when memory runs out: false). */
+bool bytelist_of(bytelist *l, bytebuf *b);
+size_t bytelist_len(const bytelist *l);
+/* Where piece i's bytes are. */
+const uint8_t *bytelist_at(const bytelist *l, int i);
+/* All the pieces in one block, appended to out; false when memory runs out. */
+bool bytelist_flatten(const bytelist *l, bytebuf *out);
+void bytelist_free(bytelist *l);
+
 /* A film to encode: linear float RGB, optional coverage in [0, 1]. */
 typedef struct raster {
     int width, height;
@@ -74,7 +110,7 @@ glint_rc exr_decode(const uint8_t *data, size_t size, const char *name, image *o
 glint_rc legacy_decode(const uint8_t *data, size_t size, const char *name, image *out,
                        glint_error *err);
 
-glint_rc png_encode(const raster *r, bytebuf *out, glint_error *err);
+glint_rc png_encode(const raster *r, bytelist *out, glint_error *err);
 glint_rc pnm_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc rgbe_encode(const raster *r, bytebuf *out, glint_error *err);
@@ -86,6 +122,10 @@ glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err);
  * 1 to 4 channels, rows packed; threads as in raster. */
 glint_rc png_encode_pixels(int width, int height, int channels, int bits, const void *pixels,
                            int threads, bytebuf *out, glint_error *err);
+/* The same with IDAT chunks of at most chunk_max bytes (1 GiB in every
+ * file glint writes), as pieces: for the tests of the chunks' seams. */
+glint_rc png_encode_chunked(int width, int height, int channels, int bits, const void *pixels,
+                            int threads, size_t chunk_max, bytelist *out, glint_error *err);
 
 /* The rows of each strip the PNG writer compresses apart (png_write.c): a
  * function of the image's size alone, so the file's bytes do not depend on

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/random.h>
 #include <sys/stat.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -88,31 +89,56 @@ static int resolve(const char *path, target *t)
 
 /* ---- writing ------------------------------------------------------------ */
 
-static glint_rc write_all(int fd, const void *data, size_t n, const char *path, glint_error *err)
+/* The pieces at most this many at a time, of at most 1 GiB in all. */
+#define FILE_PIECES_AT_ONCE 64
+#define FILE_WRITE_MAX ((size_t)1 << 30)
+
+static glint_rc write_all(int fd, const struct iovec *iov, int n, const char *path,
+                          glint_error *err)
 {
-    const char *p = data;
-    while (n > 0) {
-        ssize_t k = write(fd, p, n > (1u << 30) ? (1u << 30) : n);
-        if (k < 0 && errno == EINTR)
+    int i = 0;
+    size_t skip = 0; /* of iov[i], written already */
+    for (;;) {
+        while (i < n && iov[i].iov_len == skip)
+            i++, skip = 0;
+        if (i == n)
+            return GLINT_OK;
+        struct iovec v[FILE_PIECES_AT_ONCE];
+        int k = 0;
+        size_t total = 0;
+        for (int j = i; j < n && k < FILE_PIECES_AT_ONCE && total < FILE_WRITE_MAX; j++) {
+            size_t off = j == i ? skip : 0, len = iov[j].iov_len - off;
+            len = len < FILE_WRITE_MAX - total ? len : FILE_WRITE_MAX - total;
+            v[k++] = (struct iovec){(char *)iov[j].iov_base + off, len};
+            total += len;
+        }
+        ssize_t w = writev(fd, v, k);
+        if (w < 0 && errno == EINTR)
             continue;
-        if (k <= 0)
+        if (w <= 0)
             return err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path,
-                           k < 0 ? strerror(errno) : "nothing written");
-        p += k;
-        n -= (size_t)k;
+                           w < 0 ? strerror(errno) : "nothing written");
+        for (size_t left = (size_t)w; left > 0;) {
+            size_t rest = iov[i].iov_len - skip;
+            if (left < rest) {
+                skip += left;
+                break;
+            }
+            left -= rest;
+            i++, skip = 0;
+        }
     }
-    return GLINT_OK;
 }
 
 /* A device, FIFO, terminal or a file behind /proc: opened and written as
  * it is; closing reports late errors (NFS, full disks). */
-static glint_rc write_direct(const char *path, bool truncate, const void *data, size_t n,
+static glint_rc write_direct(const char *path, bool truncate, const struct iovec *iov, int n,
                              glint_error *err)
 {
     int fd = open(path, O_WRONLY | O_NOCTTY | O_CLOEXEC | (truncate ? O_TRUNC : 0));
     if (fd < 0)
         return err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-    glint_rc rc = write_all(fd, data, n, path, err);
+    glint_rc rc = write_all(fd, iov, n, path, err);
     if (close(fd) != 0 && rc == GLINT_OK)
         rc = err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
     return rc;
@@ -182,7 +208,7 @@ static glint_rc check_existing(const char *shown, const char *path, struct stat 
     return GLINT_OK;
 }
 
-static glint_rc replace(const char *shown, const char *path, const void *data, size_t n,
+static glint_rc replace(const char *shown, const char *path, const struct iovec *iov, int n,
                         glint_error *err)
 {
     struct stat old;
@@ -204,7 +230,7 @@ static glint_rc replace(const char *shown, const char *path, const void *data, s
         release_signals(&saved);
         goto out;
     }
-    rc = write_all(fd, data, n, shown, err);
+    rc = write_all(fd, iov, n, shown, err);
     if (rc == GLINT_OK && exists) {
         if (fchown(fd, old.st_uid, old.st_gid) != 0) {
             /* not ours to give away: the file becomes the writer's */
@@ -235,13 +261,13 @@ out:
     return rc;
 }
 
-glint_rc file_write(const char *path, const void *data, size_t n, glint_error *err)
+glint_rc file_write_pieces(const char *path, const struct iovec *iov, int n, glint_error *err)
 {
     if (strcmp(path, "-") == 0)
-        return write_all(STDOUT_FILENO, data, n, "standard output", err);
+        return write_all(STDOUT_FILENO, iov, n, "standard output", err);
     struct stat st;
     if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
-        return write_direct(path, false, data, n, err);
+        return write_direct(path, false, iov, n, err);
     target t;
     int e = resolve(path, &t);
     glint_rc rc;
@@ -249,11 +275,17 @@ glint_rc file_write(const char *path, const void *data, size_t n, glint_error *e
         rc = e == ENOMEM ? err_nomem(err)
                          : err_set(err, GLINT_ERR_IO, "%s: cannot write: %s", path, strerror(e));
     else if (t.direct)
-        rc = write_direct(path, true, data, n, err);
+        rc = write_direct(path, true, iov, n, err);
     else
-        rc = replace(path, t.path, data, n, err);
+        rc = replace(path, t.path, iov, n, err);
     free(t.path);
     return rc;
+}
+
+glint_rc file_write(const char *path, const void *data, size_t n, glint_error *err)
+{
+    struct iovec one = {(void *)data, n};
+    return file_write_pieces(path, &one, 1, err);
 }
 
 /* ---- checking before a render ------------------------------------------- */

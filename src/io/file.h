@@ -19,12 +19,15 @@
 #define GLINT_IO_FILE_H
 
 #include <stddef.h>
+#include <sys/uio.h>
 #include "glint.h"
 
 /* Writes n bytes as the whole content of path (rules above). Errors are
  * GLINT_ERR_IO (with the system's reason), GLINT_ERR_INPUT for a target
  * that must not be written (a directory, a read-only file), GLINT_ERR_NOMEM. */
 glint_rc file_write(const char *path, const void *data, size_t n, glint_error *err);
+/* The same with the content in n pieces, written in order (writev). */
+glint_rc file_write_pieces(const char *path, const struct iovec *iov, int n, glint_error *err);
 
 /* Whether file_write(path) can succeed, checked without writing anything
  * the user sees: the target is not a directory or read-only, its folder

@@ -155,13 +155,12 @@ glint_rc image_write_check(const char *path, const glint_write_options *opts, gl
     return rc != GLINT_OK ? rc : file_check_output(path, err);
 }
 
-static glint_rc encode(const raster *r, glint_format f, bytebuf *out, glint_error *err)
+static glint_rc encode_block(const raster *r, glint_format f, bytebuf *out, glint_error *err)
 {
     switch (f) {
     case GLINT_FORMAT_AUTO:
-        break;
     case GLINT_FORMAT_PNG:
-        return png_encode(r, out, err);
+        break;
     case GLINT_FORMAT_PPM:
         return pnm_encode(r, out, err);
     case GLINT_FORMAT_JPEG:
@@ -174,6 +173,32 @@ static glint_rc encode(const raster *r, glint_format f, bytebuf *out, glint_erro
         return exr_encode(r, out, err);
     }
     return err_set(err, GLINT_ERR_INPUT, "no image format chosen");
+}
+
+/* The file's bytes: a PNG in pieces (codec.h), any other in one block. */
+static glint_rc encode(const raster *r, glint_format f, bytelist *out, glint_error *err)
+{
+    if (f == GLINT_FORMAT_PNG)
+        return png_encode(r, out, err);
+    bytebuf b = {0};
+    glint_rc rc = encode_block(r, f, &b, err);
+    if (rc == GLINT_OK && !bytelist_of(out, &b))
+        rc = err_nomem(err);
+    bytes_free(&b);
+    return rc;
+}
+
+/* The pieces as the file's content (file_write_pieces). */
+static glint_rc write_list(const char *path, const bytelist *l, glint_error *err)
+{
+    struct iovec *iov = malloc(sizeof *iov * (size_t)(l->n ? l->n : 1));
+    if (!iov)
+        return err_nomem(err);
+    for (int i = 0; i < l->n; i++)
+        iov[i] = (struct iovec){(void *)bytelist_at(l, i), l->pieces[i].n};
+    glint_rc rc = file_write_pieces(path, iov, l->n, err);
+    free(iov);
+    return rc;
 }
 
 glint_rc image_write_film(const char *path, int width, int height, const float *rgb,
@@ -193,10 +218,10 @@ glint_rc image_write_film(const char *path, int width, int height, const float *
         .quality = res.quality,
         .threads = opts ? opts->threads : 0,
     };
-    bytebuf out = {0};
+    bytelist out = {0};
     rc = encode(&r, res.format, &out, err);
     if (rc == GLINT_OK)
-        rc = file_write(path, out.data, out.len, err);
-    bytes_free(&out);
+        rc = write_list(path, &out, err);
+    bytelist_free(&out);
     return rc;
 }

@@ -75,42 +75,53 @@ static void put_be32(uint8_t *p, uint32_t v)
     p[3] = (uint8_t)v;
 }
 
-/* The chunk's CRC covers its type and data (annex D: the reflected
- * CRC-32 of ISO 3309, the one gzip uses). */
-static void put_crc(uint8_t *type_and_data, size_t n, uint8_t *dst)
+/* A chunk's CRC covers its type and data (annex D: the reflected CRC-32
+ * of ISO 3309, the one gzip uses). */
+static bool put_chunk(bytelist *out, const char type[4], const uint8_t *data, uint32_t n)
 {
-    put_be32(dst, libdeflate_crc32(0, type_and_data, n));
+    uint8_t head[8], crc[4];
+    put_be32(head, n);
+    memcpy(head + 4, type, 4);
+    uint32_t c = libdeflate_crc32(0, type, 4);
+    put_be32(crc, n ? libdeflate_crc32(c, data, n) : c); /* (NULL would start it again) */
+    return bytelist_own(out, head, 8) && bytelist_own(out, data, n) && bytelist_own(out, crc, 4);
 }
 
-static bool put_chunk(bytebuf *out, const char type[4], const uint8_t *data, uint32_t n)
-{
-    uint8_t *p = bytes_grow(out, 12 + (size_t)n);
-    if (!p)
-        return false;
-    put_be32(p, n);
-    memcpy(p + 4, type, 4);
-    if (n)
-        memcpy(p + 8, data, n);
-    put_crc(p + 4, 4 + (size_t)n, p + 8 + n);
-    return true;
-}
+/* The zlib stream into IDAT chunks of at most `max` bytes, piece by piece
+ * as it comes (idat_put): each chunk's length and type before its first
+ * byte, its CRC after its last. */
+typedef struct idat_writer {
+    bytelist *out;
+    size_t max, left, in_chunk; /* the stream's bytes still to come, the chunk's */
+    uint32_t crc;
+} idat_writer;
 
-/* Turns the compressed stream at out[start..] into IDAT chunks in place. */
-static bool wrap_idat(bytebuf *out, size_t start)
+/* n bytes of the stream at p, copied into out's own bytes or (copy
+ * false) left where they are. */
+static bool idat_put(idat_writer *w, const uint8_t *p, size_t n, bool copy)
 {
-    size_t zlen = out->len - start;
-    size_t k = zlen ? (zlen + PNG_CHUNK_MAX - 1) / PNG_CHUNK_MAX : 1;
-    if (!bytes_grow(out, 12 * k))
-        return false;
-    /* move pieces to their places, last first (they only move right) */
-    for (size_t i = k; i-- > 0;) {
-        size_t off = i * PNG_CHUNK_MAX;
-        size_t n = zlen - off < PNG_CHUNK_MAX ? zlen - off : PNG_CHUNK_MAX;
-        uint8_t *chunk = out->data + start + i * ((size_t)PNG_CHUNK_MAX + 12);
-        memmove(chunk + 8, out->data + start + off, n);
-        put_be32(chunk, (uint32_t)n);
-        memcpy(chunk + 4, "IDAT", 4);
-        put_crc(chunk + 4, 4 + n, chunk + 8 + n);
+    while (n > 0) {
+        if (w->in_chunk == 0) {
+            uint8_t head[8];
+            w->in_chunk = w->left < w->max ? w->left : w->max;
+            put_be32(head, (uint32_t)w->in_chunk);
+            memcpy(head + 4, "IDAT", 4);
+            if (!bytelist_own(w->out, head, 8))
+                return false;
+            w->crc = libdeflate_crc32(0, "IDAT", 4);
+        }
+        size_t take = n < w->in_chunk ? n : w->in_chunk;
+        if (!(copy ? bytelist_own(w->out, p, take) : bytelist_ref(w->out, p, take)))
+            return false;
+        w->crc = libdeflate_crc32(w->crc, p, take);
+        p += take, n -= take;
+        w->in_chunk -= take, w->left -= take;
+        if (w->in_chunk == 0) {
+            uint8_t crc[4];
+            put_be32(crc, w->crc);
+            if (!bytelist_own(w->out, crc, 4))
+                return false;
+        }
     }
     return true;
 }
@@ -373,54 +384,60 @@ static void run_strips(png_job *j, int threads)
 
 /* ---- the file ------------------------------------------------------------------ */
 
-/* Appends the strips' streams as one zlib stream: header, the streams,
+/* The strips' streams as one zlib stream into IDAT chunks: header, the
+ * streams where their threads left them (out then holds their blocks),
  * the Adler-32 of the whole. */
-static bool join_strips(const png_job *j, bytebuf *out)
+static bool join_strips(png_job *j, idat_writer *w)
 {
     /* CMF: deflate, 32 KiB window; FLG: level "fast" (as libdeflate marks
      * level 2), check bits making CMF * 256 + FLG a multiple of 31 */
     static const uint8_t header[2] = {0x78, 0x5e};
-    size_t total = 2 + 4;
+    w->left = 2 + 4;
     for (int i = 0; i < j->nstrips; i++)
-        total += j->strips[i].zlen;
-    uint8_t *p = bytes_grow(out, total);
-    if (!p)
+        w->left += j->strips[i].zlen;
+    if (!idat_put(w, header, 2, true))
         return false;
-    memcpy(p, header, 2);
-    p += 2;
     uint32_t adler = 1;
     for (int i = 0; i < j->nstrips; i++) {
-        const strip *s = &j->strips[i];
-        memcpy(p, s->z, s->zlen);
-        p += s->zlen;
+        strip *s = &j->strips[i];
+        uint8_t *z = s->z;
+        s->z = NULL;
+        if (!bytelist_hold(w->out, z) || !idat_put(w, z, s->zlen, false))
+            return false;
         size_t n = (size_t)(s->y1 - s->y0) * j->stride;
         adler = i == 0 ? s->adler : deflate_adler32_combine(adler, s->adler, n);
     }
-    put_be32(p, adler);
-    return true;
+    uint8_t end[4];
+    put_be32(end, adler);
+    return idat_put(w, end, 4, true);
 }
 
-/* The whole image as one strip and one zlib stream: what is left when a
- * strip's stream cannot be joined to the next (deflate_walk found what it
- * did not expect). */
-static bool compress_whole(const png_job *j, bytebuf *out)
+/* The whole image as one strip and one zlib stream into IDAT chunks:
+ * what is left when a strip's stream cannot be joined to the next
+ * (deflate_walk found what it did not expect). */
+static bool compress_whole(const png_job *j, idat_writer *w)
 {
     strip_tools t;
     strip s = {.y0 = 0, .y1 = j->src->height};
     size_t n = j->stride * (size_t)j->src->height, z = 0;
+    uint8_t *block = NULL;
     if (tools_get(&t, j, j->src->height)) {
         strip_rows(j, &s, &t);
         size_t bound = libdeflate_zlib_compress_bound(t.c, n);
-        if (bytes_reserve(out, bound))
-            z = libdeflate_zlib_compress(t.c, t.rows, n, out->data + out->len, bound);
+        if ((block = malloc(bound)))
+            z = libdeflate_zlib_compress(t.c, t.rows, n, block, bound);
     }
     tools_free(&t);
-    out->len += z;
-    return z > 0;
+    if (z == 0) {
+        free(block);
+        return false;
+    }
+    w->left = z;
+    return bytelist_hold(w->out, block) && idat_put(w, block, z, false);
 }
 
-/* The rows, filtered and compressed, appended to out as one zlib stream. */
-static bool compress_rows(const png_source *src, int threads, bytebuf *out)
+/* The rows, filtered and compressed, as one zlib stream in IDAT chunks. */
+static bool compress_rows(const png_source *src, int threads, idat_writer *w)
 {
     png_job j = {.src = src};
     j.stride = 1 + (size_t)src->width * (size_t)src->channels * (size_t)(src->bits / 8);
@@ -442,15 +459,17 @@ static bool compress_rows(const png_source *src, int threads, bytebuf *out)
     for (int i = 0; ok && i < j.nstrips; i++)
         joined = joined && j.strips[i].joined;
     if (ok)
-        ok = joined ? join_strips(&j, out) : compress_whole(&j, out);
+        ok = joined ? join_strips(&j, w) : compress_whole(&j, w);
     for (int i = 0; j.strips && i < j.nstrips; i++)
         free(j.strips[i].z);
     free(j.strips);
     return ok;
 }
 
-/* Signature, IHDR, the rows as IDAT chunks, IEND. */
-static glint_rc encode(const png_source *src, int threads, bytebuf *out, glint_error *err)
+/* Signature, IHDR, the rows as IDAT chunks of at most chunk_max bytes,
+ * IEND. */
+static glint_rc encode(const png_source *src, int threads, size_t chunk_max, bytelist *out,
+                       glint_error *err)
 {
     static const uint8_t color_type[5] = {0, 0, 4, 2, 6}; /* grey, grey+alpha, RGB, RGBA */
     uint8_t ihdr[13];
@@ -459,25 +478,46 @@ static glint_rc encode(const png_source *src, int threads, bytebuf *out, glint_e
     ihdr[8] = (uint8_t)src->bits;
     ihdr[9] = color_type[src->channels];
     ihdr[10] = ihdr[11] = ihdr[12] = 0; /* deflate, adaptive filtering, no interlace */
-    bool ok = bytes_append(out, "\x89PNG\r\n\x1a\n", 8) && put_chunk(out, "IHDR", ihdr, 13);
-    size_t start = out->len;
-    ok = ok && compress_rows(src, threads, out) && wrap_idat(out, start) &&
-         put_chunk(out, "IEND", NULL, 0);
+    idat_writer w = {.out = out, .max = chunk_max};
+    bool ok = bytelist_own(out, "\x89PNG\r\n\x1a\n", 8) && put_chunk(out, "IHDR", ihdr, 13) &&
+              compress_rows(src, threads, &w) && put_chunk(out, "IEND", NULL, 0);
     return ok ? GLINT_OK : err_nomem(err);
+}
+
+static glint_rc check_pixels(int width, int height, int channels, int bits, glint_error *err)
+{
+    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
+        return err_set(err, GLINT_ERR_INPUT, "PNG: cannot write %dx%d, %d channels, %d bits",
+                       width, height, channels, bits);
+    return GLINT_OK;
+}
+
+glint_rc png_encode_chunked(int width, int height, int channels, int bits, const void *pixels,
+                            int threads, size_t chunk_max, bytelist *out, glint_error *err)
+{
+    glint_rc rc = check_pixels(width, height, channels, bits, err);
+    if (rc != GLINT_OK)
+        return rc;
+    if (chunk_max < 1 || chunk_max > PNG_CHUNK_MAX)
+        return err_set(err, GLINT_ERR_INPUT, "PNG: IDAT chunks of 1 to %u bytes", PNG_CHUNK_MAX);
+    png_source src = {width, height, channels, bits, NULL, pixels};
+    return encode(&src, threads, chunk_max, out, err);
 }
 
 glint_rc png_encode_pixels(int width, int height, int channels, int bits, const void *pixels,
                            int threads, bytebuf *out, glint_error *err)
 {
-    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
-        return err_set(err, GLINT_ERR_INPUT, "PNG: cannot write %dx%d, %d channels, %d bits",
-                       width, height, channels, bits);
-    png_source src = {width, height, channels, bits, NULL, pixels};
-    return encode(&src, threads, out, err);
+    bytelist l = {0};
+    glint_rc rc =
+        png_encode_chunked(width, height, channels, bits, pixels, threads, PNG_CHUNK_MAX, &l, err);
+    if (rc == GLINT_OK && !bytelist_flatten(&l, out))
+        rc = err_nomem(err);
+    bytelist_free(&l);
+    return rc;
 }
 
-glint_rc png_encode(const raster *r, bytebuf *out, glint_error *err)
+glint_rc png_encode(const raster *r, bytelist *out, glint_error *err)
 {
     png_source src = {r->width, r->height, r->alpha ? 4 : 3, r->bits, r, NULL};
-    return encode(&src, r->threads, out, err);
+    return encode(&src, r->threads, PNG_CHUNK_MAX, out, err);
 }
