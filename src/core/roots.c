@@ -108,14 +108,15 @@ int roots_cubic(const double c[4], double lo, double hi, double out[3])
  * and the quartic's turning point ahead need not be found. Returns 1 with
  * *root; 0 when s p stays positive on [lo, e) (a tangent reaches e, or
  * p' turns first); -1 when rounding left the path, for the general
- * search to decide. It stops at the first step under 1e-9 (relative):
+ * search to decide. It stops at the first step under 1e-7 (relative):
  * the error left after a Newton step towards a simple root is of the
- * order of the step's square, so the root is then already good to the
- * last bits, and waiting for a step under 1e-15, as the bracketed search
- * does, costs one more step to learn that (two dependent polynomial
- * evaluations and a division: 4% of the render of bench/README.md's
- * scene of tori). At a double root, where the steps only halve, the root
- * is within about 1e-9. Each step evaluates p and p' by Estrin's scheme
+ * order of the step's square, so the root is then good to some 1e-14,
+ * and waiting for a smaller step, as the bracketed search does, costs
+ * one more step to learn that (two dependent polynomial evaluations and
+ * a division: 4% of the render of bench/README.md's scene of tori; with
+ * steps under 1e-9, one step in sixteen was that one). At a double root,
+ * where the steps only halve, the root is within about 1e-7, a float's
+ * resolution. Each step evaluates p and p' by Estrin's scheme
  * (roots_quartic_at): the step waits on them. */
 static int convex_first(const double *c, const double *dc, double lo, double e, double f0,
                         double *root)
@@ -128,7 +129,7 @@ static int convex_first(const double *c, const double *dc, double lo, double e, 
         double nx = x - f / df;
         if (!(nx < e))
             return 0;
-        if (fabs(nx - x) <= 1e-9 * at_least_one(fabs(nx))) {
+        if (fabs(nx - x) <= 1e-7 * at_least_one(fabs(nx))) {
             *root = nx;
             return nx > lo ? 1 : -1;
         }

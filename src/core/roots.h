@@ -10,8 +10,8 @@
  * are, and each comes out to full double precision (the first root alone,
  * when the quartic bends towards it from lo on, or from its first
  * inflection after bending away from it up to there, by a Newton search
- * that stops at a step under 1e-9: also full precision at a simple root,
- * within about 1e-9 at a double one). A root where the
+ * that stops at a step under 1e-7: near full precision at a simple root,
+ * within about 1e-7 at a double one). A root where the
  * polynomial only touches zero (a tangent ray) is not reported.
  *
  * Coefficients are c[0] + c[1] x + ... + c[n] x^n. Roots are those in the

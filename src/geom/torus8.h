@@ -285,7 +285,7 @@ static inline void t8_convex_first(const td *c, const td *dc, td x, td f, td e, 
         act = tk_andnot(stop, act);
         td anx = t8_abs(nx);
         td scale = t8_pick(t8_cmp(anx, one, _CMP_GT_OQ), anx, one);
-        tk conv = tk_and(act, t8_cmp(t8_abs(t8_sub(nx, x)), t8_mul(t8_k(1e-9), scale),
+        tk conv = tk_and(act, t8_cmp(t8_abs(t8_sub(nx, x)), t8_mul(t8_k(1e-7), scale),
                                      _CMP_LE_OQ));
         act = tk_andnot(conv, act);
         conv = tk_and(conv, t8_cmp(nx, from, _CMP_GT_OQ)); /* else rounded onto its start */
