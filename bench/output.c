@@ -7,8 +7,9 @@
  * threads. glint's time includes turning the float film into bytes;
  * libpng's does not. glint's file is left in pieces (its header, its
  * strips where their threads compressed them: io/codec.h's bytelist), as
- * it goes to the file; libpng's is appended to one block. Throughput is counted in raw pixel bytes (width x
- * height x 3). Prints three table rows. */
+ * it goes to the file; libpng's is appended to one block. Throughput is
+ * counted in raw pixel bytes (width x height x 3). Prints three table
+ * rows. */
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -110,7 +110,8 @@ int roots_cubic(const double c[4], double lo, double hi, double out[3])
  * p' turns first); -1 when rounding left the path, for the general
  * search to decide. It stops at the first step under 1e-7 (relative):
  * the error left after a Newton step towards a simple root is of the
- * order of the step's square, so the root is then good to some 1e-14,
+ * order of the step's square, so the root is then good to about 1e-14
+ * (1e-12 near a double root),
  * and waiting for a smaller step, as the bracketed search does, costs
  * one more step to learn that (two dependent polynomial evaluations and
  * a division: 4% of the render of bench/README.md's scene of tori; with
@@ -173,7 +174,8 @@ static int past_first_piece(const double *c, const double *dc, const double *ddc
  * as its end is known, so asking for the first root alone skips the
  * turning points beyond it; and for the first root alone, when the
  * quartic bends towards zero from lo on, or from its first inflection
- * after bending away from zero up to it, convex_first needs none. */
+ * after bending away from zero up to it, convex_first needs none, nor
+ * past_first_piece after it when the first piece has no root. */
 int roots_quartic(const double c[5], double lo, double hi, double out[4], int max)
 {
     if (c[4] == 0.0) {
@@ -196,7 +198,9 @@ int roots_quartic(const double c[5], double lo, double hi, double out[4], int ma
          * it has it at the inflection), from there up to the next. p'' is
          * taken in the middle of the piece searched, not only at its
          * start: the computed inflections may miss one within rounding of
-         * lo, or list a double one where p'' keeps its sign. */
+         * lo, or list a double one where p'' keeps its sign. With no root
+         * from lo to the first of two inflections, on from the second
+         * (past_first_piece). */
         double pp = roots_eval(ddc, 2, lo);
         bool toward = (f0 > 0.0) == (pp > 0.0);
         if (toward || (nbend > 0 && pp != 0.0)) {

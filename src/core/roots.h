@@ -9,9 +9,11 @@
  * instead). So no root that crosses zero is lost, however close two roots
  * are, and each comes out to full double precision (the first root alone,
  * when the quartic bends towards it from lo on, or from its first
- * inflection after bending away from it up to there, by a Newton search
- * that stops at a step under 1e-7: near full precision at a simple root,
- * within about 1e-7 at a double one). A root where the
+ * inflection after bending away from it up to there, or from its second
+ * inflection when the first piece has none and the one between the
+ * inflections can have none, by a Newton search that stops at a step
+ * under 1e-7: good to about 1e-14 at a simple root, 1e-12 close to a
+ * double one, and about 1e-7 at a double one). A root where the
  * polynomial only touches zero (a tangent ray) is not reported.
  *
  * Coefficients are c[0] + c[1] x + ... + c[n] x^n. Roots are those in the
@@ -55,8 +57,8 @@ static inline double roots_eval(const double *c, int degree, double x)
 
 /* The cubic c and the quartic c at x by Estrin's scheme, (c0 + c1 x) +
  * x^2 ((c2 + c3 x) + x^2 c4): the same polynomial as roots_eval's, rounded
- * in other places, in three dependent steps of a product and a sum where
- * Horner's rule takes four (cubic: three) in a row. The Newton search for
+ * in other places, in three dependent steps of a product and a sum (the
+ * cubic: two) where Horner's rule takes four (the cubic: three) in a row. The Newton search for
  * the first root (roots.c's convex_first, torus8.h's t8_first_root) waits
  * on them at every step; they must be written the same way in both. */
 static inline double roots_cubic_at(const double c[4], double x)

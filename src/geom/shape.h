@@ -278,7 +278,7 @@ bool torus_occluded(const struct torus *s, const ray *r);
 typedef struct torus_quartic {
     double c[5];
     double t0, len, hi;
-    double t1; /* the clipped segment's end: t0 + hi / len, unrounded */
+    double t1; /* the clip's end, from which hi = (t1 - t0) len */
     double py, uy; /* the entry point's and the direction's y */
 } torus_quartic;
 bool torus_solve(const torus_quartic *q, const ray *r, shape_hit *hit);

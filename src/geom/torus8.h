@@ -7,7 +7,8 @@
  * the bit; branches become masks. The search for the first root then
  * starts in the same registers (t8_first_root): the test that the quartic
  * stays above zero, and the Newton steps of roots_quartic's commonest
- * paths (from the entry, or from the first inflection), all lanes
+ * paths (from the entry, or from the first inflection, and on from the
+ * second where the first piece has no root), all lanes
  * stepping together instead of one search after another, each with its
  * own data-dependent loop (row 8 of bench/README.md: as many instructions,
  * 9% less time). Lanes it leaves undecided, about one in twenty-five

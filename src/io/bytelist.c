@@ -55,6 +55,7 @@ bool bytelist_hold(bytelist *l, void *block)
 
 bool bytelist_of(bytelist *l, bytebuf *b)
 {
+    bytelist_free(l);
     l->own = *b;
     *b = (bytebuf){0};
     l->n = 0;
@@ -77,6 +78,8 @@ const uint8_t *bytelist_at(const bytelist *l, int i)
 
 bool bytelist_flatten(const bytelist *l, bytebuf *out)
 {
+    if (l->n == 0)
+        return true;
     uint8_t *d = bytes_grow(out, bytelist_len(l));
     if (!d)
         return false;

@@ -9,8 +9,9 @@
  * allocating pixels, say "file is truncated" when the data stops early, and
  * leave *out untouched on failure.
  *
- * Encoders append to a byte buffer and return GLINT_OK or GLINT_ERR_NOMEM
- * (or GLINT_ERR_INPUT for a raster the format cannot hold). */
+ * Encoders append to a byte buffer (the PNG writer fills a bytelist) and
+ * return GLINT_OK or GLINT_ERR_NOMEM (or GLINT_ERR_INPUT for a raster the
+ * format cannot hold). */
 #ifndef GLINT_IO_CODEC_H
 #define GLINT_IO_CODEC_H
 
@@ -62,8 +63,9 @@ bool bytelist_own(bytelist *l, const void *data, size_t n);
 bool bytelist_ref(bytelist *l, const void *p, size_t n);
 /* block freed with the list; when memory runs out, freed now (false). */
 bool bytelist_hold(bytelist *l, void *block);
-/* A bytebuf's bytes as the list's own, the only piece: b is taken (and
- * freed with the list even when memory runs out: false). */
+/* A bytebuf's bytes as the list's own, the only piece, in place of what
+ * the list held: b is taken (and freed with the list even when memory
+ * runs out: false). */
 bool bytelist_of(bytelist *l, bytebuf *b);
 size_t bytelist_len(const bytelist *l);
 /* Where piece i's bytes are. */

@@ -159,7 +159,7 @@ static glint_rc encode_block(const raster *r, glint_format f, bytebuf *out, glin
 {
     switch (f) {
     case GLINT_FORMAT_AUTO:
-    case GLINT_FORMAT_PNG:
+    case GLINT_FORMAT_PNG: /* in pieces: encode */
         break;
     case GLINT_FORMAT_PPM:
         return pnm_encode(r, out, err);

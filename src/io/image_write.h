@@ -1,7 +1,7 @@
 /* image_write: films to image files. The format comes from the options or
  * the file name's extension; the whole file is encoded in memory by its
- * codec (codec.h), then handed to file_write (file.h), which replaces the
- * target atomically. image_write_check runs the same checks up front, so a
+ * codec (codec.h), then handed to file_write_pieces (file.h), which
+ * replaces the target atomically. image_write_check runs the same checks up front, so a
  * caller can refuse a bad output name before spending time on a render. */
 #ifndef GLINT_IO_IMAGE_WRITE_H
 #define GLINT_IO_IMAGE_WRITE_H

@@ -103,6 +103,8 @@ static bool idat_put(idat_writer *w, const uint8_t *p, size_t n, bool copy)
     while (n > 0) {
         if (w->in_chunk == 0) {
             uint8_t head[8];
+            if (w->left == 0) /* more bytes than the stream was said to hold */
+                return false;
             w->in_chunk = w->left < w->max ? w->left : w->max;
             put_be32(head, (uint32_t)w->in_chunk);
             memcpy(head + 4, "IDAT", 4);
@@ -480,7 +482,8 @@ static glint_rc encode(const png_source *src, int threads, size_t chunk_max, byt
     ihdr[10] = ihdr[11] = ihdr[12] = 0; /* deflate, adaptive filtering, no interlace */
     idat_writer w = {.out = out, .max = chunk_max};
     bool ok = bytelist_own(out, "\x89PNG\r\n\x1a\n", 8) && put_chunk(out, "IHDR", ihdr, 13) &&
-              compress_rows(src, threads, &w) && put_chunk(out, "IEND", NULL, 0);
+              compress_rows(src, threads, &w) && w.left == 0 && w.in_chunk == 0 &&
+              put_chunk(out, "IEND", NULL, 0);
     return ok ? GLINT_OK : err_nomem(err);
 }
 
