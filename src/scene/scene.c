@@ -295,9 +295,19 @@ static glint_rc check_shading(const scene *s, glint_error *err)
 #define BUNDLE_MIN 4096
 #define BUNDLE 8
 
-static inline bool object_unbounded(aabb b)
+/* Empty, or a bound infinite or NaN (its exponent's bits all ones), in
+ * one pass without branches and always inline: the profile-guided build
+ * had made it a call, twice an object, with the box passed through
+ * memory (10^6 spheres on one thread: 2.9% of the build). */
+__attribute__((always_inline)) static inline bool object_unbounded(aabb b)
 {
-    return aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi);
+    uint32_t w[6];
+    memcpy(w, &b.lo, sizeof b.lo);
+    memcpy(w + 3, &b.hi, sizeof b.hi);
+    bool bad = (b.lo.x > b.hi.x) | (b.lo.y > b.hi.y) | (b.lo.z > b.hi.z);
+    for (int i = 0; i < 6; i++)
+        bad |= (w[i] & 0x7f800000u) == 0x7f800000u;
+    return bad;
 }
 
 /* The BVH over bounded objects; unbounded ones are listed apart. When
