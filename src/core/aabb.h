@@ -16,6 +16,15 @@ static inline aabb aabb_union(aabb a, aabb b) { return (aabb){v3_min(a.lo, b.lo)
 static inline vec3 aabb_center(aabb b) { return v3_scale(v3_add(b.lo, b.hi), 0.5f); }
 static inline vec3 aabb_extent(aabb b) { return v3_sub(b.hi, b.lo); }
 static inline bool aabb_is_empty(aabb b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
+/* Empty, or a bound infinite or NaN: no box a ray could be clipped to.
+ * Without branches and always inline: scene_build asks it of every object
+ * (a call in the profile-guided build, with the box passed through
+ * memory, was 2.9% of building 10^6 spheres on one thread). */
+__attribute__((always_inline)) static inline bool aabb_is_unbounded(aabb b)
+{
+    const float f[6] = {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z};
+    return (b.lo.x > b.hi.x) | (b.lo.y > b.hi.y) | (b.lo.z > b.hi.z) | !floats_finite(f, 6);
+}
 static inline float aabb_area(aabb b)
 {
     if (aabb_is_empty(b))

@@ -198,16 +198,10 @@ bool xform_is_identity(const xform *x)
     return memcmp(&x->fwd, &id, sizeof id) == 0;
 }
 
-/* A float is infinite or NaN where its exponent's bits are all ones: one
- * pass over the bits without branches, which the compiler does in vector
- * registers (loading a scene of thousands of transforms asks this at
- * every step; a sum of v - v over the 32 floats waited on each add). */
+/* floats_finite (core/vec3.h) over both matrices: loading a scene of
+ * thousands of transforms asks this at every step (a sum of v - v over
+ * the 32 floats waited on each add). */
 bool xform_is_finite(const xform *x)
 {
-    uint32_t bits[32], bad = 0;
-    memcpy(bits, &x->fwd, sizeof x->fwd);
-    memcpy(bits + 16, &x->inv, sizeof x->inv);
-    for (int i = 0; i < 32; i++)
-        bad |= (bits[i] & 0x7f800000u) == 0x7f800000u;
-    return !bad;
+    return floats_finite(&x->fwd.m[0][0], 16) & floats_finite(&x->inv.m[0][0], 16);
 }

@@ -148,16 +148,18 @@ static inline td t8_dot(const td *a, const td *b)
 static inline void t8_clip(const td *o, const td *d, const double *ext, td *t0, td *t1, tk *keep)
 {
     /* the three reciprocals from one division, as torus.c's setup finds them */
+    tk flat[3];
     td f[3];
-    for (int a = 0; a < 3; a++)
-        f[a] = t8_pick(t8_cmp(d[a], t8_zero(), _CMP_EQ_OQ), t8_k(1.0), d[a]);
+    for (int a = 0; a < 3; a++) {
+        flat[a] = t8_cmp(d[a], t8_zero(), _CMP_EQ_OQ);
+        f[a] = t8_pick(flat[a], t8_k(1.0), d[a]);
+    }
     td f01 = t8_mul(f[0], f[1]), all = t8_div(t8_k(1.0), t8_mul(f01, f[2]));
     td invs[3] = {t8_mul(t8_mul(f[1], f[2]), all), t8_mul(t8_mul(f[0], f[2]), all),
                   t8_mul(f01, all)};
     for (int a = 0; a < 3; a++) {
-        tk flat = t8_cmp(d[a], t8_zero(), _CMP_EQ_OQ);
         tk out = t8_cmp(t8_abs(o[a]), t8_k(ext[a]), _CMP_GT_OQ);
-        *keep = tk_andnot(tk_and(flat, out), *keep);
+        *keep = tk_andnot(tk_and(flat[a], out), *keep);
         td inv = invs[a];
         td ta = t8_mul(t8_sub(t8_k(-ext[a]), o[a]), inv);
         td tb = t8_mul(t8_sub(t8_k(ext[a]), o[a]), inv);
@@ -165,8 +167,8 @@ static inline void t8_clip(const td *o, const td *d, const double *ext, td *t0, 
         td lo = t8_pick(swap, tb, ta), hi = t8_pick(swap, ta, tb);
         td n0 = t8_pick(t8_cmp(lo, *t0, _CMP_GT_OQ), lo, *t0);
         td n1 = t8_pick(t8_cmp(hi, *t1, _CMP_LT_OQ), hi, *t1);
-        *t0 = t8_pick(flat, *t0, n0);
-        *t1 = t8_pick(flat, *t1, n1);
+        *t0 = t8_pick(flat[a], *t0, n0);
+        *t1 = t8_pick(flat[a], *t1, n1);
     }
     *keep = tk_and(*keep, t8_cmp(*t0, *t1, _CMP_LT_OQ));
 }

@@ -29,7 +29,7 @@ xform scene_object_xform_at(const scene *s, const object *o, float t)
  * object at every time of the interval. */
 static aabb moving_bounds(const scene *s, const object *o, aabb b)
 {
-    if (aabb_is_empty(b) || !v3_is_finite(b.lo) || !v3_is_finite(b.hi))
+    if (aabb_is_unbounded(b))
         return b;
     aabb r = aabb_empty();
     vec3 prev[8];

@@ -295,21 +295,6 @@ static glint_rc check_shading(const scene *s, glint_error *err)
 #define BUNDLE_MIN 4096
 #define BUNDLE 8
 
-/* Empty, or a bound infinite or NaN (its exponent's bits all ones), in
- * one pass without branches and always inline: the profile-guided build
- * had made it a call, twice an object, with the box passed through
- * memory (10^6 spheres on one thread: 2.9% of the build). */
-__attribute__((always_inline)) static inline bool object_unbounded(aabb b)
-{
-    uint32_t w[6];
-    memcpy(w, &b.lo, sizeof b.lo);
-    memcpy(w + 3, &b.hi, sizeof b.hi);
-    bool bad = (b.lo.x > b.hi.x) | (b.lo.y > b.hi.y) | (b.lo.z > b.hi.z);
-    for (int i = 0; i < 6; i++)
-        bad |= (w[i] & 0x7f800000u) == 0x7f800000u;
-    return bad;
-}
-
 /* The BVH over bounded objects; unbounded ones are listed apart. When
  * most of them are dear to test (object_is_dear) a leaf holds one, so
  * that a ray tests only the objects whose own boxes it enters: on row 8
@@ -326,7 +311,7 @@ static glint_rc build_accel(scene *s, int nb, int dear, glint_error *err)
             return err_nomem(err);
         }
         for (int i = 0, k = 0; i < s->nobjects; i++) {
-            if (object_unbounded(s->bounds[i]))
+            if (aabb_is_unbounded(s->bounds[i]))
                 s->unbounded[s->nunbounded++] = i;
             else
                 bounded[k++] = i;
@@ -346,7 +331,7 @@ static aabb object_bounds(const scene *s, object *o)
     aabb b = shape_bounds_inline(&o->shape);
     if (o->shape.kind == SHAPE_PLANE)
         o->origin = o->shape.plane.point;
-    else if (object_unbounded(b))
+    else if (aabb_is_unbounded(b))
         o->origin = v3s(0.0f);
     else
         o->origin = v3_scale(v3_add(b.lo, b.hi), 0.5f);
@@ -376,7 +361,7 @@ static glint_rc build_objects(scene *s, const int *of, int *nb, int *dear, glint
         scene_link_motion(s, of, o);
         aabb b = object_bounds(s, o);
         s->bounds[i] = b;
-        if (!object_unbounded(b)) {
+        if (!aabb_is_unbounded(b)) {
             ++*nb;
             *dear += object_is_dear(o);
         }
