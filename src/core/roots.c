@@ -112,12 +112,13 @@ int roots_cubic(const double c[4], double lo, double hi, double out[3])
  * the error left after a Newton step towards a simple root is of the
  * order of the step's square, so the root is then good to about 1e-14
  * (1e-12 near a double root), and waiting for a smaller step, as the
- * bracketed search does, costs one more step to learn that (two dependent polynomial evaluations and
- * a division: 4% of the render of bench/README.md's scene of tori; with
- * steps under 1e-9, one step in sixteen was that one). At a double root,
- * where the steps only halve, the root is within about 1e-7, a float's
- * resolution. Each step evaluates p and p' by Estrin's scheme
- * (roots_quartic_at): the step waits on them. */
+ * bracketed search does, costs one more step to learn that (two
+ * dependent polynomial evaluations and a division: 4% of the render of
+ * bench/README.md's scene of tori; with steps under 1e-9, one step in
+ * sixteen was that one). At a double root, where the steps only halve,
+ * the root is within about 1e-7, a float's resolution. Each step
+ * evaluates p and p' by Estrin's scheme (roots_quartic_at): the step
+ * waits on them. */
 static int convex_first(const double *c, const double *dc, double lo, double e, double f0,
                         double *root)
 {
