@@ -37,11 +37,35 @@ static long fail_at;      /* the call that fails (1-based); 0: none */
 
 static bool fail_now(void) { return ++calls == fail_at; }
 
-void *__wrap_malloc(size_t n) { return fail_now() ? NULL : __real_malloc(n); }
-void *__wrap_calloc(size_t k, size_t n) { return fail_now() ? NULL : __real_calloc(k, n); }
-void *__wrap_realloc(void *p, size_t n) { return fail_now() ? NULL : __real_realloc(p, n); }
+/* The largest block asked for so far, for tests that bound what a call
+ * allocates (test_png_read.c sets it to 0 first). */
+atomic_size_t alloc_largest;
+
+static void note(size_t n)
+{
+    size_t was = atomic_load(&alloc_largest);
+    while (n > was && !atomic_compare_exchange_weak(&alloc_largest, &was, n)) {
+    }
+}
+
+void *__wrap_malloc(size_t n)
+{
+    note(n);
+    return fail_now() ? NULL : __real_malloc(n);
+}
+void *__wrap_calloc(size_t k, size_t n)
+{
+    note(k && n > SIZE_MAX / k ? SIZE_MAX : k * n);
+    return fail_now() ? NULL : __real_calloc(k, n);
+}
+void *__wrap_realloc(void *p, size_t n)
+{
+    note(n);
+    return fail_now() ? NULL : __real_realloc(p, n);
+}
 void *__wrap_aligned_alloc(size_t a, size_t n)
 {
+    note(n);
     return fail_now() ? NULL : __real_aligned_alloc(a, n);
 }
 

@@ -1,6 +1,7 @@
 /* Reading PNG files (src/io/png.c): the common forms (8-bit grey, grey and
- * alpha, RGB, RGBA, not interlaced) go through glint's own reader, the
- * rest through libspng. Files are made here byte by byte (each row with a
+ * alpha, RGB, RGBA, not interlaced) go through glint's own reader
+ * (png_decode_common, which each test checks took the file or left it),
+ * the rest through libspng. Files are made here byte by byte (each row with a
  * chosen filter, the zlib stream cut into several IDAT chunks, ancillary
  * chunks around them), so each filter and chunk layout is known to be in
  * the file; the pixels must be the source's, as RGB, and the ones libspng
@@ -8,13 +9,18 @@
  * palette, an unknown critical chunk) read as libspng reads them,
  * and damaged ones are errors naming the file. */
 #include <criterion/criterion.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <libdeflate.h>
 #include <spng.h>
 
+#include "io/codec.h"
 #include "io/image.h"
+
+/* The largest block asked for (tests/test_alloc.c's allocation wrappers). */
+extern atomic_size_t alloc_largest;
 
 typedef struct png_bytes {
     uint8_t *p;
@@ -172,12 +178,15 @@ Test(png_read, every_filter_of_every_common_form_reads_exactly)
                 int one = f;
                 png_bytes b = make_png(px, w, h, types[ch - 1], ch, f == 5 ? mixed : &one,
                                        f == 5 ? 5 : 1, f == 5 ? 37 : 1 << 20, 7, NULL);
-                image img = {0};
+                image img = {0}, own = {0};
                 glint_error err = {0};
                 cr_assert_eq(image_load_memory(b.p, b.n, "t.png", &img, &err), GLINT_OK, "%s",
                              err.msg);
                 expect_rgb(&img, px, w, h, ch);
                 expect_as_spng(&img, &b);
+                cr_assert(png_decode_common(b.p, b.n, &own), "own reader declined it");
+                expect_rgb(&own, px, w, h, ch);
+                image_free(&own);
                 image_free(&img);
                 free(b.p);
                 free(px);
@@ -192,11 +201,12 @@ Test(png_read, files_left_to_libspng_read_the_same)
     png_bytes b = make_png(px, w, h, 2, 3, &up, 1, 1000, 7, "ABCD");
     image img = {0};
     glint_error err = {0};
+    cr_assert_not(png_decode_common(b.p, b.n, &img));
     cr_assert_eq(image_load_memory(b.p, b.n, "odd.png", &img, &err), GLINT_ERR_INPUT);
     cr_assert_eq(strncmp(err.msg, "odd.png: ", 9), 0, "%s", err.msg);
     free(b.p);
     /* the zlib header: a 512-byte window named, the stream referring back
-     * 690 bytes (each row repeats the one above), read as zlib reads it
+     * 691 bytes (each row repeats the one above), read as zlib reads it
      * (it holds a stream to its window only when built to); a preset
      * dictionary asked for, refused */
     int wide = 230, none = 0;
@@ -238,6 +248,7 @@ Test(png_read, files_left_to_libspng_read_the_same)
     for (int i = 0; i < w * h; i++)
         idx[i] = (uint8_t)(i % 3 == 0);
     b = make_png(idx, w, h, 3, 1, &none, 1, 1000, 7, "PLTE");
+    cr_assert_not(png_decode_common(b.p, b.n, &img));
     cr_assert_eq(image_load_memory(b.p, b.n, "pal.png", &img, &err), GLINT_OK, "%s", err.msg);
     for (int i = 0; i < w * h; i++)
         for (int c = 0; c < 3; c++)
@@ -291,4 +302,48 @@ Test(png_read, damaged_files_are_errors_naming_the_file)
     free(b.p);
     free(good.p);
     free(px);
+}
+
+/* A small file whose header claims far more pixels than its stream can
+ * inflate to (2^28 RGBA pixels from a few dozen bytes) is declined before
+ * memory is asked for, and is an error; so is one with more ancillary
+ * chunks than the own reader takes, which libspng then reads. */
+Test(png_read, claims_beyond_the_data_and_many_chunks_go_to_libspng)
+{
+    uint8_t px[4] = {1, 2, 3, 4};
+    int none = 0;
+    png_bytes b = make_png(px, 1, 1, 6, 4, &none, 1, 1000, 7, NULL);
+    for (int i = 0; i < 4; i++) { /* IHDR: 16384 x 16384, the CRC made right */
+        b.p[16 + i] = (uint8_t)(16384u >> (24 - 8 * i));
+        b.p[20 + i] = (uint8_t)(16384u >> (24 - 8 * i));
+    }
+    uint32_t crc = (uint32_t)libdeflate_crc32(0, b.p + 12, 17);
+    for (int i = 0; i < 4; i++)
+        b.p[29 + i] = (uint8_t)(crc >> (24 - 8 * i));
+    image img = {0};
+    glint_error err = {0};
+    atomic_store(&alloc_largest, 0);
+    cr_assert_not(png_decode_common(b.p, b.n, &img));
+    cr_assert_lt(atomic_load(&alloc_largest), (size_t)1 << 20, "asked for %zu bytes",
+                 atomic_load(&alloc_largest));
+    cr_assert_eq(image_load_memory(b.p, b.n, "claim.png", &img, &err), GLINT_ERR_INPUT);
+    cr_assert_eq(strncmp(err.msg, "claim.png: ", 11), 0, "%s", err.msg);
+    cr_assert_null(img.rgb);
+    free(b.p);
+    /* 65 tEXt chunks before the pixels */
+    b = make_png(px, 1, 1, 6, 4, &none, 1, 1000, 7, NULL);
+    png_bytes many = {0};
+    put(&many, b.p, 33);
+    for (int i = 0; i < 65; i++)
+        chunk(&many, "tEXt", "Comment\0x", 9);
+    put(&many, b.p + 33, b.n - 33);
+    cr_assert(png_decode_common(b.p, b.n, &img));
+    image_free(&img);
+    cr_assert_not(png_decode_common(many.p, many.n, &img));
+    cr_assert_eq(image_load_memory(many.p, many.n, "many.png", &img, &err), GLINT_OK, "%s",
+                 err.msg);
+    expect_rgb(&img, px, 1, 1, 4);
+    image_free(&img);
+    free(many.p);
+    free(b.p);
 }

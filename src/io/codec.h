@@ -98,6 +98,10 @@ glint_rc codec_truncated(const char *name, glint_error *err);
 
 glint_rc png_decode(const uint8_t *data, size_t size, const char *name, image *out,
                     glint_error *err);
+/* png_decode's own reader of the common PNG forms alone (png.c): the
+ * pixels into *out, or false, *out untouched, for a file it leaves to
+ * libspng (another form, a damaged or an unusual file). */
+bool png_decode_common(const uint8_t *data, size_t size, image *out);
 glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *out,
                      glint_error *err);
 glint_rc rgbe_decode(const uint8_t *data, size_t size, const char *name, image *out,

@@ -25,7 +25,6 @@ static glint_rc spng_failure(int e, const char *name, glint_error *err)
     }
 }
 
-
 /* ---- the common PNGs, read without libspng ---------------------------------
  * 8-bit grey, grey and alpha, RGB or RGBA, not interlaced: the forms
  * image editors and glint itself write. The chunks are walked here, each
@@ -35,11 +34,20 @@ static glint_rc spng_failure(int e, const char *name, glint_error *err)
  * damaged file included, is left to libspng, which reads it or says what
  * is wrong: this reader never reports an error, and gives the pixels
  * libspng gives (tests/test_png_read.c compares them). Ancillary chunks
- * are skipped unread. libdeflate also decodes a few damaged streams zlib
- * refuses (a Huffman code left incomplete by a flipped bit), where the
- * bytes decoded, their Adler-32 and every CRC are still right. The
- * built-in scene's 1024x512 globe loads in 2.2 ms here against 5.6 through
- * libspng, most of which was zlib's inflate. */
+ * are skipped unread; a file with more of them than QUICK_ANCILLARY_MAX
+ * or QUICK_ANCILLARY_BYTES goes to libspng, whose limits on them
+ * (spng_set_chunk_limits below) then apply as before. libdeflate also
+ * decodes a few damaged streams zlib refuses (a Huffman code left
+ * incomplete by a flipped bit, or declaring more codes than zlib allows),
+ * where the bytes decoded, their Adler-32 and every CRC are still right.
+ * The built-in scene's 1024x512 globe loads in 2.2 ms here against 5.6
+ * through libspng, most of which was zlib's inflate. */
+
+#define QUICK_ANCILLARY_MAX 64
+#define QUICK_ANCILLARY_BYTES ((size_t)1 << 20)
+/* deflate expands a byte at most about 1032 times (a 258-byte match in 2
+ * bits) */
+#define DEFLATE_MAX_RATIO 1032
 
 static uint32_t be32(const uint8_t *p)
 {
@@ -72,7 +80,7 @@ static bool quick_chunks(const uint8_t *d, size_t size, quick_png *q)
     if (h[8] != 8 || h[9] > 6 || !channels[h[9]] || h[10] || h[11] || h[12])
         return false; /* not 8 bits, a palette, or interlaced */
     q->channels = channels[h[9]];
-    size_t at = 8 + 25, first = 0, total = 0, runs = 0;
+    size_t at = 8 + 25, first = 0, total = 0, runs = 0, extras = 0, extra_bytes = 0;
     bool in_idat = false;
     for (;;) {
         if (size - at < 12 || be32(d + at) > size - at - 12)
@@ -95,6 +103,8 @@ static bool quick_chunks(const uint8_t *d, size_t size, quick_png *q)
         if (idat)
             total += len;
         else if (!(type[0] & 0x20)) /* another critical chunk (PLTE, a second IHDR) */
+            return false;
+        else if (++extras > QUICK_ANCILLARY_MAX || (extra_bytes += len) > QUICK_ANCILLARY_BYTES)
             return false;
         at += 12 + (size_t)len;
     }
@@ -166,46 +176,56 @@ static bool unfilter(uint8_t *out, const uint8_t *in, const uint8_t *prev, size_
     }
 }
 
-/* The pixels as RGB, or NULL: inflated into the block they end in (RGB),
- * or into one of their own and then spread to RGB (the other forms). */
+/* Pixel i of ch bytes at in + i * ch as RGB at out + i * 3 (grey spread,
+ * alpha dropped), for n pixels in one block: forwards where a pixel
+ * shrinks (4 bytes), backwards where it grows (1 or 2), so that every
+ * byte is read before it is written over. */
+static void to_rgb(uint8_t *p, size_t n, size_t ch)
+{
+    if (ch == 4)
+        for (size_t i = 0; i < n; i++) {
+            const uint8_t *q = p + i * 4;
+            uint8_t r = q[0], g = q[1], b = q[2];
+            p[i * 3] = r, p[i * 3 + 1] = g, p[i * 3 + 2] = b;
+        }
+    else
+        for (size_t i = n; i-- > 0;) {
+            uint8_t v = p[i * ch];
+            p[i * 3] = p[i * 3 + 1] = p[i * 3 + 2] = v;
+        }
+}
+
+/* The pixels as RGB, or NULL: inflated, unfiltered and made RGB in one
+ * block, of at least the stream's bytes and the pixels' (from 1 MiB in
+ * huge pages mapped at once, array_calloc_big: a fresh process's first
+ * touches of 4 KiB pages took the globe 6.5 ms). */
 static uint8_t *quick_pixels(const quick_png *q, struct libdeflate_decompressor *dc)
 {
     size_t w = q->width, h = q->height, ch = (size_t)q->channels, stride = w * ch;
-    size_t raw = (stride + 1) * h;
-    /* from 1 MiB in huge pages mapped at once (array_calloc_big): a cold
-     * process's first touches of 4 KiB pages took the globe 6.5 ms */
-    uint8_t *rgb = array_calloc_big(ch == 3 ? raw : w * h * 3);
-    uint8_t *in = ch == 3 ? rgb : array_calloc_big(raw);
-    bool ok = rgb && in &&
-              libdeflate_zlib_decompress(dc, q->z, q->zlen, in, raw, NULL) == LIBDEFLATE_SUCCESS;
+    size_t raw = (stride + 1) * h, rgb_bytes = w * h * 3;
+    if (raw / DEFLATE_MAX_RATIO > q->zlen) /* more than the stream can hold: truncated */
+        return NULL;
+    uint8_t *p = array_calloc_big(raw > rgb_bytes ? raw : rgb_bytes);
+    bool ok = p && libdeflate_zlib_decompress(dc, q->z, q->zlen, p, raw, NULL) ==
+                       LIBDEFLATE_SUCCESS;
     for (size_t y = 0; ok && y < h; y++) /* rows packed in place, filter bytes dropped */
-        ok = unfilter(in + y * stride, in + y * (stride + 1) + 1, y ? in + (y - 1) * stride : NULL,
-                      stride, ch, in[y * (stride + 1)]);
+        ok = unfilter(p + y * stride, p + y * (stride + 1) + 1, y ? p + (y - 1) * stride : NULL,
+                      stride, ch, p[y * (stride + 1)]);
     if (ok && ch != 3)
-        for (size_t i = 0; i < w * h; i++) {
-            const uint8_t *p = in + i * ch;
-            uint8_t *o = rgb + i * 3;
-            o[0] = p[0];
-            o[1] = ch < 3 ? p[0] : p[1];
-            o[2] = ch < 3 ? p[0] : p[2];
-        }
-    if (ch != 3)
-        free(in);
+        to_rgb(p, w * h, ch);
     if (!ok) {
-        free(rgb);
+        free(p);
         return NULL;
     }
-    return rgb;
+    return p;
 }
 
-/* The common PNGs into *out; false (nothing done) for the others. */
-static bool quick_decode(const uint8_t *data, size_t size, image *out)
+bool png_decode_common(const uint8_t *data, size_t size, image *out)
 {
     quick_png q = {0};
     glint_error ignored;
     if (!quick_chunks(data, size, &q) ||
-        codec_check_size(q.width, q.height, "", &ignored) != GLINT_OK ||
-        codec_check_data(q.width, q.height, size, 1032 * 8, "", &ignored) != GLINT_OK) {
+        codec_check_size(q.width, q.height, "", &ignored) != GLINT_OK) {
         free(q.own);
         return false;
     }
@@ -222,7 +242,7 @@ static bool quick_decode(const uint8_t *data, size_t size, image *out)
 glint_rc png_decode(const uint8_t *data, size_t size, const char *name, image *out,
                     glint_error *err)
 {
-    if (quick_decode(data, size, out))
+    if (png_decode_common(data, size, out))
         return GLINT_OK;
     spng_ctx *ctx = spng_ctx_new(0);
     if (!ctx)
@@ -241,10 +261,9 @@ glint_rc png_decode(const uint8_t *data, size_t size, const char *name, image *o
         goto out;
     }
     rc = codec_check_size(ihdr.width, ihdr.height, name, err);
-    /* deflate expands a byte at most about 1032 times (a 258-byte match
-     * fits in 2 bits), and a byte of 1-bit pixels holds 8 of them */
+    /* a byte of 1-bit pixels holds 8 of them */
     if (rc == GLINT_OK)
-        rc = codec_check_data(ihdr.width, ihdr.height, size, 1032 * 8, name, err);
+        rc = codec_check_data(ihdr.width, ihdr.height, size, DEFLATE_MAX_RATIO * 8, name, err);
     if (rc != GLINT_OK)
         goto out;
     size_t len;
