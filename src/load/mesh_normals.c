@@ -16,6 +16,7 @@ typedef struct crease {
     uint32_t *group;   /* vertex -> welded position */
     uint32_t *start;   /* group -> first entry in faces (ngroups + 1) */
     uint32_t *faces;   /* triangles around each group */
+    double *weight;    /* per entry of faces: its corner's angle / the triangle's len */
     double (*fn)[3];   /* triangle normals, length twice the area */
     double *len;       /* their lengths */
 } crease;
@@ -100,6 +101,17 @@ static double corner_angle(const crease *c, uint32_t h, uint32_t g)
     return isfinite(angle) ? angle : 0;
 }
 
+/* Each entry's weight, computed once (a corner is in every fan of its
+ * group's other corners). */
+static void corner_weights(crease *c, uint32_t ngroups)
+{
+    for (uint32_t g = 0; g < ngroups; g++)
+        for (uint32_t i = c->start[g]; i < c->start[g + 1]; i++) {
+            uint32_t h = c->faces[i];
+            c->weight[i] = c->len[h] > 0 ? corner_angle(c, h, g) / c->len[h] : 0;
+        }
+}
+
 static void corner_normal(const crease *c, uint32_t t, uint32_t g, double cosmax, float out[3])
 {
     double s[3] = {0, 0, 0};
@@ -111,7 +123,7 @@ static void corner_normal(const crease *c, uint32_t t, uint32_t g, double cosmax
             const double *m = c->fn[h];
             if (c->len[h] > 0 &&
                 (m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= cosmax * c->len[h] * c->len[t]) {
-                double w = corner_angle(c, h, g) / c->len[h];
+                double w = c->weight[i];
                 for (int k = 0; k < 3; k++)
                     s[k] += m[k] * w;
             }
@@ -187,7 +199,7 @@ static bool split(crease *c, double cosmax)
 bool mesh_normals_crease(mesh_data *md, uint32_t v0, uint32_t *nv, uint32_t t0, uint32_t t1,
                          float angle)
 {
-    crease c = {md, v0, *nv, t0, t1 - t0, NULL, NULL, NULL, NULL, NULL, NULL};
+    crease c = {md, v0, *nv, t0, t1 - t0, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     if (c.nt == 0)
         return true;
     size_t nv1 = c.nv ? c.nv : 1;
@@ -197,16 +209,18 @@ bool mesh_normals_crease(mesh_data *md, uint32_t v0, uint32_t *nv, uint32_t t0, 
     c.faces = malloc(3 * (size_t)c.nt * sizeof *c.faces);
     c.fn = malloc(c.nt * sizeof *c.fn);
     c.len = malloc(c.nt * sizeof *c.len);
-    bool ok = c.order && c.group && c.start && c.faces && c.fn && c.len;
+    c.weight = malloc(3 * (size_t)c.nt * sizeof *c.weight);
+    bool ok = c.order && c.group && c.start && c.faces && c.fn && c.len && c.weight;
     if (ok) {
         uint32_t ngroups = weld(&c);
         face_normals(&c);
         incidence(&c, ngroups);
+        corner_weights(&c, ngroups);
         double cosmax = cos((double)angle * 3.14159265358979323846 / 180.0) - 1e-6;
         ok = split(&c, angle >= 180.0f ? -2.0 : cosmax);
         if (ok)
             *nv = c.nv;
     }
-    free(c.order), free(c.group), free(c.start), free(c.faces), free(c.fn), free(c.len);
+    free(c.order), free(c.group), free(c.start), free(c.faces), free(c.fn), free(c.len), free(c.weight);
     return ok;
 }
