@@ -31,6 +31,7 @@
 #include "glint.h"
 #include "load/mesh_data.h"
 #include "load/mesh_import.h"
+#include "load/mesh_join.h"
 #include "tmpdir.h"
 
 static void make_dir(void) { tmpdir_make("meshfiles"); }
@@ -506,15 +507,24 @@ Test(mesh_files, limits_come_from_the_environment)
     mesh_file_free(&mf);
     unsetenv("GLINT_MESH_TRUSTED");
 #ifndef __SANITIZE_ADDRESS__ /* AddressSanitizer's shadow memory rules out a memory limit */
-    /* 300000 vertices, more than the free memory a child starts with */
+    /* 300000 vertices in 100000 triangles, more than the free memory a
+     * child starts with */
     static const char head[] = "ply\nformat binary_little_endian 1.0\nelement vertex 300000\n"
                                "property float x\nproperty float y\nproperty float z\n"
-                               "element face 1\nproperty list uchar int vertex_indices\n"
+                               "element face 100000\nproperty list uchar int vertex_indices\n"
                                "end_header\n";
-    size_t n = strlen(head) + 300000 * 12 + 13;
+    size_t n = strlen(head) + 300000 * 12 + 100000 * 13;
     unsigned char *big = calloc(1, n);
     memcpy(big, head, strlen(head));
-    memcpy(big + n - 13, "\3\0\0\0\0\1\0\0\0\2\0\0\0", 13);
+    for (uint32_t f = 0; f < 100000; f++) {
+        unsigned char *at = big + strlen(head) + 300000 * 12 + f * 13;
+        at[0] = 3;
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t v = 3 * f + k; /* little-endian, as the header says */
+            for (int b = 0; b < 4; b++)
+                at[1 + 4 * k + b] = (unsigned char)(v >> (8 * b));
+        }
+    }
     const char *large = put("large.ply", big, n);
     free(big);
     setenv("GLINT_MESH_MEMORY", "1", 1);
@@ -623,4 +633,58 @@ Test(mesh_files, wire_form_refuses_a_corrupted_reply)
     cr_expect_eq(mesh_data_decode(buf, n, "m", &back, &err), GLINT_ERR_INPUT);
     free(buf);
     mesh_data_free(&md);
+}
+
+/* Corners equal in every attribute, bit for bit, become one vertex,
+ * numbered in the order they first appear; a corner differing in anything
+ * (a texture coordinate, the sign of a zero) stays its own. */
+Test(mesh_files, corners_join_when_every_attribute_matches)
+{
+    mesh_data md = {.nverts = 7, .ntris = 2, .nmats = 1, .flags = MESH_HAS_NORMALS | MESH_HAS_UV};
+    glint_error err = {0};
+    cr_assert_eq(mesh_data_alloc(&md, &err), GLINT_OK);
+    /* vertex 0 is before the range joined: left alone */
+    static const float pos[7][3] = {{9, 9, 9}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+                                    {1, 0, 0}, {0, 1, 0}, {-0.0f, 0, 0}};
+    static const float uv[7][2] = {{0, 0}, {0, 0}, {1, 0}, {0, 1}, {1, 0}, {0.5f, 1}, {0, 0}};
+    for (int v = 0; v < 7; v++) {
+        memcpy(md.pos[v], pos[v], sizeof pos[v]);
+        memcpy(md.uv[v], uv[v], sizeof uv[v]);
+        md.nrm[v][2] = 1;
+    }
+    static const uint32_t tri[2][3] = {{1, 2, 3}, {4, 5, 6}};
+    memcpy(md.tri, tri, sizeof tri);
+    uint32_t nv = 6;
+    cr_assert(mesh_join_vertices(&md, 1, &nv, 0, 2));
+    cr_expect_eq(nv, 5, "vertex 4 is vertex 2 again; 5 (another uv) and 6 (-0) are not: %u", nv);
+    static const uint32_t want[2][3] = {{1, 2, 3}, {2, 4, 5}};
+    for (int t = 0; t < 2; t++)
+        for (int k = 0; k < 3; k++)
+            cr_expect_eq(md.tri[t][k], want[t][k], "triangle %d corner %d: %u", t, k,
+                         md.tri[t][k]);
+    static const int from[6] = {0, 1, 2, 3, 5, 6}; /* where each kept vertex came from */
+    for (int v = 0; v < 6; v++) {
+        cr_expect(memcmp(md.pos[v], pos[from[v]], sizeof pos[0]) == 0, "position %d", v);
+        cr_expect(memcmp(md.uv[v], uv[from[v]], sizeof uv[0]) == 0, "uv %d", v);
+    }
+    mesh_data_free(&md);
+}
+
+/* An OBJ gives assimp a vertex per face corner; a quad of two triangles
+ * sharing an edge comes back with its 4 corners, with or without normals
+ * in the file. */
+Test(mesh_files, shared_corners_of_an_obj_are_one_vertex)
+{
+    static const char quad[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+                               "f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n";
+    static const char bare[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+    const char *files[] = {put("quad.obj", quad, 0), put("bare.obj", bare, 0)};
+    for (int i = 0; i < 2; i++) {
+        mesh_file mf;
+        glint_error err = {0};
+        cr_assert_eq(mesh_import(files[i], NULL, &mf, &err), GLINT_OK, "%s", err.msg);
+        cr_expect_eq(mf.mesh->ntris, 2);
+        cr_expect_eq(mf.mesh->nverts, 4, "%s: %d vertices", files[i], mf.mesh->nverts);
+        mesh_file_free(&mf);
+    }
 }

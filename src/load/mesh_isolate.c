@@ -161,7 +161,9 @@ static glint_rc judge(const char *name, const inbox *in, int status, bool waited
                        name, 2 * lim->seconds);
     if (in->n > 0 && in->buf[0] == REPLY_MESH && !in->overflow)
         return mesh_data_decode(in->buf + 1, in->n - 1, name, out, err);
-    if (in->n > 0 && in->buf[0] == REPLY_NOMEM)
+    /* a mesh bigger than the memory limit, made in memory the child had
+     * free when it started, is over the limit all the same */
+    if (in->overflow || (in->n > 0 && in->buf[0] == REPLY_NOMEM))
         return err_set(err, GLINT_ERR_INPUT,
                        "%s: the importer ran out of its %llu MiB of memory (GLINT_MESH_MEMORY "
                        "raises the limit)",

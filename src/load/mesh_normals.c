@@ -221,6 +221,7 @@ bool mesh_normals_crease(mesh_data *md, uint32_t v0, uint32_t *nv, uint32_t t0, 
         if (ok)
             *nv = c.nv;
     }
-    free(c.order), free(c.group), free(c.start), free(c.faces), free(c.fn), free(c.len), free(c.weight);
+    free(c.order), free(c.group), free(c.start), free(c.faces);
+    free(c.fn), free(c.len), free(c.weight);
     return ok;
 }
