@@ -33,6 +33,7 @@
 #include "load/mesh_import.h"
 #include "load/mesh_join.h"
 #include "tmpdir.h"
+#include "glint_run.h"
 
 static void make_dir(void) { tmpdir_make("meshfiles"); }
 static void remove_dir(void) { tmpdir_remove(); }
@@ -485,6 +486,31 @@ Test(mesh_files, fifo_is_refused_without_blocking)
     expect_harmless(put("named.obj", "mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 0));
 }
 
+/* A PLY of n vertices at the origin in n / 3 triangles. */
+static const char *big_ply(const char *name, uint32_t n)
+{
+    char head[256];
+    int h = snprintf(head, sizeof head,
+                     "ply\nformat binary_little_endian 1.0\nelement vertex %u\n"
+                     "property float x\nproperty float y\nproperty float z\n"
+                     "element face %u\nproperty list uchar int vertex_indices\nend_header\n",
+                     n, n / 3);
+    size_t size = (size_t)h + (size_t)n * 12 + (size_t)(n / 3) * 13;
+    unsigned char *b = calloc(1, size);
+    cr_assert_not_null(b);
+    memcpy(b, head, (size_t)h);
+    for (uint32_t f = 0; f < n / 3; f++) {
+        unsigned char *at = b + h + (size_t)n * 12 + (size_t)f * 13;
+        at[0] = 3;
+        for (uint32_t k = 0; k < 3; k++)
+            for (int i = 0; i < 4; i++) /* little-endian, as the header says */
+                at[1 + 4 * k + i] = (unsigned char)((3 * f + k) >> (8 * i));
+    }
+    const char *path = put(name, b, size);
+    free(b);
+    return path;
+}
+
 Test(mesh_files, limits_come_from_the_environment)
 {
     put("colored.ply", colored_ply, 0);
@@ -507,26 +533,11 @@ Test(mesh_files, limits_come_from_the_environment)
     mesh_file_free(&mf);
     unsetenv("GLINT_MESH_TRUSTED");
 #ifndef __SANITIZE_ADDRESS__ /* AddressSanitizer's shadow memory rules out a memory limit */
-    /* 300000 vertices in 100000 triangles, more than the free memory a
-     * child starts with */
-    static const char head[] = "ply\nformat binary_little_endian 1.0\nelement vertex 300000\n"
-                               "property float x\nproperty float y\nproperty float z\n"
-                               "element face 100000\nproperty list uchar int vertex_indices\n"
-                               "end_header\n";
-    size_t n = strlen(head) + 300000 * 12 + 100000 * 13;
-    unsigned char *big = calloc(1, n);
-    memcpy(big, head, strlen(head));
-    for (uint32_t f = 0; f < 100000; f++) {
-        unsigned char *at = big + strlen(head) + 300000 * 12 + f * 13;
-        at[0] = 3;
-        for (uint32_t k = 0; k < 3; k++) {
-            uint32_t v = 3 * f + k; /* little-endian, as the header says */
-            for (int b = 0; b < 4; b++)
-                at[1 + 4 * k + b] = (unsigned char)(v >> (8 * b));
-        }
-    }
-    const char *large = put("large.ply", big, n);
-    free(big);
+    /* 300000 vertices in 100000 triangles. Forked from this process, which
+     * has run other tests, the child may build them in heap it inherits
+     * free; a mesh bigger than the limit is over it all the same (a fresh
+     * glint's child runs out: the_memory_limit_stops_the_importer) */
+    const char *large = big_ply("large.ply", 300000);
     setenv("GLINT_MESH_MEMORY", "1", 1);
     cr_expect_eq(mesh_import(large, NULL, &mf, &err), GLINT_ERR_INPUT);
     cr_expect(strstr(err.msg, "large.ply: the importer ran out of its 1 MiB of memory "
@@ -635,6 +646,24 @@ Test(mesh_files, wire_form_refuses_a_corrupted_reply)
     mesh_data_free(&md);
 }
 
+#ifndef __SANITIZE_ADDRESS__ /* AddressSanitizer's shadow memory rules out a memory limit */
+/* A fresh glint's importer, given 1 MiB, runs out of it on 300000 vertices
+ * and the user is told which limit to raise. */
+Test(mesh_files, the_memory_limit_stops_the_importer)
+{
+    big_ply("big.ply", 300000);
+    static const char scene[] = "objects:\n  - {type: mesh, file: big.ply}\n";
+    put("big.yaml", scene, 0);
+    char out[2048];
+    int code = glint_run("GLINT_MESH_MEMORY=1", "-q -r 8x8 -o big.png big.yaml", out, sizeof out);
+    cr_expect_eq(code, 2, "%s", out);
+    cr_expect(strstr(out, "big.ply: the importer ran out of its 1 MiB of memory "
+                          "(GLINT_MESH_MEMORY raises the limit)"),
+              "%s", out);
+    cr_expect(!dir_has("big.png"));
+}
+#endif
+
 /* Corners equal in every attribute, bit for bit, become one vertex,
  * numbered in the order they first appear; a corner differing in anything
  * (a texture coordinate, the sign of a zero) stays its own. */
@@ -687,4 +716,35 @@ Test(mesh_files, shared_corners_of_an_obj_are_one_vertex)
         cr_expect_eq(mf.mesh->nverts, 4, "%s: %d vertices", files[i], mf.mesh->nverts);
         mesh_file_free(&mf);
     }
+}
+
+/* Two objects of one OBJ, the first with texture coordinates and the
+ * second without: the second's corners get (0, 0), not what the first
+ * left in the slots they reuse, and its shared corners are one vertex. A
+ * vertex no triangle uses is dropped. */
+Test(mesh_files, a_mesh_without_uvs_gets_zeros_and_unused_vertices_go)
+{
+    static const char ab[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                             "vt 0.1 0.2\nvt 0.3 0.4\nvt 0.5 0.6\nvt 0.7 0.8\n"
+                             "o A\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\no B\nf 1 2 3\nf 1 3 4\n";
+    static const char unused[] = "ply\nformat ascii 1.0\nelement vertex 5\n"
+                                 "property float x\nproperty float y\nproperty float z\n"
+                                 "property float nx\nproperty float ny\nproperty float nz\n"
+                                 "element face 1\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n"
+                                 "7 7 7 0 0 1\n8 8 8 0 0 1\n3 0 1 2\n";
+    mesh_file mf;
+    glint_error err = {0};
+    cr_assert_eq(mesh_import(put("ab.obj", ab, 0), NULL, &mf, &err), GLINT_OK, "%s", err.msg);
+    cr_assert_not_null(mf.mesh->uv);
+    cr_expect_eq(mf.mesh->nverts, 8, "4 corners each: %d", mf.mesh->nverts);
+    int zero = 0;
+    for (int v = 0; v < mf.mesh->nverts; v++)
+        zero += mf.mesh->uv[v][0] == 0.0f && mf.mesh->uv[v][1] == 0.0f;
+    cr_expect_eq(zero, 4, "B's 4 corners at (0, 0): %d", zero);
+    mesh_file_free(&mf);
+    cr_assert_eq(mesh_import(put("unused.ply", unused, 0), NULL, &mf, &err), GLINT_OK, "%s",
+                 err.msg);
+    cr_expect_eq(mf.mesh->nverts, 3, "%d", mf.mesh->nverts);
+    mesh_file_free(&mf);
 }

@@ -42,7 +42,8 @@ shot() {
 }
 
 geometry() {
-    id=$(xdotool search --sync --name '^glint' | head -n 1)
+    # at most a minute: a window that never opens fails the test, not hangs it
+    id=$(timeout 60 xdotool search --sync --name '^glint' | head -n 1)
     xdotool getwindowgeometry --shell "$id" > geo.sh
     . ./geo.sh
     echo "$X $Y $WIDTH $HEIGHT" > geometry

@@ -273,9 +273,10 @@ static void fill_vertex(walk *w, const struct aiMesh *am, const xf *x, unsigned 
             n[k] = len > 0 && isfinite(len) ? n[k] / len : 0;
         put3(md->nrm[at], n);
     }
-    if (md->uv && am->mTextureCoords[0]) {
-        md->uv[at][0] = (float)am->mTextureCoords[0][v].x;
-        md->uv[at][1] = (float)am->mTextureCoords[0][v].y;
+    if (md->uv) { /* (0, 0) where this mesh has none: the slot may hold another's */
+        const struct aiVector3D *t = am->mTextureCoords[0] ? &am->mTextureCoords[0][v] : NULL;
+        md->uv[at][0] = t ? (float)t->x : 0.0f;
+        md->uv[at][1] = t ? (float)t->y : 0.0f;
     }
     if (md->col) {
         const struct aiColor4D *c = am->mColors[0] ? &am->mColors[0][v] : NULL;
