@@ -12,14 +12,24 @@ BUILD    ?= build
 SAN      ?= 0
 CC       ?= cc
 PKGS     := yaml-0.1 stb assimp spng libjpeg libdeflate libisal
-# assimp is opened when a mesh is first imported (src/load/assimp_load.c):
-# compiled against its headers, not linked
+# assimp is opened when a mesh is first imported (src/load/assimp_load.c,
+# through src/core/dynlib.h): compiled against its headers, not linked
 LINK_PKGS := $(filter-out assimp,$(PKGS))
 # OpenEXR's C library alone (OpenEXRCore), not its C++ ones
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 EXR_LIBS   := $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore-3_1)
 
-CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXR_CFLAGS)
+# The names the opened libraries are looked up by, as
+# -DGLINT_SONAME_ASSIMP='"libassimp.so.5"': the soname of the development
+# link the linker would have taken (libassimp.so -> libassimp.so.5), or
+# where that cannot be read, Debian 12's.
+soname_of = $(shell f=$$($(CC) -print-file-name=$(1).so 2>/dev/null) && \
+              readelf -d "$$f" 2>/dev/null | sed -n 's/.*(SONAME).*\[\(.*\)\]$$/\1/p')
+soname_flag = -DGLINT_SONAME_$(1)='"$(or $(call soname_of,$(2)),$(3))"'
+SONAME_FLAGS := $(call soname_flag,ASSIMP,libassimp,libassimp.so.5)
+
+CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE \
+            $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXR_CFLAGS) $(SONAME_FLAGS)
 CFLAGS   := -std=c11 -fno-math-errno -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswitch-enum -Werror=implicit-function-declaration -g -pthread
 ifeq ($(SAN),1)
 CFLAGS   += -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
