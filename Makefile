@@ -12,14 +12,34 @@ BUILD    ?= build
 SAN      ?= 0
 CC       ?= cc
 PKGS     := yaml-0.1 stb assimp spng libjpeg libdeflate libisal
-# assimp is opened when a mesh is first imported (src/load/assimp_load.c):
-# compiled against its headers, not linked
-LINK_PKGS := $(filter-out assimp,$(PKGS))
-# OpenEXR's C library alone (OpenEXRCore), not its C++ ones
+# Only libyaml and libdeflate are linked. The others, and OpenEXR's C
+# library (OpenEXRCore alone, not its C++ ones), are opened when first
+# needed (src/core/dynlib.h): assimp at the first mesh import, libjpeg,
+# OpenEXRCore, stb_image and libspng at the first image of theirs read or
+# written, ISA-L at the first noisy PNG strip. They are compiled against
+# their headers, and the dynamic loader maps none of them at start.
+LAZY_PKGS := stb assimp spng libjpeg libisal
+LINK_PKGS := $(filter-out $(LAZY_PKGS),$(PKGS))
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
-EXR_LIBS   := $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore-3_1)
+EXR_LINK   := $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null))
+EXR_LIB    := $(patsubst -l%,lib%,$(or $(EXR_LINK),-lOpenEXRCore-3_1))
 
-CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXR_CFLAGS)
+# The names the opened libraries are looked up by, as
+# -DGLINT_SONAME_JPEG='"libjpeg.so.62"': the soname of the development
+# link the linker would have taken (libjpeg.so -> libjpeg.so.62), or where
+# that cannot be read, Debian 12's.
+soname_of = $(shell f=$$($(CC) -print-file-name=$(1).so 2>/dev/null) && \
+              readelf -d "$$f" 2>/dev/null | sed -n 's/.*(SONAME).*\[\(.*\)\]$$/\1/p')
+soname_flag = -DGLINT_SONAME_$(1)='"$(or $(call soname_of,$(2)),$(3))"'
+SONAME_FLAGS := $(call soname_flag,JPEG,libjpeg,libjpeg.so.62) \
+                $(call soname_flag,EXR,$(EXR_LIB),libOpenEXRCore-3_1.so.30) \
+                $(call soname_flag,STB,libstb,libstb.so.0) \
+                $(call soname_flag,SPNG,libspng,libspng.so.0) \
+                $(call soname_flag,ISAL,libisal,libisal.so.2) \
+                $(call soname_flag,ASSIMP,libassimp,libassimp.so.5)
+
+CPPFLAGS := -Iinclude -Isrc -I$(BUILD)/gen -D_DEFAULT_SOURCE \
+            $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXR_CFLAGS) $(SONAME_FLAGS)
 CFLAGS   := -std=c11 -fno-math-errno -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wswitch-enum -Werror=implicit-function-declaration -g -pthread
 ifeq ($(SAN),1)
 CFLAGS   += -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
@@ -30,7 +50,11 @@ LDFLAGS  += -fsanitize=fuzzer,address,undefined
 else
 CFLAGS   += -O2
 endif
-LDLIBS   := $(shell pkg-config --libs $(LINK_PKGS) 2>/dev/null) $(EXR_LIBS) -lm -pthread -ldl
+LDLIBS   := $(shell pkg-config --libs $(LINK_PKGS) 2>/dev/null) -lm -pthread -ldl
+# The tests and tools write and check images with stb_image_write and
+# libspng themselves (make textures with stb_perlin): linked to them.
+STB_LIBS  := $(or $(shell pkg-config --libs stb 2>/dev/null),-lstb)
+SPNG_LIBS := $(or $(shell pkg-config --libs spng 2>/dev/null),-lspng)
 
 # The command line opens SDL2 for its preview window (-p) when the window
 # opens (src/app/sdl_load.c), so it is compiled against SDL2's headers but
@@ -111,8 +135,9 @@ check-lib: $(BUILD)/libglint.so
 
 # `make install PREFIX=/usr/local DESTDIR=`: the command (and glint-mpi when built), both libraries,
 # the header, glint.pc, the example scenes and the documentation. glint.pc
-# names the static library's dependencies: the pkg-config packages, and
-# OpenEXR's C library directly (its package would add the C++ ones).
+# names the static library's dependencies: the linked pkg-config packages
+# (libyaml, libdeflate), libm, threads and libdl; the libraries opened at
+# run time are not needed to link.
 PREFIX  ?= /usr/local
 DESTDIR ?=
 INSTALL_LIB := $(DESTDIR)$(PREFIX)/lib
@@ -121,7 +146,7 @@ INSTALL_DOC := $(DESTDIR)$(PREFIX)/share/doc/glint
 install: all
 	@mkdir -p $(BUILD)
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES@|$(LINK_PKGS)|' \
-		-e 's|@LIBS_PRIVATE@|$(EXR_LIBS) -lm -pthread -ldl|' src/api/glint.pc.in > $(BUILD)/glint.pc
+		-e 's|@LIBS_PRIVATE@|-lm -pthread -ldl|' src/api/glint.pc.in > $(BUILD)/glint.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include \
 		$(DESTDIR)$(PREFIX)/share/glint $(INSTALL_DOC)
 	install -m 755 $(BUILD)/glint $(DESTDIR)$(PREFIX)/bin/glint
@@ -224,7 +249,7 @@ $(DIST_OBJ): CPPFLAGS += $(MPI_CFLAGS)
 # no MPI in it) and the programs' heap policy (src/cli/heap.c).
 TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
 $(BUILD)/tests: $(TEST_OBJ) $(BUILD)/obj/src/dist/sched.o $(BUILD)/obj/src/cli/heap.o $(BUILD)/libglint.a
-	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) -lcriterion
+	$(CC) $(CFLAGS) $(LDFLAGS) $(TEST_WRAP) -o $@ $^ $(LDLIBS) $(STB_LIBS) $(SPNG_LIBS) -lcriterion
 
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -DGLINT_SOURCE_DIR='"$(CURDIR)"'
 
@@ -256,7 +281,7 @@ $(BUILD)/obj/gen/assets.o: $(GEN_SRC)
 # Built-in textures: made by tools/mktextures, embedded by tools/embed.
 $(BUILD)/tools/%: tools/%.c
 	@mkdir -p $(dir $@)
-	$(CC) -std=c11 -O2 -Wall -Wextra $(CPPFLAGS) -o $@ $< $(LDLIBS)
+	$(CC) -std=c11 -O2 -Wall -Wextra $(CPPFLAGS) -o $@ $< $(LDLIBS) $(STB_LIBS)
 
 $(BUILD)/gen/flag.png $(BUILD)/gen/globe.png &: $(BUILD)/tools/mktextures
 	@mkdir -p $(BUILD)/gen
@@ -323,7 +348,7 @@ fuzz-seeds-mesh:
 
 build/tools/fuzzseeds: tools/fuzzseeds.c build/libglint.a
 	@mkdir -p $(dir $@)
-	$(CC) -std=c11 -O2 -Wall -Wextra $(CPPFLAGS) -o $@ $^ $(LDLIBS)
+	$(CC) -std=c11 -O2 -Wall -Wextra $(CPPFLAGS) -o $@ $^ $(LDLIBS) $(STB_LIBS)
 
 # Benchmarks against POV-Ray and Embree, results in bench/RESULTS.md
 # (bench/README.md: what each row measures, settings such as BENCH_RUNS,

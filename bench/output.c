@@ -95,7 +95,7 @@ int main(int argc, char **argv)
     if (!px || !tg || !tp)
         return 1;
     image_quantize(film.rgb, (size_t)w * (size_t)h * 3, GLINT_TRANSFER_NONE, px);
-    raster r = {w, h, film.rgb, NULL, GLINT_TRANSFER_NONE, 8, 90, 1};
+    raster r = {w, h, film.rgb, NULL, GLINT_TRANSFER_NONE, 8, 90, 1, "bench"};
     size_t gsize = 0, psize = 0;
     for (int i = 0; i < 2 * runs; i++) {
         bytebuf b = {0};

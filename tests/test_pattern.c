@@ -5,6 +5,7 @@
  * sphere's own (u, v), bump gradients, and the scene format's rules for
  * lights, textures, materials and fog. */
 #include <criterion/criterion.h>
+#include <dlfcn.h>
 #include <math.h>
 #include <string.h>
 
@@ -94,6 +95,34 @@ Test(pattern, perlin_noise_is_bounded_smooth_and_deterministic)
     ASSERT_NEAR(pattern_noise_value(v3(3, -7, 12)), 0.5, TOL);
     /* Far away it keeps its period of 256 rather than failing. */
     ASSERT_NEAR(pattern_perlin(v3(1e9f, 2.5f, 0.5f)), pattern_perlin(v3(0, 2.5f, 0.5f)), 1e-4);
+}
+
+/* glint compiles stb_perlin in (src/shade/pattern.c) instead of linking
+ * Debian's libstb, built from the same header: the noise is the same to
+ * the bit as the library's, on lattice points, near them and anywhere in
+ * the period. */
+Test(pattern, perlin_noise_is_libstb_s_to_the_bit)
+{
+    void *lib = dlopen(GLINT_SONAME_STB, RTLD_NOW | RTLD_LOCAL);
+    cr_assert_not_null(lib, "%s", dlerror());
+    float (*noise)(float, float, float, int, int, int);
+    *(void **)&noise = dlsym(lib, "stb_perlin_noise3");
+    cr_assert_not_null(noise);
+    for (uint32_t i = 0; i < 200000; i++) {
+        uint32_t h = hash_u32(i);
+        float s = i % 4 == 0 ? 1.0f / 4096 : 256.0f; /* near a lattice point or anywhere */
+        vec3 q = v3(s * hash_unit(h), s * hash_unit(hash_u32(h)), s * hash_unit(hash_u32(h + 1)));
+        if (i % 4 == 0)
+            q = v3_add(q, v3((float)(h % 256), (float)(h / 256 % 256), (float)(h / 65536 % 256)));
+        if (!(q.x < 256.0f && q.y < 256.0f && q.z < 256.0f))
+            continue;
+        float want = noise(q.x, q.y, q.z, 0, 0, 0);
+        want = want < -1.0f ? -1.0f : want > 1.0f ? 1.0f : want;
+        float got = pattern_perlin(q);
+        cr_assert(memcmp(&got, &want, sizeof got) == 0, "%a against libstb's %a at (%a, %a, %a)",
+                  (double)got, (double)want, (double)q.x, (double)q.y, (double)q.z);
+    }
+    dlclose(lib);
 }
 
 Test(pattern, color_map_interpolates_between_stops)

@@ -11,7 +11,14 @@
  *
  * Encoders append to a byte buffer (the PNG writer fills a bytelist) and
  * return GLINT_OK or GLINT_ERR_NOMEM (or GLINT_ERR_INPUT for a raster the
- * format cannot hold). */
+ * format cannot hold, GLINT_ERR_IO naming the file when the library that
+ * writes the format cannot be opened).
+ *
+ * The libraries behind JPEG (jpeg.c), OpenEXR (exr.c), BMP/TGA/GIF
+ * (legacy.c), the PNGs glint's own reader leaves to libspng (png.c) and
+ * ISA-L (png_write.c) are opened at their first use (core/dynlib.h), not
+ * linked: a decoder that cannot open its library says so as it says a
+ * file is broken ("name: cannot read JPEG files (why)", GLINT_ERR_INPUT). */
 #ifndef GLINT_IO_CODEC_H
 #define GLINT_IO_CODEC_H
 
@@ -83,6 +90,7 @@ typedef struct raster {
     int bits;                /* per channel; already checked for the format */
     int quality;             /* JPEG, 1..100 */
     int threads;             /* PNG: threads compressing it; 0: one per core */
+    const char *name;        /* the file, for messages (NULL: the format's name) */
 } raster;
 
 /* "name: image WxH is too large (limit N pixels)" or an empty-size error. */

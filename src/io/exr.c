@@ -6,7 +6,10 @@
  * and A when there is alpha, as half (16 bits) or float (32 bits). Read:
  * the first part when it holds scanlines; R, G and B (or Y, grey) become
  * linear floats; a missing channel reads as 0. The data window's size is
- * checked against IMAGE_MAX_PIXELS before any chunk is decoded. */
+ * checked against IMAGE_MAX_PIXELS before any chunk is decoded.
+ *
+ * OpenEXRCore is opened at the first OpenEXR file read or written
+ * (core/dynlib.h), not linked. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,8 +18,50 @@
 #include <openexr.h>
 
 #include "codec.h"
+#include "core/dynlib.h"
 #include "core/error.h"
 #include "image.h"
+
+#define EXR_FUNCTIONS(X, t)                                                                    \
+    X(t, exr_get_user_data) X(t, exr_get_error_code_as_string) X(t, exr_start_write)           \
+    X(t, exr_add_part) X(t, exr_initialize_required_attr_simple) X(t, exr_add_channel)         \
+    X(t, exr_write_header) X(t, exr_get_scanlines_per_chunk)                                   \
+    X(t, exr_write_scanline_chunk_info) X(t, exr_encoding_initialize)                          \
+    X(t, exr_encoding_update) X(t, exr_encoding_choose_default_routines)                       \
+    X(t, exr_encoding_run) X(t, exr_encoding_destroy) X(t, exr_finish) X(t, exr_start_read)    \
+    X(t, exr_get_storage) X(t, exr_get_data_window) X(t, exr_get_channels)                     \
+    X(t, exr_read_scanline_chunk_info) X(t, exr_decoding_initialize)                           \
+    X(t, exr_decoding_update) X(t, exr_decoding_choose_default_routines)                       \
+    X(t, exr_decoding_run) X(t, exr_decoding_destroy)
+
+static DYNLIB_STRUCT(EXR_FUNCTIONS) exr_fn;
+static dynlib exr_lib = DYNLIB(GLINT_SONAME_EXR, EXR_FUNCTIONS, exr_fn);
+
+#define exr_get_user_data (exr_fn.exr_get_user_data)
+#define exr_get_error_code_as_string (exr_fn.exr_get_error_code_as_string)
+#define exr_start_write (exr_fn.exr_start_write)
+#define exr_add_part (exr_fn.exr_add_part)
+#define exr_initialize_required_attr_simple (exr_fn.exr_initialize_required_attr_simple)
+#define exr_add_channel (exr_fn.exr_add_channel)
+#define exr_write_header (exr_fn.exr_write_header)
+#define exr_get_scanlines_per_chunk (exr_fn.exr_get_scanlines_per_chunk)
+#define exr_write_scanline_chunk_info (exr_fn.exr_write_scanline_chunk_info)
+#define exr_encoding_initialize (exr_fn.exr_encoding_initialize)
+#define exr_encoding_update (exr_fn.exr_encoding_update)
+#define exr_encoding_choose_default_routines (exr_fn.exr_encoding_choose_default_routines)
+#define exr_encoding_run (exr_fn.exr_encoding_run)
+#define exr_encoding_destroy (exr_fn.exr_encoding_destroy)
+#define exr_finish (exr_fn.exr_finish)
+#define exr_start_read (exr_fn.exr_start_read)
+#define exr_get_storage (exr_fn.exr_get_storage)
+#define exr_get_data_window (exr_fn.exr_get_data_window)
+#define exr_get_channels (exr_fn.exr_get_channels)
+#define exr_read_scanline_chunk_info (exr_fn.exr_read_scanline_chunk_info)
+#define exr_decoding_initialize (exr_fn.exr_decoding_initialize)
+#define exr_decoding_update (exr_fn.exr_decoding_update)
+#define exr_decoding_choose_default_routines (exr_fn.exr_decoding_choose_default_routines)
+#define exr_decoding_run (exr_fn.exr_decoding_run)
+#define exr_decoding_destroy (exr_fn.exr_decoding_destroy)
 
 /* The stream behind a context, and the library's last message (its error
  * handler must not print: library code never does). */
@@ -138,6 +183,10 @@ static exr_result_t write_chunks(exr_context_t ctx, const raster *r)
 
 glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err)
 {
+    const char *why;
+    if (!dynlib_open(&exr_lib, &why))
+        return err_set(err, GLINT_ERR_IO, "%s: cannot write OpenEXR files (%s)",
+                       r->name ? r->name : "OpenEXR", why);
     exr_stream s = {.out = out};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.user_data = &s;
@@ -269,6 +318,9 @@ static exr_result_t read_chunks(exr_context_t ctx, float *px, exr_attr_box2i_t d
 glint_rc exr_decode(const uint8_t *data, size_t size, const char *name, image *out,
                     glint_error *err)
 {
+    const char *why;
+    if (!dynlib_open(&exr_lib, &why))
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot read OpenEXR files (%s)", name, why);
     exr_stream s = {.data = data, .size = size};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.user_data = &s;

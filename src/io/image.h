@@ -4,7 +4,8 @@
  * PNG through libspng and JPEG through libjpeg-turbo (the reference
  * decoders, fuzzed upstream); Radiance HDR, PFM and binary PPM/PGM through
  * the small parsers in this folder; BMP, TGA and GIF through stb_image, the
- * only formats left to it (no hardened Debian library reads them). Every
+ * only formats left to it (no hardened Debian library reads them). The
+ * libraries are opened at their first use, not linked (codec.h). Every
  * reader checks the size in the header against IMAGE_MAX_PIXELS before it
  * allocates or decodes a pixel, and every message starts with the name.
  *

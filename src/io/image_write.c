@@ -217,6 +217,7 @@ glint_rc image_write_film(const char *path, int width, int height, const float *
         .bits = res.bits,
         .quality = res.quality,
         .threads = opts ? opts->threads : 0,
+        .name = strcmp(path, "-") == 0 ? "standard output" : path,
     };
     bytelist out = {0};
     rc = encode(&r, res.format, &out, err);

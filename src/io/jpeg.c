@@ -3,7 +3,8 @@
  * which must not return: ours longjmps back to the call, the library's
  * documented way. A "premature end of data" warning, or a marker met where
  * coded data should go on (libjpeg would paper over both with grey), is an
- * error here ("file is truncated"). */
+ * error here ("file is truncated"). libjpeg is opened at the first JPEG
+ * read or written (core/dynlib.h), not linked. */
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,8 +15,37 @@
 
 #include "codec.h"
 #include "core/array.h"
+#include "core/dynlib.h"
 #include "core/error.h"
 #include "image.h"
+
+#define JPEG_FUNCTIONS(X, t)                                                                   \
+    X(t, jpeg_std_error) X(t, jpeg_CreateDecompress) X(t, jpeg_destroy_decompress)             \
+    X(t, jpeg_mem_src) X(t, jpeg_read_header) X(t, jpeg_start_decompress)                      \
+    X(t, jpeg_read_scanlines) X(t, jpeg_finish_decompress) X(t, jpeg_CreateCompress)           \
+    X(t, jpeg_destroy_compress) X(t, jpeg_mem_dest) X(t, jpeg_set_defaults)                    \
+    X(t, jpeg_set_quality) X(t, jpeg_start_compress) X(t, jpeg_write_scanlines)                \
+    X(t, jpeg_finish_compress)
+
+static DYNLIB_STRUCT(JPEG_FUNCTIONS) jpeg_fn;
+static dynlib jpeg_lib = DYNLIB(GLINT_SONAME_JPEG, JPEG_FUNCTIONS, jpeg_fn);
+
+#define jpeg_std_error (jpeg_fn.jpeg_std_error)
+#define jpeg_CreateDecompress (jpeg_fn.jpeg_CreateDecompress)
+#define jpeg_destroy_decompress (jpeg_fn.jpeg_destroy_decompress)
+#define jpeg_mem_src (jpeg_fn.jpeg_mem_src)
+#define jpeg_read_header (jpeg_fn.jpeg_read_header)
+#define jpeg_start_decompress (jpeg_fn.jpeg_start_decompress)
+#define jpeg_read_scanlines (jpeg_fn.jpeg_read_scanlines)
+#define jpeg_finish_decompress (jpeg_fn.jpeg_finish_decompress)
+#define jpeg_CreateCompress (jpeg_fn.jpeg_CreateCompress)
+#define jpeg_destroy_compress (jpeg_fn.jpeg_destroy_compress)
+#define jpeg_mem_dest (jpeg_fn.jpeg_mem_dest)
+#define jpeg_set_defaults (jpeg_fn.jpeg_set_defaults)
+#define jpeg_set_quality (jpeg_fn.jpeg_set_quality)
+#define jpeg_start_compress (jpeg_fn.jpeg_start_compress)
+#define jpeg_write_scanlines (jpeg_fn.jpeg_write_scanlines)
+#define jpeg_finish_compress (jpeg_fn.jpeg_finish_compress)
 
 typedef struct jpeg_failure {
     struct jpeg_error_mgr mgr;
@@ -59,6 +89,9 @@ static void failure_init(jpeg_failure *f)
 glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *out,
                      glint_error *err)
 {
+    const char *why;
+    if (!dynlib_open(&jpeg_lib, &why))
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot read JPEG files (%s)", name, why);
     struct jpeg_decompress_struct cinfo;
     jpeg_failure f;
     uint8_t *volatile px = NULL;
@@ -119,6 +152,10 @@ glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *
 
 glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err)
 {
+    const char *why;
+    if (!dynlib_open(&jpeg_lib, &why))
+        return err_set(err, GLINT_ERR_IO, "%s: cannot write JPEG files (%s)",
+                       r->name ? r->name : "JPEG", why);
     struct jpeg_compress_struct cinfo;
     jpeg_failure f;
     size_t w = (size_t)r->width;

@@ -1,5 +1,6 @@
 /* png: PNG read, the common forms by a reader of its own with libdeflate
- * and the rest through libspng (the writer is png_write.c). */
+ * and the rest through libspng (the writer is png_write.c), which is
+ * opened at the first such file (core/dynlib.h), not linked. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -8,8 +9,26 @@
 
 #include "codec.h"
 #include "core/array.h"
+#include "core/dynlib.h"
 #include "core/error.h"
 #include "image.h"
+
+#define SPNG_FUNCTIONS(X, t)                                                                   \
+    X(t, spng_ctx_new) X(t, spng_ctx_free) X(t, spng_set_chunk_limits)                         \
+    X(t, spng_set_png_buffer) X(t, spng_get_ihdr) X(t, spng_decoded_image_size)                \
+    X(t, spng_decode_image) X(t, spng_strerror)
+
+static DYNLIB_STRUCT(SPNG_FUNCTIONS) spng_fn;
+static dynlib spng_lib = DYNLIB(GLINT_SONAME_SPNG, SPNG_FUNCTIONS, spng_fn);
+
+#define spng_ctx_new (spng_fn.spng_ctx_new)
+#define spng_ctx_free (spng_fn.spng_ctx_free)
+#define spng_set_chunk_limits (spng_fn.spng_set_chunk_limits)
+#define spng_set_png_buffer (spng_fn.spng_set_png_buffer)
+#define spng_get_ihdr (spng_fn.spng_get_ihdr)
+#define spng_decoded_image_size (spng_fn.spng_decoded_image_size)
+#define spng_decode_image (spng_fn.spng_decode_image)
+#define spng_strerror (spng_fn.spng_strerror)
 
 static glint_rc spng_failure(int e, const char *name, glint_error *err)
 {
@@ -244,6 +263,9 @@ glint_rc png_decode(const uint8_t *data, size_t size, const char *name, image *o
 {
     if (png_decode_common(data, size, out))
         return GLINT_OK;
+    const char *why;
+    if (!dynlib_open(&spng_lib, &why))
+        return err_set(err, GLINT_ERR_INPUT, "%s: cannot read this PNG file (%s)", name, why);
     spng_ctx *ctx = spng_ctx_new(0);
     if (!ctx)
         return err_nomem(err);

@@ -24,7 +24,14 @@
  * of the whole combined from the strips'. A strip's stream refers to
  * nothing before it (a zlib full flush): a few hundred bytes more on a
  * 1080p image. Should a walk not find what it should, or igzip fail, the
- * rows, already filtered, are compressed again as one stream. */
+ * rows, already filtered, are compressed again as one stream.
+ *
+ * ISA-L is opened at the first noisy strip (core/dynlib.h), not linked.
+ * Where it cannot be opened, noisy strips are compressed by libdeflate
+ * like the smooth ones: the file is still a valid PNG with the same
+ * pixels, the same for any number of threads, but not the bytes written
+ * where ISA-L is (no other deflate encoder makes igzip's); a finished
+ * render is better written so than refused at its last step. */
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,9 +44,18 @@
 
 #include "codec.h"
 #include "core/cpus.h"
+#include "core/dynlib.h"
 #include "core/error.h"
 #include "deflate_join.h"
 #include "image.h"
+
+#define ISAL_FUNCTIONS(X, t) X(t, isal_deflate_stateless_init) X(t, isal_deflate_stateless)
+
+static DYNLIB_STRUCT(ISAL_FUNCTIONS) isal_fn;
+static dynlib isal_lib = DYNLIB(GLINT_SONAME_ISAL, ISAL_FUNCTIONS, isal_fn);
+
+#define isal_deflate_stateless_init (isal_fn.isal_deflate_stateless_init)
+#define isal_deflate_stateless (isal_fn.isal_deflate_stateless)
 
 /* Chunks hold at most 2^31 - 1 bytes; pixel data is split at 1 GiB. */
 #define PNG_CHUNK_MAX (1u << 30)
@@ -325,7 +341,7 @@ static bool strip_compress(png_job *j, strip *s, strip_tools *t, size_t zeros)
     size_t n = (size_t)(s->y1 - s->y0) * j->stride;
     s->adler = libdeflate_adler32(1, t->rows, n);
     bool last = s == &j->strips[j->nstrips - 1];
-    if ((double)zeros < PNG_FAST_ZEROS * (double)n)
+    if ((double)zeros < PNG_FAST_ZEROS * (double)n && dynlib_open(&isal_lib, NULL))
         return strip_compress_noisy(s, t, n, last);
     size_t bound = libdeflate_deflate_compress_bound(t->c, n);
     s->z = malloc(bound + DEFLATE_UNFINAL_EXTRA);

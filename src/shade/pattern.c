@@ -2,6 +2,13 @@
 
 #include <math.h>
 #include <stdint.h>
+
+/* stb_perlin's noise compiled in from its header rather than called in
+ * Debian's libstb (built from the same header), which glint does not link
+ * and opens only for the BMP, TGA and GIF files stb_image reads
+ * (io/legacy.c). The noise is the same to the bit (tests/test_pattern.c
+ * holds the two side by side). */
+#define STB_PERLIN_IMPLEMENTATION
 #include <stb_perlin.h>
 
 /* floor(a) + floor(b) + floor(c) mod 2, in doubles so that large
