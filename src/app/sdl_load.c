@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 #include <pthread.h>
 #include <stddef.h>
+#include <stdio.h>
 
 /* SDL2's run-time library, as Debian and most systems name it. */
 #define SDL_LIBRARY "libSDL2-2.0.so.0"
@@ -12,12 +13,15 @@ sdl_table sdl_fn;
 
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 static const char *failure; /* NULL once everything is found */
+static char failure_text[256];
 
-/* dlerror's words, or these when it has none. */
+/* dlerror's words, or these when it has none; copied, as dlerror's text
+ * is its thread's and goes at its next call or when the thread ends. */
 static const char *why_not(const char *fallback)
 {
     const char *e = dlerror();
-    return e ? e : fallback;
+    snprintf(failure_text, sizeof failure_text, "%s", e ? e : fallback);
+    return failure_text;
 }
 
 static void load(void)
