@@ -201,12 +201,15 @@ Test(libs, a_library_that_cannot_be_used_is_said_naming_the_file_and_the_library
     cr_expect_eq(glint_run(FAKE, "-q exr.yaml -o e.png", out, sizeof out), 2);
     expect_said(out, "exr.yaml:5:35: t.exr: cannot read OpenEXR files (", GLINT_SONAME_EXR,
                 "exr_get_user_data");
-    /* writing: a failed write, and no file */
-    cr_expect_eq(glint_run(FAKE, "-q -r 8x8 -o w.jpg", out, sizeof out), 1);
+    /* writing: a failed write, said before the render (no progress line),
+     * and no file */
+    cr_expect_eq(glint_run(FAKE, "--progress -r 8x8 -o w.jpg", out, sizeof out), 1);
     expect_said(out, "w.jpg: cannot write JPEG files (", GLINT_SONAME_JPEG, "jpeg_std_error");
-    cr_expect_eq(glint_run(FAKE, "-q -r 8x8 -o w.exr", out, sizeof out), 1);
+    cr_expect(!strstr(out, "%"), "a render was made: %s", out);
+    cr_expect_eq(glint_run(FAKE, "--progress -r 8x8 -o w.exr", out, sizeof out), 1);
     expect_said(out, "w.exr: cannot write OpenEXR files (", GLINT_SONAME_EXR,
                 "exr_get_user_data");
+    cr_expect(!strstr(out, "%"), "a render was made: %s", out);
     cr_expect_not(dir_has("w.jpg") || dir_has("w.exr") || dir_has("j.png") || dir_has("e.png"));
 }
 

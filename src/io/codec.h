@@ -130,6 +130,12 @@ glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc rgbe_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc pfm_encode(const raster *r, bytebuf *out, glint_error *err);
 glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err);
+/* Whether jpeg_encode and exr_encode can run: their library opens (it is
+ * opened at first use, core/dynlib.h); else GLINT_ERR_IO naming the file
+ * (name) and the library. Checked before a render too (image_write_check),
+ * so that a render is not made for nothing. */
+glint_rc jpeg_writer_ready(const char *name, glint_error *err);
+glint_rc exr_writer_ready(const char *name, glint_error *err);
 
 /* The fast PNG writer's core, also used by the benchmark and the tests:
  * 8- or 16-bit samples (16-bit ones in native order, written big-endian),

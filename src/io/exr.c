@@ -181,12 +181,20 @@ static exr_result_t write_chunks(exr_context_t ctx, const raster *r)
     return e;
 }
 
-glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err)
+glint_rc exr_writer_ready(const char *name, glint_error *err)
 {
     const char *why;
     if (!dynlib_open(&exr_lib, &why))
         return err_set(err, GLINT_ERR_IO, "%s: cannot write OpenEXR files (%s)",
-                       r->name ? r->name : "OpenEXR", why);
+                       name ? name : "OpenEXR", why);
+    return GLINT_OK;
+}
+
+glint_rc exr_encode(const raster *r, bytebuf *out, glint_error *err)
+{
+    glint_rc ready = exr_writer_ready(r->name, err);
+    if (ready != GLINT_OK)
+        return ready;
     exr_stream s = {.out = out};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.user_data = &s;

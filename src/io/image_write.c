@@ -152,6 +152,11 @@ glint_rc image_write_check(const char *path, const glint_write_options *opts, gl
 {
     resolved r;
     glint_rc rc = resolve(path, opts, &r, err);
+    const char *shown = strcmp(path, "-") == 0 ? "standard output" : path;
+    if (rc == GLINT_OK && r.format == GLINT_FORMAT_JPEG)
+        rc = jpeg_writer_ready(shown, err);
+    if (rc == GLINT_OK && r.format == GLINT_FORMAT_EXR)
+        rc = exr_writer_ready(shown, err);
     return rc != GLINT_OK ? rc : file_check_output(path, err);
 }
 

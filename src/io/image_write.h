@@ -17,7 +17,8 @@ glint_rc image_format_parse(const char *name, glint_format *out, glint_error *er
 /* Format, bits, quality, transfer: everything but the file system. */
 glint_rc image_write_options_check(const char *path, const glint_write_options *opts,
                                    glint_error *err);
-/* The options and then the target (file_check_output). */
+/* The options, the library the format is written with (JPEG and OpenEXR:
+ * opened at first use), then the target (file_check_output). */
 glint_rc image_write_check(const char *path, const glint_write_options *opts, glint_error *err);
 
 /* Writes a width*height linear RGB float film to path ("-": standard

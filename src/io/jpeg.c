@@ -150,12 +150,20 @@ glint_rc jpeg_decode(const uint8_t *data, size_t size, const char *name, image *
     return GLINT_OK;
 }
 
-glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err)
+glint_rc jpeg_writer_ready(const char *name, glint_error *err)
 {
     const char *why;
     if (!dynlib_open(&jpeg_lib, &why))
         return err_set(err, GLINT_ERR_IO, "%s: cannot write JPEG files (%s)",
-                       r->name ? r->name : "JPEG", why);
+                       name ? name : "JPEG", why);
+    return GLINT_OK;
+}
+
+glint_rc jpeg_encode(const raster *r, bytebuf *out, glint_error *err)
+{
+    glint_rc ready = jpeg_writer_ready(r->name, err);
+    if (ready != GLINT_OK)
+        return ready;
     struct jpeg_compress_struct cinfo;
     jpeg_failure f;
     size_t w = (size_t)r->width;
