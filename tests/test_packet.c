@@ -1135,3 +1135,99 @@ Test(packet, culling_a_node_for_the_packet_keeps_every_box_a_ray_enters)
     if (accel_isa_best() >= ACCEL_AVX2)
         cr_assert(hits > 10000 && blocked_rays > 10000, "%d hits, %d blocked", hits, blocked_rays);
 }
+
+/* 24 balls and cubes of ball_lattice's kind (a tree of one node on the
+ * eight-wide paths), a cube turned about its centre and a ground plane. */
+static scene *small_lattice(void)
+{
+    scene *s = scene_new();
+    cr_assert_not_null(s);
+    material mt = material_default();
+    int mat = scene_add_material(s, &mt);
+    shape ground = shape_plane(v3(0, -0.6f, 0), v3(0, 1, 0));
+    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    for (int i = 0; i < 24; i++) {
+        vec3 c = lattice_at(i % 6 + i / 6 * 10), e = v3s(0.45f);
+        shape b = i % 2 ? shape_box(v3_sub(c, e), v3_add(c, e)) : shape_sphere(c, 0.45f);
+        cr_assert_geq(scene_add_object(s, &b, mat, -1), 0);
+    }
+    xform r = xform_rotate(v3(1.0f, 1.0f, 0.0f), 40.0f);
+    xform t = xform_translate(v3(7.0f, 1.0f, -2.0f));
+    xform rt = xform_then(&r, &t);
+    shape cube = shape_box(v3s(-0.5f), v3s(0.5f));
+    cr_assert_geq(scene_add_object(s, &cube, mat, scene_add_xform(s, &rt)), 0);
+    glint_error err = {0};
+    cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+    return s;
+}
+
+/* A tile's camera rays are tested against the objects its cone may meet
+ * (scene_cone_objects, scene_intersect8_among) and find scene_intersect's
+ * hits to the bit: eight rays from one eye, at silhouettes and edges, and
+ * the cone no wider than their directions, so that the grazing rays lie
+ * on its sides. A narrow cone leaves objects out; a scene with more
+ * objects than the list holds gives none. */
+Test(packet, a_tile_cone_keeps_every_object_its_rays_hit)
+{
+    int hits = 0, left_out = 0;
+    for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = small_lattice();
+        int32_t list[32];
+        rng g = rng_seed(23, 4);
+        for (int i = 0; i < 6000; i++) {
+            ray8 p = grazing_packet(&g, 0.0f);
+            for (int k = 0; k < 8; k++)
+                p.tmin[k] = 0.0f; /* a camera's rays start at the eye */
+            if (i % 3 == 0) { /* rays to anywhere in the lattice's direction */
+                for (int k = 0; k < 8; k++) {
+                    p.dx[k] = 2.0f + uniform(&g, -6, 6) - p.ox[0];
+                    p.dy[k] = uniform(&g, -3, 1) - p.oy[0];
+                    p.dz[k] = -2.0f + uniform(&g, -3, 3) - p.oz[0];
+                }
+            } else if (i % 3 == 1) { /* one grazing ray: the cone is its direction */
+                ray one = ray8_get(&p, i / 3 % 8);
+                for (int k = 0; k < 8; k++)
+                    put(&p, k, one.o, one.d, 0.0f, INFINITY);
+            }
+            vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
+            for (int k = 0; k < 8; k++) {
+                vec3 d = v3(p.dx[k], p.dy[k], p.dz[k]);
+                lo = v3_min(lo, d);
+                hi = v3_max(hi, d);
+            }
+            vec3 eye = v3(p.ox[0], p.oy[0], p.oz[0]);
+            int n = scene_cone_objects(s, eye, lo, hi, list, 32);
+            if (!s->flat && !(s->bvh.width == 8 && s->bvh.nnodes > 0)) {
+                cr_assert_eq(n, -1, "%s: the path takes no packets", accel_isa_name((accel_isa)path));
+                break;
+            }
+            cr_assert(n >= 0 && n <= s->bvh.nprims, "%d", n);
+            left_out += s->bvh.nprims - n;
+            int active = i % 7 == 0 ? 0x5d : 0xff;
+            scene_hit h8[8], h1;
+            int found = scene_intersect8_among(s, &p, active, list, n, h8);
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
+                cr_assert_eq(found >> k & 1, hit, "%s, packet %d ray %d",
+                             accel_isa_name((accel_isa)path), i, k);
+                if (!hit)
+                    continue;
+                cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+                expect_same_hit(&h8[k].h, &h1.h, i, k);
+                hits++;
+            }
+        }
+        scene_free(s);
+        s = ball_lattice(); /* 200 objects */
+        cr_assert_eq(scene_cone_objects(s, v3(0, 5, 8), v3(-1, -1, -1), v3(1, 1, -0.5f), list, 32),
+                     -1);
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert(hits > 20000 && left_out > 50000, "%d hits, %d objects left out", hits,
+                  left_out);
+}

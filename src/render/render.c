@@ -30,6 +30,7 @@ typedef struct job {
     float decode[256];
     int lattice; /* adaptive: finest lattice points per pixel side, 2^(depth + 1) */
     bool packets; /* grid and jitter: camera rays eight at a time (scene_packets_pay) */
+    bool cone;    /* packets from a pinhole: each tile's objects found once (tile_cone) */
     int tx0, ty0, tiles_x; /* a region's first tile and its width in tiles */
     int items;             /* tiles to render */
     bands *bands;          /* which thread renders which (render/bands.h) */
@@ -42,10 +43,16 @@ typedef struct job {
     uint64_t primary_rays, secondary_rays, shadow_rays;
 } job;
 
+/* The most objects a tile's camera rays are tested against without the
+ * scene's tree (tile_cone). */
+#define TILE_CONE_MAX 32
+
 /* A render thread's own state. */
 typedef struct worker_state {
     trace_ctx ctx;
     uint64_t primary_rays;
+    int ncone; /* the objects the tile's camera rays may meet, or -1: walk the tree */
+    int32_t cone[TILE_CONE_MAX];
     struct lattice_point *points; /* adaptive: one pixel's lattice */
     struct lattice_point *corners; /* adaptive: a tile's pixel corners */
 } worker_state;
@@ -203,7 +210,8 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         if (!active)
             continue;
         scene_hit h[8];
-        int found = scene_intersect8(sc, &p, active, h);
+        int found = w->ncone >= 0 ? scene_intersect8_among(sc, &p, active, w->cone, w->ncone, h)
+                                  : scene_intersect8(sc, &p, active, h);
         trace_lanes tl = {(uint32_t)x0, (uint32_t)y, (uint32_t)k, {0}};
         for (int i = 0; i < n; i++)
             tl.time[i] = p.time[i];
@@ -220,6 +228,29 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
             cover[i] += alpha ? c[i] : 0.0f;
         }
     }
+}
+
+/* Where the cone is on (job.cone), the objects the camera rays of tile r
+ * may meet into w->cone, for scene_intersect8_among; else w->ncone -1. A
+ * pinhole's ray through image position (x, y) has direction corner + dx x
+ * + dy y, each component in floats a monotonic function of x and of y, so
+ * the directions of every position of the tile's pixels lie between those
+ * of its four corners. */
+static void tile_cone(const job *j, worker_state *w, glint_rect r)
+{
+    w->ncone = -1;
+    if (!j->cone)
+        return;
+    vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
+    for (int c = 0; c < 4; c++) {
+        ray8 p;
+        camera_row8(&j->frame, c & 1 ? r.x1 : r.x0, 1, 0.0f, (float)(c & 2 ? r.y1 : r.y0), 0.5f,
+                    0.5f, 0.0f, &p);
+        vec3 d = v3(p.dx[0], p.dy[0], p.dz[0]);
+        lo = v3_min(lo, d);
+        hi = v3_max(hi, d);
+    }
+    w->ncone = scene_cone_objects(j->scene, j->frame.eye, lo, hi, w->cone, TILE_CONE_MAX);
 }
 
 /* grid and jitter: every sample of each pixel, averaged. */
@@ -437,6 +468,7 @@ static uint64_t render_tile_pass(job *j, worker_state *w, int item, glint_rect r
 
 static void render_tile(job *j, worker_state *w, int item, glint_rect r)
 {
+    tile_cone(j, w, r);
     worker_state before = *w;
     if (j->work->accum) {
         tile_finished(j, w, &before, r, render_tile_pass(j, w, item, r));
@@ -459,7 +491,7 @@ static void *worker(void *arg)
     worker_state w = {{.scene = j->scene, .decode = j->decode,
                        .max_depth = j->settings->max_depth,
                        .bailout = (float)j->settings->adc_bailout, .weight = 1.0f},
-                      0, NULL, NULL};
+                      0, -1, {0}, NULL, NULL};
     if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE) {
         size_t side = (size_t)j->lattice + 1;
         w.points = malloc(sizeof *w.points * side * side);
@@ -551,6 +583,8 @@ glint_rc render_run(const struct glint_scene *sc, const glint_settings *settings
                           sc->shutter_seconds > 0.0f);
     j->lattice = 2 << settings->adaptive_depth;
     j->packets = !sc->camera_moves && scene_packets_pay(sc);
+    j->cone = j->packets && j->frame.projection == CAMERA_PERSPECTIVE &&
+              j->frame.lens_radius == 0.0f;
     job_plan(j);
     atomic_init(&j->cancelled, 0);
     atomic_init(&j->nomem, 0);

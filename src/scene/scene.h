@@ -200,6 +200,18 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit);
  * and the sphere, quad, plane and torus tests, but one by one in a scene
  * with meshes or a deeper tree. The same hits. */
 int scene_intersect8_spread(const scene *s, const ray8 *r, int active, scene_hit *hit);
+/* The objects of the scene's tree (those with bounds) that a ray from o
+ * with a direction anywhere in [dlo, dhi] (component by component) may
+ * meet at t >= 0, into list (room for cap), in the tree's order: their
+ * count, or -1 when there are more than cap, or the scene's path takes no
+ * packets (scene_cone.c). A tile's camera rays from a pinhole ask it once
+ * for the tile. */
+int scene_cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, int32_t *list, int cap);
+/* scene_intersect8 for rays of a bundle that list (scene_cone_objects) was
+ * made for: the unbounded objects and the n of list, without a walk. The
+ * same hits. */
+int scene_intersect8_among(const scene *s, const ray8 *r, int active, const int32_t *list,
+                           int n, scene_hit *hit);
 /* Whether scene_intersect8 walks the scene's rays together (a flat scene
  * holding a mesh that does not move, on an eight-wide path); otherwise it
  * only takes them one at a time. */

@@ -303,23 +303,28 @@ typedef struct scene_packet_ctx {
     int found;
 } scene_packet_ctx;
 
+/* Object k against the rays of `rays`, as scene_packet_object tests it. */
+__attribute__((always_inline)) static inline void scene_packet_one(scene_packet_ctx *c, int k,
+                                                                   int rays)
+{
+    const object *o = &c->s->objects[k];
+    if (o->xform < 0 && shape_tests_eight(o->shape.kind) && ray8_three_or_more(rays)) {
+        /* scene_packet_object's commonest case, here without its calls */
+        shape_hits8 h;
+        int nearer = 0, any = shape8_hit(&o->shape, c->r, c->best, rays, &h, &nearer);
+        c->found |= keep_hits8(k, any, nearer, &h, c->best, c->hit);
+    } else {
+        c->found |= scene_packet_object(c->s, k, c->r, rays, c->best, c->hit);
+    }
+}
+
 __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, uint32_t first,
                                                                     uint32_t count, int rays,
                                                                     __m256 *tmax)
 {
     scene_packet_ctx *c = ctx;
-    for (uint32_t i = 0; i < count; i++) {
-        int k = c->s->bvh.prims[first + i];
-        const object *o = &c->s->objects[k];
-        if (o->xform < 0 && shape_tests_eight(o->shape.kind) && ray8_three_or_more(rays)) {
-            /* scene_packet_object's commonest case, here without its calls */
-            shape_hits8 h;
-            int nearer = 0, any = shape8_hit(&o->shape, c->r, c->best, rays, &h, &nearer);
-            c->found |= keep_hits8(k, any, nearer, &h, c->best, c->hit);
-        } else {
-            c->found |= scene_packet_object(c->s, k, c->r, rays, c->best, c->hit);
-        }
-    }
+    for (uint32_t i = 0; i < count; i++)
+        scene_packet_one(c, c->s->bvh.prims[first + i], rays);
     *tmax = _mm256_loadu_ps(c->best);
     return true;
 }
@@ -434,6 +439,15 @@ scene_object_rays8(const mat4 *inv, const ray8 *r, int active, const float *best
                                   const float *best, ray8 *out)                                \
     {                                                                                          \
         scene_object_rays8(inv, r, active, best, out);                                         \
+    }                                                                                          \
+    __attribute__((flatten))                                                                   \
+    int scene_among8_##isa(const scene *s, const ray8 *r, int active, const int32_t *list,     \
+                           int n, float best[8], scene_hit hit[8])                             \
+    {                                                                                          \
+        scene_packet_ctx c = {s, r, best, hit, 0};                                             \
+        for (int i = 0; i < n; i++)                                                            \
+            scene_packet_one(&c, list[i], active);                                             \
+        return c.found;                                                                        \
     }                                                                                          \
     __attribute__((flatten))                                                                   \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
@@ -560,6 +574,12 @@ int scene_walk8_culled_avx2(const scene *s, const ray8 *r, int active, float bes
                             scene_hit hit[8]);
 int scene_walk8_culled_avx512(const scene *s, const ray8 *r, int active, float best[8],
                               scene_hit hit[8]);
+/* The rays of active against the n objects of list, as a walk's leaves
+ * test them (scene_intersect8_among). */
+int scene_among8_avx2(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
+                      float best[8], scene_hit hit[8]);
+int scene_among8_avx512(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
+                        float best[8], scene_hit hit[8]);
 /* object_rays eight lanes at once (scene_object_rays8). */
 void scene_object_rays8_avx2(const mat4 *inv, const ray8 *r, int active, const float *best,
                              ray8 *out);
