@@ -120,6 +120,51 @@ static sampler make(glint_sampler kind, int samples)
     return sampler_make(&st, true, true);
 }
 
+/* A row of up to eight camera rays (camera_row8, and camera_row8_on for
+ * each SIMD path the CPU has) is camera_ray's rays to the bit, pixel by
+ * pixel, idle lanes repeating the first; for a pinhole too, whose rows the
+ * eight-wide paths make in registers. */
+Test(camera, rows_of_eight_are_camera_rays_on_every_path)
+{
+    camera tilted = cam_of(CAMERA_PERSPECTIVE, 37.3f); /* every component of dx and dy */
+    tilted.target = v3(4.1f, -1.3f, -7.0f);
+    tilted.up = v3(0.2f, 1.0f, 0.1f);
+    const camera cams[] = {tilted, cam_of(CAMERA_ORTHOGRAPHIC, 0), cam_of(CAMERA_FISHEYE, 190),
+                           cam_of(CAMERA_EQUIRECTANGULAR, 0)};
+    int checked = 0;
+    for (int c = 0; c < 4; c++)
+        for (int isa = ACCEL_SCALAR; isa <= ACCEL_AVX512; isa++) {
+            if (isa > (int)accel_isa_best())
+                continue;
+            camera_frame f = camera_frame_make(&cams[c], 1283, 719);
+            for (int i = 0; i < 400; i++) {
+                int x0 = (i * 37) % 1280, n = 1 + i % 8;
+                float fx = (float)(i % 13) / 13.0f, y = (float)(i * 7 % 719) + 0.37f;
+                ray8 p;
+                int active = camera_row8_on((accel_isa)isa, &f, x0, n, fx, y, 0.5f, 0.5f, 0.25f, &p);
+                for (int k = 0; k < 8; k++) {
+                    ray want;
+                    bool has = camera_ray(&f, (float)(x0 + (k < n ? k : 0)) + fx, y, 0.5f, 0.5f,
+                                          &want);
+                    cr_assert_eq((active >> k & 1) != 0, has && k < n, "camera %d lane %d", c, k);
+                    if (!has || k >= n)
+                        continue;
+                    ray got = ray8_get(&p, k);
+                    cr_assert(memcmp(&got.o, &want.o, sizeof want.o) == 0 &&
+                                  memcmp(&got.d, &want.d, sizeof want.d) == 0 &&
+                                  got.tmin == want.tmin && got.tmax == want.tmax &&
+                                  got.time == 0.25f,
+                              "camera %d on %s, row %d lane %d: (%.9g %.9g %.9g) against "
+                              "(%.9g %.9g %.9g)",
+                              c, accel_isa_name((accel_isa)isa), i, k, got.d.x, got.d.y, got.d.z,
+                              want.d.x, want.d.y, want.d.z);
+                    checked++;
+                }
+            }
+        }
+    cr_assert_gt(checked, 4000);
+}
+
 Test(sampler, grid_is_the_regular_grid)
 {
     sampler s = make(GLINT_SAMPLER_GRID, 4);

@@ -193,8 +193,8 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
         int active = 0;
         if (alike) {
             pixel_sample s = sampler_get(&j->smp, x0, y, k);
-            active = camera_row8(&j->frame, x0, n, s.fx, (float)y + s.fy, s.lu, s.lv,
-                                 sc->time + s.time * sc->shutter_seconds, &p);
+            active = camera_row8_on(sc->bvh.isa, &j->frame, x0, n, s.fx, (float)y + s.fy, s.lu,
+                                    s.lv, sc->time + s.time * sc->shutter_seconds, &p);
         } else {
             ray rs[8];
             for (int i = 0; i < n; i++) {

@@ -155,3 +155,18 @@ int camera_row8(const camera_frame *f, int x0, int n, float fx, float y, float l
     }
     return (1 << n) - 1;
 }
+
+int camera_row8_on(accel_isa isa, const camera_frame *f, int x0, int n, float fx, float y,
+                   float lu, float lv, float time, ray8 *p)
+{
+#if defined(GLINT_WIDE_KERNELS)
+    if (f->projection == CAMERA_PERSPECTIVE && f->lens_radius == 0.0f) {
+        if (isa == ACCEL_AVX512)
+            return camera_pinhole8_avx512(f, x0, n, fx, y, time, p);
+        if (isa == ACCEL_AVX2)
+            return camera_pinhole8_avx2(f, x0, n, fx, y, time, p);
+    }
+#endif
+    (void)isa;
+    return camera_row8(f, x0, n, fx, y, lu, lv, time, p);
+}

@@ -16,6 +16,7 @@
 #define GLINT_SCENE_CAMERA_H
 
 #include <stdbool.h>
+#include "accel/isa.h"
 #include "core/ray.h"
 
 typedef enum camera_projection {
@@ -61,6 +62,15 @@ bool camera_ray(const camera_frame *f, float x, float y, float lu, float lv, ray
  * lanes with a ray. */
 int camera_row8(const camera_frame *f, int x0, int n, float fx, float y, float lu, float lv,
                 float time, ray8 *p);
+
+/* camera_row8 on SIMD path isa: the same rays, a pinhole's made in
+ * eight-wide registers on the paths that have them (scene/camera8.h). */
+int camera_row8_on(accel_isa isa, const camera_frame *f, int x0, int n, float fx, float y,
+                   float lu, float lv, float time, ray8 *p);
+int camera_pinhole8_avx2(const camera_frame *f, int x0, int n, float fx, float y, float time,
+                         ray8 *p);
+int camera_pinhole8_avx512(const camera_frame *f, int x0, int n, float fx, float y, float time,
+                           ray8 *p);
 
 /* The unit direction the pinhole ray through (x, y) takes, as camera_ray
  * with aperture 0; false outside a fisheye's circle. */

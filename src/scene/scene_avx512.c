@@ -1,5 +1,6 @@
 /* The scene kernels of scene_trace.h for the avx512 path (accel/isa.h); the
  * Makefile compiles this file with the avx512 flags. */
+#include "camera8.h"
 #include "scene_trace.h"
 
 #if defined(GLINT_WIDE_KERNELS)
@@ -8,6 +9,7 @@
 #endif
 SCENE_KERNELS(avx512, 8)
 SCENE_PACKET_KERNELS(avx512)
+CAMERA8_KERNELS(avx512)
 #else
 typedef int scene_avx512_unused; /* not x86-64: no kernels here */
 #endif
