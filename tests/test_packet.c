@@ -1137,15 +1137,17 @@ Test(packet, culling_a_node_for_the_packet_keeps_every_box_a_ray_enters)
 }
 
 /* 24 balls and cubes of ball_lattice's kind (a tree of one node on the
- * eight-wide paths), a cube turned about its centre and a ground plane. */
-static scene *small_lattice(void)
+ * eight-wide paths), a cube turned about its centre and a ground plane
+ * (unless not with_ground). */
+static scene *small_lattice(bool with_ground)
 {
     scene *s = scene_new();
     cr_assert_not_null(s);
     material mt = material_default();
     int mat = scene_add_material(s, &mt);
     shape ground = shape_plane(v3(0, -0.6f, 0), v3(0, 1, 0));
-    cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
+    if (with_ground)
+        cr_assert_geq(scene_add_object(s, &ground, mat, -1), 0);
     for (int i = 0; i < 24; i++) {
         vec3 c = lattice_at(i % 6 + i / 6 * 10), e = v3s(0.45f);
         shape b = i % 2 ? shape_box(v3_sub(c, e), v3_add(c, e)) : shape_sphere(c, 0.45f);
@@ -1173,7 +1175,7 @@ Test(packet, a_tile_cone_keeps_every_object_its_rays_hit)
     for (int path = ACCEL_SCALAR; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = small_lattice();
+        scene *s = small_lattice(true);
         int32_t list[32];
         rng g = rng_seed(23, 4);
         for (int i = 0; i < 6000; i++) {
@@ -1198,7 +1200,7 @@ Test(packet, a_tile_cone_keeps_every_object_its_rays_hit)
                 hi = v3_max(hi, d);
             }
             vec3 eye = v3(p.ox[0], p.oy[0], p.oz[0]);
-            int n = scene_cone_objects(s, eye, lo, hi, list, 32);
+            int n = scene_cone_objects(s, eye, lo, hi, list, 32, NULL);
             if (!s->flat && !(s->bvh.width == 8 && s->bvh.nnodes > 0)) {
                 cr_assert_eq(n, -1, "%s: the path takes no packets", accel_isa_name((accel_isa)path));
                 break;
@@ -1222,12 +1224,109 @@ Test(packet, a_tile_cone_keeps_every_object_its_rays_hit)
         }
         scene_free(s);
         s = ball_lattice(); /* 200 objects */
-        cr_assert_eq(scene_cone_objects(s, v3(0, 5, 8), v3(-1, -1, -1), v3(1, 1, -0.5f), list, 32),
-                     -1);
+        cr_assert_eq(
+            scene_cone_objects(s, v3(0, 5, 8), v3(-1, -1, -1), v3(1, 1, -0.5f), list, 32, NULL), -1);
         scene_free(s);
     }
     accel_isa_force(ACCEL_AUTO);
     if (accel_isa_best() >= ACCEL_AVX2)
         cr_assert(hits > 20000 && left_out > 50000, "%d hits, %d objects left out", hits,
                   left_out);
+}
+
+/* The shadow rays from the hits of a tile's camera rays to a point light
+ * are tested against the objects the light's cone through the hits' reach
+ * may meet (scene_shadow_cone_objects, scene_shadow8_among): each ray is
+ * blocked where scene_occluded_opaque says, leaving its hit by ray_offset
+ * along any normal. A scene with an unbounded object gives no list. */
+Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
+{
+    int blocked_rays = 0, free_rays = 0, left_out = 0;
+    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = small_lattice(false);
+        int32_t list[32], shadows[32];
+        rng g = rng_seed(29, 6);
+        for (int i = 0; i < 6000; i++) {
+            ray8 p = grazing_packet(&g, 0.0f);
+            if (i % 2) { /* one ray: a reach as small as a hit, and a cone as thin */
+                ray one = ray8_get(&p, i / 2 % 8);
+                for (int k = 0; k < 8; k++)
+                    put(&p, k, one.o, one.d, 0.0f, INFINITY);
+            }
+            vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
+            for (int k = 0; k < 8; k++) {
+                p.tmin[k] = 0.0f;
+                vec3 d = v3(p.dx[k], p.dy[k], p.dz[k]);
+                lo = v3_min(lo, d);
+                hi = v3_max(hi, d);
+            }
+            aabb reach;
+            int n = scene_cone_objects(s, v3(p.ox[0], p.oy[0], p.oz[0]), lo, hi, list, 32, &reach);
+            cr_assert_geq(n, 0);
+            vec3 light_at = v3(uniform(&g, -20, 30), uniform(&g, 2, 30), uniform(&g, -20, 20));
+            int m = scene_shadow_cone_objects(s, reach, light_at, shadows, 32);
+            cr_assert(m >= 0 && m <= s->bvh.nprims, "%d", m);
+            left_out += s->bvh.nprims - m;
+            if (n > 0) /* segments to the light from the corners of the reach, as far */
+                for (int c = 0; c < 8; c++) { /* out as a shadow ray's origin moves */
+                    vec3 at = v3(c & 1 ? reach.hi.x : reach.lo.x, c & 2 ? reach.hi.y : reach.lo.y,
+                                 c & 4 ? reach.hi.z : reach.lo.z);
+                    vec3 out = v3(c & 1 ? 1.0f : -1.0f, c & 2 ? 1.0f : -1.0f, c & 4 ? 1.0f : -1.0f);
+                    vec3 o = v3_madd(at, out, 0.999f * ray_epsilon(at));
+                    ray r = {.o = o, .d = v3_sub(light_at, o), .tmin = 0.0f, .tmax = 1.0f};
+                    for (int k = 0; k < s->nobjects; k++) {
+                        ray lr = scene_object_ray(s, &s->objects[k], &r);
+                        bool listed = false;
+                        for (int q = 0; q < m; q++)
+                            listed |= shadows[q] == k;
+                        cr_assert(listed || !shape_occluded_inline(&s->objects[k].shape, &lr),
+                                  "packet %d corner %d: object %d is met, not listed", i, c, k);
+                    }
+                }
+            ray8 sr;
+            int active = 0;
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                scene_hit h;
+                if (!scene_intersect(s, &r, &h))
+                    continue;
+                vec3 at = ray_at(&r, h.h.t);
+                vec3 ng = v3_norm(v3(uniform(&g, -1, 1), uniform(&g, -1, 1), uniform(&g, -1, 1)));
+                vec3 o = ray_offset(at, ng, v3_sub(light_at, at));
+                put(&sr, k, o, v3_sub(light_at, o), 0.0f, 1.0f);
+                active |= 1 << k;
+            }
+            if (!ray8_three_or_more(active))
+                continue;
+            ray8_fill(&sr, active);
+            int blocked, crosses;
+            cr_assert(scene_shadow8_among(s, &sr, active, shadows, m, &blocked, &crosses));
+            cr_assert_eq(crosses, 0);
+            for (int k = 0; k < 8; k++) {
+                if (!(active >> k & 1))
+                    continue;
+                ray r = ray8_get(&sr, k);
+                bool want = scene_occluded_opaque(s, &r);
+                cr_assert_eq(blocked >> k & 1, want, "%s, packet %d ray %d",
+                             accel_isa_name((accel_isa)path), i, k);
+                blocked_rays += want;
+                free_rays += !want;
+            }
+        }
+        scene_free(s);
+        s = small_lattice(true);
+        aabb reach;
+        cr_assert_geq(scene_cone_objects(s, v3(2, 5, 8), v3(-0.1f, -1, -1), v3(0.1f, -0.5f, -0.8f),
+                                         list, 32, &reach),
+                      0);
+        cr_assert_eq(scene_shadow_cone_objects(s, reach, v3(0, 20, 0), shadows, 32), -1,
+                     "a hit on the ground plane may be anywhere");
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert(blocked_rays > 2000 && free_rays > 2000 && left_out > 10000,
+                  "%d blocked, %d not, %d objects left out", blocked_rays, free_rays, left_out);
 }

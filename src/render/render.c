@@ -53,6 +53,7 @@ typedef struct worker_state {
     uint64_t primary_rays;
     int ncone; /* the objects the tile's camera rays may meet, or -1: walk the tree */
     int32_t cone[TILE_CONE_MAX];
+    trace_tile_shadows shadows; /* what the shadow rays from their hits may meet */
     struct lattice_point *points; /* adaptive: one pixel's lattice */
     struct lattice_point *corners; /* adaptive: a tile's pixel corners */
 } worker_state;
@@ -231,14 +232,17 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
 }
 
 /* Where the cone is on (job.cone), the objects the camera rays of tile r
- * may meet into w->cone, for scene_intersect8_among; else w->ncone -1. A
- * pinhole's ray through image position (x, y) has direction corner + dx x
- * + dy y, each component in floats a monotonic function of x and of y, so
- * the directions of every position of the tile's pixels lie between those
- * of its four corners. */
+ * may meet into w->cone, for scene_intersect8_among, else w->ncone -1;
+ * and then the objects the shadow rays from their hits to each point or
+ * spot light may meet into w->shadows, for the lighting of those hits
+ * (trace_ctx.tile). A pinhole's ray through image position (x, y) has
+ * direction corner + dx x + dy y, each component in floats a monotonic
+ * function of x and of y, so the directions of every position of the
+ * tile's pixels lie between those of its four corners. */
 static void tile_cone(const job *j, worker_state *w, glint_rect r)
 {
     w->ncone = -1;
+    w->ctx.tile = NULL;
     if (!j->cone)
         return;
     vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
@@ -250,7 +254,25 @@ static void tile_cone(const job *j, worker_state *w, glint_rect r)
         lo = v3_min(lo, d);
         hi = v3_max(hi, d);
     }
-    w->ncone = scene_cone_objects(j->scene, j->frame.eye, lo, hi, w->cone, TILE_CONE_MAX);
+    aabb reach;
+    w->ncone = scene_cone_objects(j->scene, j->frame.eye, lo, hi, w->cone, TILE_CONE_MAX, &reach);
+    if (w->ncone < 0)
+        return;
+    const scene *s = j->scene;
+    bool any = false;
+    for (int i = 0; i < TRACE_TILE_LIGHTS; i++) {
+        const light *l = i < s->nlights ? &s->lights[i] : NULL;
+        int n = -1;
+        if (l && (l->kind == LIGHT_POINT || l->kind == LIGHT_SPOT))
+            n = scene_shadow_cone_objects(s, reach,
+                                          l->kind == LIGHT_POINT ? l->point.position
+                                                                 : l->spot.position,
+                                          w->shadows.list[i], TRACE_TILE_OBJECTS);
+        w->shadows.n[i] = n;
+        any |= n >= 0;
+    }
+    if (any)
+        w->ctx.tile = &w->shadows;
 }
 
 /* grid and jitter: every sample of each pixel, averaged. */
@@ -491,7 +513,7 @@ static void *worker(void *arg)
     worker_state w = {{.scene = j->scene, .decode = j->decode,
                        .max_depth = j->settings->max_depth,
                        .bailout = (float)j->settings->adc_bailout, .weight = 1.0f},
-                      0, -1, {0}, NULL, NULL};
+                      0, -1, {0}, {{0}, {{0}}}, NULL, NULL};
     if (j->smp.kind == GLINT_SAMPLER_ADAPTIVE) {
         size_t side = (size_t)j->lattice + 1;
         w.points = malloc(sizeof *w.points * side * side);

@@ -204,9 +204,23 @@ int scene_intersect8_spread(const scene *s, const ray8 *r, int active, scene_hit
  * with a direction anywhere in [dlo, dhi] (component by component) may
  * meet at t >= 0, into list (room for cap), in the tree's order: their
  * count, or -1 when there are more than cap, or the scene's path takes no
- * packets (scene_cone.c). A tile's camera rays from a pinhole ask it once
- * for the tile. */
-int scene_cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, int32_t *list, int cap);
+ * packets (scene_cone.c). *reach (reach not NULL) gets a box that holds
+ * every point where those rays may meet them, or an infinite one where
+ * they may meet an unbounded object. A tile's camera rays from a pinhole
+ * ask it once for the tile. */
+int scene_cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, int32_t *list, int cap,
+                       aabb *reach);
+/* The objects of the scene's tree that a shadow ray may meet on its way
+ * from a point of box `from` (scene_cone_objects's reach) to a point light
+ * at light_at, into list (room for cap), in the tree's order: their
+ * count; 0 for an empty box; -1 when there are more than cap, the box is
+ * infinite or the scene's path takes no packets. */
+int scene_shadow_cone_objects(const scene *s, aabb from, vec3 light_at, int32_t *list, int cap);
+/* scene_shadow8 for shadow rays of a bundle that list
+ * (scene_shadow_cone_objects) was made for: the unbounded objects and the
+ * n of list, without a walk; the same answers. */
+bool scene_shadow8_among(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
+                         int *blocked, int *crosses);
 /* scene_intersect8 for rays of a bundle that list (scene_cone_objects) was
  * made for: the unbounded objects and the n of list, without a walk. The
  * same hits. */

@@ -1,54 +1,86 @@
 /* scene_cone: the objects a bundle of rays from one point may meet, found
- * once for the bundle (a tile's camera rays), and the bundle's packets then
+ * once for the bundle (a tile's camera rays, or the shadow rays from their
+ * hits to a light, seen from the light), and the bundle's packets then
  * tested against those objects alone instead of walking the tree. */
 #include <math.h>
 #include <string.h>
 
 #include "scene_trace.h"
 
-/* Whether a ray o + t d, t >= 0, with d anywhere in [dlo, dhi] (each
+/* Whether a ray o + t d, 0 <= t <= tmax, with d anywhere in [dlo, dhi] (each
  * component on its own: a superset of the bundle), may meet box b grown
  * by a margin far beyond rounding (1e-4 of the coordinates' size: a
  * shape's hit found in floats lies within a few units in the last place
  * of its box). Each axis bounds the t at which some direction of the
  * interval is inside the box's slab; the bundle misses the box where the
- * three ranges of t do not meet. In doubles, whose rounding the margin
- * dwarfs. */
-static bool cone_meets(aabb b, vec3 o, vec3 dlo, vec3 dhi)
+ * three ranges of t do not meet. Where it may meet it, *reach (when not
+ * NULL) grows to hold the grown box's part that the bundle's rays cross
+ * in that range of t. In doubles, whose rounding the margin dwarfs. */
+/* fmin and fmax of numbers (no NaN here), without libm's calls. */
+static inline double lesser(double a, double b) { return a < b ? a : b; }
+static inline double greater(double a, double b) { return a > b ? a : b; }
+
+static bool cone_meets(aabb b, vec3 o, vec3 dlo, vec3 dhi, double tmax, aabb *reach)
 {
     const float lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
     const float oo[3] = {o.x, o.y, o.z}, p[3] = {dlo.x, dlo.y, dlo.z}, q[3] = {dhi.x, dhi.y, dhi.z};
-    double tlo = 0.0, thi = INFINITY;
+    double tlo = 0.0, thi = tmax, l[3], h[3], pad[3];
     for (int a = 0; a < 3; a++) {
-        double pad = 1e-4 * (fabs((double)lo[a]) + fabs((double)hi[a]) + fabs((double)oo[a])) +
-                     1e-30;
-        double l = (double)lo[a] - pad - oo[a], h = (double)hi[a] + pad - oo[a];
+        pad[a] = 1e-4 * (fabs((double)lo[a]) + fabs((double)hi[a]) + fabs((double)oo[a])) + 1e-30;
+        l[a] = (double)lo[a] - pad[a] - oo[a], h[a] = (double)hi[a] + pad[a] - oo[a];
         /* some t * d <= h, d >= p */
         if (p[a] > 0.0f) {
-            if (h < 0.0)
+            if (h[a] < 0.0)
                 return false;
-            thi = fmin(thi, h / p[a]);
-        } else if (h < 0.0) {
+            thi = lesser(thi, h[a] / p[a]);
+        } else if (h[a] < 0.0) {
             if (p[a] == 0.0f)
                 return false;
-            tlo = fmax(tlo, h / p[a]);
+            tlo = greater(tlo, h[a] / p[a]);
         }
         /* some t * d >= l, d <= q */
         if (q[a] < 0.0f) {
-            if (l > 0.0)
+            if (l[a] > 0.0)
                 return false;
-            thi = fmin(thi, l / q[a]);
-        } else if (l > 0.0) {
+            thi = lesser(thi, l[a] / q[a]);
+        } else if (l[a] > 0.0) {
             if (q[a] == 0.0f)
                 return false;
-            tlo = fmax(tlo, l / q[a]);
+            tlo = greater(tlo, l[a] / q[a]);
         }
     }
-    return tlo <= thi * (1.0 + 1e-6);
+    if (!(tlo <= thi * (1.0 + 1e-6)))
+        return false;
+    if (!reach)
+        return true;
+    double part[2][3];
+    for (int a = 0; a < 3; a++) {
+        part[0][a] = l[a], part[1][a] = h[a];
+        if (isfinite(thi)) { /* t in [tlo, thi] times d in [p, q] */
+            double t0 = lesser(tlo, thi), c[4] = {t0 * p[a], t0 * q[a], thi * p[a], thi * q[a]};
+            double cl = lesser(lesser(c[0], c[1]), lesser(c[2], c[3]));
+            double ch = greater(greater(c[0], c[1]), greater(c[2], c[3]));
+            part[0][a] = greater(part[0][a], cl - pad[a]);
+            part[1][a] = lesser(part[1][a], ch + pad[a]);
+        }
+    }
+    /* back in floats, whose rounding (half a unit in the last place) the
+     * margin takes many times over */
+    vec3 plo = v3((float)(part[0][0] + oo[0]), (float)(part[0][1] + oo[1]),
+                  (float)(part[0][2] + oo[2]));
+    vec3 phi = v3((float)(part[1][0] + oo[0]), (float)(part[1][1] + oo[1]),
+                  (float)(part[1][2] + oo[2]));
+    *reach = aabb_union(*reach, (aabb){plo, phi});
+    return true;
 }
 
-int scene_cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, int32_t *list, int cap)
+/* The objects of the tree that rays from o with directions in [dlo, dhi]
+ * may meet up to tmax, and where (scene_cone_objects). */
+static int cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, double tmax, int32_t *list,
+                        int cap, aabb *reach)
 {
+    if (reach)
+        *reach = aabb_empty();
     if (!s->flat && !(s->bvh.width == 8 && s->bvh.nnodes > 0))
         return -1;
     if (s->bvh.nprims > cap)
@@ -56,13 +88,58 @@ int scene_cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, int32_t *list
     const float c[9] = {o.x, o.y, o.z, dlo.x, dlo.y, dlo.z, dhi.x, dhi.y, dhi.z};
     if (!floats_finite(c, 9))
         return -1;
+    bool anywhere = s->nunbounded > 0;
     int n = 0;
     for (int i = 0; i < s->bvh.nprims; i++) {
         int32_t k = s->bvh.prims[i];
-        if (aabb_is_unbounded(s->bounds[k]) || cone_meets(s->bounds[k], o, dlo, dhi))
+        bool unbounded = aabb_is_unbounded(s->bounds[k]);
+        if (unbounded || cone_meets(s->bounds[k], o, dlo, dhi, tmax, reach)) {
             list[n++] = k;
+            anywhere |= unbounded;
+        }
     }
+    if (reach && anywhere)
+        *reach = (aabb){v3s(-INFINITY), v3s(INFINITY)};
     return n;
+}
+
+int scene_cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, int32_t *list, int cap,
+                       aabb *reach)
+{
+    return cone_objects(s, o, dlo, dhi, INFINITY, list, cap, reach);
+}
+
+/* A shadow ray from a point p on an object leaves from p moved by
+ * ray_epsilon(p) along the normal (core/ray.h) and ends at the light: the
+ * segment lies in the cone from the light through the points' box grown
+ * by that distance, out to them (t <= 1). The directions' interval is
+ * widened by far more than its rounding, as cone_meets's boxes are. */
+int scene_shadow_cone_objects(const scene *s, aabb from, vec3 light_at, int32_t *list, int cap)
+{
+    if (aabb_is_empty(from))
+        return 0; /* no hits, no shadow rays */
+    if (aabb_is_unbounded(from))
+        return -1;
+    float e = 2.0f * RAY_EPS_REL * (1.0f + maxf(v3_max_abs(from.lo), v3_max_abs(from.hi)));
+    vec3 lo = v3_sub(v3_sub(from.lo, v3s(e)), light_at);
+    vec3 hi = v3_sub(v3_add(from.hi, v3s(e)), light_at);
+    float slack = 1e-4f * (maxf(v3_max_abs(lo), v3_max_abs(hi)) + v3_max_abs(light_at));
+    return cone_objects(s, light_at, v3_sub(lo, v3s(slack)), v3_add(hi, v3s(slack)), 1.0 + 1e-3,
+                        list, cap, NULL);
+}
+
+bool scene_shadow8_among(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
+                         int *blocked, int *crosses)
+{
+    *blocked = *crosses = 0;
+    if (!s->flat && !(s->bvh.width == 8 && s->bvh.nnodes > 0))
+        return false;
+    for (int i = 0; i < s->nunbounded; i++)
+        scene_shadow8_object(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
+    for (int i = 0; i < n; i++)
+        scene_shadow8_object(s, list[i], r, active & ~*blocked, blocked, crosses);
+    *crosses &= ~*blocked;
+    return true;
 }
 
 int scene_intersect8_among(const scene *s, const ray8 *r, int active, const int32_t *list,

@@ -195,16 +195,20 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp)
 /* The shadow rays of lanes `need` in the lanes of *p (the others hold
  * numbers): what reaches each ray's end into *vis, as shadow_filter
  * finds it. Three or more go through the scene together
- * (scene_shadow8), and only those that cross a transmitting object, or
- * cannot go together, one by one. */
-static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vis8 *vis)
+ * (scene_shadow8, or scene_shadow8_among the n objects of among where n
+ * >= 0), and only those that cross a transmitting object, or cannot go
+ * together, one by one. */
+static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, const int32_t *among, int n,
+                         vis8 *vis)
 {
     const scene *s = ctx->scene;
     int blocked = 0, crosses = 0, alone = need, listed = 0;
     scene_crossings cross[8];
     int32_t obj[8];
     int count[8];
-    if (ray8_three_or_more(need) && scene_shadow8(s, p, need, &blocked, &crosses)) {
+    if (ray8_three_or_more(need) &&
+        (n >= 0 ? scene_shadow8_among(s, p, need, among, n, &blocked, &crosses)
+                : scene_shadow8(s, p, need, &blocked, &crosses))) {
         alone = 0;
         /* their crossings together, which filter each: listed in order
          * along each ray only where it crosses more than one object, or
@@ -243,7 +247,7 @@ static void shadow8_rays(trace_ctx *ctx, const ray8 *p, int need, vis8 *vis)
 /* The shadow rays of lanes `need` towards their light samples lr[k]
  * (shadow_ray, at each lane's time), through shadow8_rays. */
 static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp,
-                    const light_ray lr[8], int need, vis8 *vis)
+                    const light_ray lr[8], int need, const int32_t *among, int n, vis8 *vis)
 {
     ray8 p; /* the rays go straight into their lanes */
     for (int m = need; m; m &= m - 1) {
@@ -255,7 +259,7 @@ static void shadow8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp,
     }
     if (need)
         ray8_fill(&p, need);
-    shadow8_rays(ctx, &p, need, vis);
+    shadow8_rays(ctx, &p, need, among, n, vis);
 }
 
 /* The light kernels of light8_api.h on the scene's path; point NULL
@@ -309,7 +313,8 @@ static void add_lit8(const shade8 *sp, int k, vec3 dir, vec3 color, float ndl, v
  * light's terms eight at a time where the path has them (light8_point,
  * light8_add), any other lane by lane; the shadow rays together. */
 static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l, const shade8 *sp,
-                       int lanes, const light8_kernels *k8, light8_acc *acc)
+                       int lanes, const light8_kernels *k8, const int32_t *among, int n,
+                       light8_acc *acc)
 {
     ray8 p;
     light8_seen seen;
@@ -317,7 +322,7 @@ static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l, co
     if (l->kind == LIGHT_POINT && k8->point) {
         int need = k8->point(l, sp, lanes, tl->time, &p, &seen);
         if (need >= 0) {
-            shadow8_rays(ctx, &p, need, &vis);
+            shadow8_rays(ctx, &p, need, among, n, &vis);
             for (int m = need & ~seen.highlit; m; m &= m - 1) { /* a powf each */
                 int k = __builtin_ctz((unsigned)m);
                 shade_point spk = shade8_get(sp, k);
@@ -336,7 +341,7 @@ static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l, co
         lr[k] = light_sample(l, spk.p, 0, 0.5f, 0.5f);
         need |= lit(&spk, &lr[k], &ndl[k]) << k;
     }
-    shadow8(ctx, tl, sp, lr, need, &vis);
+    shadow8(ctx, tl, sp, lr, need, among, n, &vis);
     for (int m = need; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         add_lit8(sp, k, lr[k].dir, lr[k].color, ndl[k], vis8_get(&vis, k), acc);
@@ -344,7 +349,7 @@ static void add_light8(trace_ctx *ctx, const trace_lanes *tl, const light *l, co
 }
 
 void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, int lanes,
-                     const uint32_t event[8], color8 *out)
+                     const uint32_t event[8], const trace_tile_shadows *tile, color8 *out)
 {
     const scene *s = ctx->scene;
     light8_kernels k8 = kernels8(ctx);
@@ -359,7 +364,9 @@ void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, in
     }
     for (int i = 0; i < s->nlights; i++) {
         if (light_sample_count(&s->lights[i]) == 1) {
-            add_light8(ctx, tl, &s->lights[i], sp, lanes, &k8, &acc);
+            bool listed = tile && i < TRACE_TILE_LIGHTS;
+            add_light8(ctx, tl, &s->lights[i], sp, lanes, &k8, listed ? tile->list[i] : NULL,
+                       listed ? tile->n[i] : -1, &acc);
             continue;
         }
         for (int m = lanes; m; m &= m - 1) { /* jittered samples, lane by lane */

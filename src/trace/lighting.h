@@ -22,10 +22,12 @@ vec3 lighting_local(trace_ctx *ctx, const shade_point *sp);
  * into lane k of out: the same colours, with the shadow rays towards each point,
  * spot or directional light traced together (scene_shadow8), and a point
  * light's terms worked out for the eight points at once on the eight-wide
- * paths (light8.h). May leave ctx at any lane's sample; ctx->events is
- * not used. */
+ * paths (light8.h). The points are camera hits of the tile whose shadow
+ * lists `tile` holds (NULL: no lists), and each light's shadow rays meet
+ * only its list's objects (scene_shadow8_among). May leave ctx at any
+ * lane's sample; ctx->events is not used. */
 void lighting_local8(trace_ctx *ctx, const trace_lanes *tl, const shade8 *sp, int lanes,
-                     const uint32_t event[8], color8 *out);
+                     const uint32_t event[8], const trace_tile_shadows *tile, color8 *out);
 
 /* Fraction of light reaching p from the light sample lr: 0 behind an
  * opaque object, filtered by transmit * tint at each transmitting surface

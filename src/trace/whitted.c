@@ -336,7 +336,7 @@ static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, i
     shade8 sp; /* set for the lanes of found, the only ones used */
     color8 c;
     prepare8(ctx, p, found, hit, &sp);
-    lighting_local8(ctx, ls->tl, &sp, found, ls->events, &c);
+    lighting_local8(ctx, ls->tl, &sp, found, ls->events, depth == 0 ? ctx->tile : NULL, &c);
     for (int m = found; m; m &= m - 1)
         ls->events[__builtin_ctz((unsigned)m)]++;
     rest8(ctx, ls, p, found, depth, hit, &sp, &c, out);

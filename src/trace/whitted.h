@@ -12,6 +12,17 @@
 
 struct glint_scene;
 
+/* The objects the shadow rays from a tile's camera hits may meet, light
+ * by light, for the first lights (the renderer's tile_cone, from
+ * scene_shadow_cone_objects): n[i] of list[i], or n[i] -1 where light i's
+ * shadow rays walk the scene's tree. */
+#define TRACE_TILE_LIGHTS 4
+#define TRACE_TILE_OBJECTS 32
+typedef struct trace_tile_shadows {
+    int n[TRACE_TILE_LIGHTS];
+    int32_t list[TRACE_TILE_LIGHTS][TRACE_TILE_OBJECTS];
+} trace_tile_shadows;
+
 /* Per-thread state for tracing; counters are summed by the renderer. */
 typedef struct trace_ctx {
     const struct glint_scene *scene;
@@ -31,6 +42,9 @@ typedef struct trace_ctx {
     uint32_t id[3], sample, events;
     bool sample_hashed;
     float time; /* the camera ray's time, which every ray it leads to shares */
+    /* The shadow lists of the tile whose camera rays whitted_camera8 is
+     * given, for the lighting of their hits alone; NULL: none. */
+    const trace_tile_shadows *tile;
 } trace_ctx;
 
 /* Names the camera sample about to be traced by three numbers that
