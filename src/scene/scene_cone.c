@@ -147,6 +147,12 @@ int scene_intersect8_among(const scene *s, const ray8 *r, int active, const int3
 {
     if (!active)
         return 0;
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return scene_among8_avx512(s, r, active, list, n, hit);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return scene_among8_avx2(s, r, active, list, n, hit);
+#endif
     float best[8];
     memcpy(best, r->tmax, sizeof best);
     for (int k = 0; k < 8; k++)
@@ -154,12 +160,6 @@ int scene_intersect8_among(const scene *s, const ray8 *r, int active, const int3
     int found = 0;
     for (int i = 0; i < s->nunbounded; i++)
         found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit);
-#if defined(GLINT_WIDE_KERNELS)
-    if (s->bvh.isa == ACCEL_AVX512)
-        return found | scene_among8_avx512(s, r, active, list, n, best, hit);
-    if (s->bvh.isa == ACCEL_AVX2)
-        return found | scene_among8_avx2(s, r, active, list, n, best, hit);
-#endif
     for (int i = 0; i < n; i++)
         found |= scene_packet_object(s, list[i], r, active, best, hit);
     return found;

@@ -303,6 +303,30 @@ typedef struct scene_packet_ctx {
     int found;
 } scene_packet_ctx;
 
+/* keep_hits8 with best written in one 32-byte store, which the next
+ * test's 32-byte load of it takes straight from the store (the kept
+ * lanes' 4-byte stores made that load wait until they reached the
+ * cache). */
+__attribute__((always_inline)) static inline int keep_hits8_wide(int i, int any, int nearer,
+                                                                 const shape_hits8 *h,
+                                                                 float best[8], scene_hit hit[8])
+{
+    int kept = nearer;
+    for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
+        int k = __builtin_ctz((unsigned)m);
+        kept |= (i < hit[k].object) << k;
+    }
+    if (!kept)
+        return 0;
+    _mm256_storeu_ps(best, _mm256_blendv_ps(_mm256_loadu_ps(best), _mm256_loadu_ps(h->t),
+                                            packet_lanes(kept)));
+    for (int m = kept; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        hit[k] = (scene_hit){{.t = h->t[k], .part = h->part[k], .b1 = h->b1[k], .b2 = h->b2[k]}, i};
+    }
+    return kept;
+}
+
 /* Object k against the rays of `rays`, as scene_packet_object tests it. */
 __attribute__((always_inline)) static inline void scene_packet_one(scene_packet_ctx *c, int k,
                                                                    int rays)
@@ -312,7 +336,7 @@ __attribute__((always_inline)) static inline void scene_packet_one(scene_packet_
         /* scene_packet_object's commonest case, here without its calls */
         shape_hits8 h;
         int nearer = 0, any = shape8_hit(&o->shape, c->r, c->best, rays, &h, &nearer);
-        c->found |= keep_hits8(k, any, nearer, &h, c->best, c->hit);
+        c->found |= keep_hits8_wide(k, any, nearer, &h, c->best, c->hit);
     } else {
         c->found |= scene_packet_object(c->s, k, c->r, rays, c->best, c->hit);
     }
@@ -442,9 +466,15 @@ scene_object_rays8(const mat4 *inv, const ray8 *r, int active, const float *best
     }                                                                                          \
     __attribute__((flatten))                                                                   \
     int scene_among8_##isa(const scene *s, const ray8 *r, int active, const int32_t *list,     \
-                           int n, float best[8], scene_hit hit[8])                             \
+                           int n, scene_hit hit[8])                                            \
     {                                                                                          \
+        float best[8];                                                                         \
+        _mm256_storeu_ps(best, _mm256_loadu_ps(r->tmax));                                      \
+        for (int k = 0; k < 8; k++)                                                            \
+            hit[k].object = -1;                                                                \
         scene_packet_ctx c = {s, r, best, hit, 0};                                             \
+        for (int i = 0; i < s->nunbounded; i++)                                                \
+            scene_packet_one(&c, s->unbounded[i], active);                                     \
         for (int i = 0; i < n; i++)                                                            \
             scene_packet_one(&c, list[i], active);                                             \
         return c.found;                                                                        \
@@ -574,12 +604,12 @@ int scene_walk8_culled_avx2(const scene *s, const ray8 *r, int active, float bes
                             scene_hit hit[8]);
 int scene_walk8_culled_avx512(const scene *s, const ray8 *r, int active, float best[8],
                               scene_hit hit[8]);
-/* The rays of active against the n objects of list, as a walk's leaves
- * test them (scene_intersect8_among). */
+/* scene_intersect8_among: the rays of active against the unbounded
+ * objects and the n of list, as a walk's leaves test them. */
 int scene_among8_avx2(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
-                      float best[8], scene_hit hit[8]);
+                      scene_hit hit[8]);
 int scene_among8_avx512(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
-                        float best[8], scene_hit hit[8]);
+                        scene_hit hit[8]);
 /* object_rays eight lanes at once (scene_object_rays8). */
 void scene_object_rays8_avx2(const mat4 *inv, const ray8 *r, int active, const float *best,
                              ray8 *out);
