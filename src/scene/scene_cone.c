@@ -134,10 +134,19 @@ bool scene_shadow8_among(const scene *s, const ray8 *r, int active, const int32_
     *blocked = *crosses = 0;
     if (!s->flat && !(s->bvh.width == 8 && s->bvh.nnodes > 0))
         return false;
-    for (int i = 0; i < s->nunbounded; i++)
-        scene_shadow8_object(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
-    for (int i = 0; i < n; i++)
-        scene_shadow8_object(s, list[i], r, active & ~*blocked, blocked, crosses);
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        scene_shadow_among8_avx512(s, r, active, list, n, blocked, crosses);
+    else if (s->bvh.isa == ACCEL_AVX2)
+        scene_shadow_among8_avx2(s, r, active, list, n, blocked, crosses);
+    else
+#endif
+    {
+        for (int i = 0; i < s->nunbounded; i++)
+            scene_shadow8_object(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
+        for (int i = 0; i < n; i++)
+            scene_shadow8_object(s, list[i], r, active & ~*blocked, blocked, crosses);
+    }
     *crosses &= ~*blocked;
     return true;
 }

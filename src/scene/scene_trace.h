@@ -379,6 +379,22 @@ typedef struct scene_shadow8_ctx {
     int active, blocked, crosses;
 } scene_shadow8_ctx;
 
+/* Object i against the shadow rays of active, as scene_shadow8_object
+ * asks it: its commonest case (an unturned shape of shape_tests_eight's
+ * kinds and three rays or more) here, without the calls. */
+__attribute__((always_inline)) static inline void scene_shadow8_one(const scene *s, int i,
+                                                                    const ray8 *r, int active,
+                                                                    int *blocked, int *crosses)
+{
+    const object *o = &s->objects[i];
+    if (o->xform < 0 && !o->moving && shape_tests_eight(o->shape.kind) &&
+        ray8_three_or_more(active)) {
+        *(o->transmits ? crosses : blocked) |= shape8_hit(&o->shape, r, NULL, active, NULL, NULL);
+        return;
+    }
+    scene_shadow8_object(s, i, r, active, blocked, crosses);
+}
+
 /* A leaf's objects against the shadow rays that enter it and are not yet
  * blocked; a blocked ray's lane of *tmax drops below every box, and once
  * every ray is blocked the walk stops. */
@@ -388,8 +404,8 @@ __attribute__((always_inline)) static inline bool scene_shadow8_leaf(void *ctx, 
 {
     scene_shadow8_ctx *c = ctx;
     for (uint32_t i = 0; i < count; i++)
-        scene_shadow8_object(c->s, c->s->bvh.prims[first + i], c->r, rays & ~c->blocked,
-                             &c->blocked, &c->crosses);
+        scene_shadow8_one(c->s, c->s->bvh.prims[first + i], c->r, rays & ~c->blocked,
+                          &c->blocked, &c->crosses);
     if (!(c->active & ~c->blocked))
         return false;
     *tmax = _mm256_blendv_ps(*tmax, _mm256_set1_ps(-INFINITY), packet_lanes(c->blocked));
@@ -478,6 +494,15 @@ scene_object_rays8(const mat4 *inv, const ray8 *r, int active, const float *best
         for (int i = 0; i < n; i++)                                                            \
             scene_packet_one(&c, list[i], active);                                             \
         return c.found;                                                                        \
+    }                                                                                          \
+    __attribute__((flatten))                                                                   \
+    void scene_shadow_among8_##isa(const scene *s, const ray8 *r, int active,                  \
+                                   const int32_t *list, int n, int *blocked, int *crosses)     \
+    {                                                                                          \
+        for (int i = 0; i < s->nunbounded; i++)                                                \
+            scene_shadow8_one(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);    \
+        for (int i = 0; i < n; i++)                                                            \
+            scene_shadow8_one(s, list[i], r, active & ~*blocked, blocked, crosses);            \
     }                                                                                          \
     __attribute__((flatten))                                                                   \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
@@ -610,6 +635,12 @@ int scene_among8_avx2(const scene *s, const ray8 *r, int active, const int32_t *
                       scene_hit hit[8]);
 int scene_among8_avx512(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
                         scene_hit hit[8]);
+/* scene_shadow8_among's tests: the shadow rays of active against the
+ * unbounded objects and the n of list, adding to *blocked and *crosses. */
+void scene_shadow_among8_avx2(const scene *s, const ray8 *r, int active, const int32_t *list,
+                              int n, int *blocked, int *crosses);
+void scene_shadow_among8_avx512(const scene *s, const ray8 *r, int active, const int32_t *list,
+                                int n, int *blocked, int *crosses);
 /* object_rays eight lanes at once (scene_object_rays8). */
 void scene_object_rays8_avx2(const mat4 *inv, const ray8 *r, int active, const float *best,
                              ray8 *out);
