@@ -82,16 +82,26 @@ static glint_rect item_rect(const job *j, int i)
     return r;
 }
 
+/* A thread's ray counts, before a tile. */
+typedef struct ray_counts {
+    uint64_t primary, secondary, shadow;
+} ray_counts;
+
+static ray_counts counts_of(const worker_state *w)
+{
+    return (ray_counts){w->primary_rays, w->ctx.secondary_rays, w->ctx.shadow_rays};
+}
+
 /* Counts the finished tile and tells the front end, in one critical
  * section so that the counts each callback sees only grow. */
-static void tile_finished(job *j, worker_state *w, const worker_state *before, glint_rect r,
+static void tile_finished(job *j, worker_state *w, const ray_counts *before, glint_rect r,
                           uint64_t samples)
 {
     pthread_mutex_lock(&j->lock);
     j->samples_done += samples;
-    j->primary_rays += w->primary_rays - before->primary_rays;
-    j->secondary_rays += w->ctx.secondary_rays - before->ctx.secondary_rays;
-    j->shadow_rays += w->ctx.shadow_rays - before->ctx.shadow_rays;
+    j->primary_rays += w->primary_rays - before->primary;
+    j->secondary_rays += w->ctx.secondary_rays - before->secondary;
+    j->shadow_rays += w->ctx.shadow_rays - before->shadow;
     const glint_callbacks *cb = j->cb;
     if (cb && cb->tile_done)
         cb->tile_done(cb->user, j->film, r.x0, r.y0, r.x1, r.y1);
@@ -491,7 +501,7 @@ static uint64_t render_tile_pass(job *j, worker_state *w, int item, glint_rect r
 static void render_tile(job *j, worker_state *w, int item, glint_rect r)
 {
     tile_cone(j, w, r);
-    worker_state before = *w;
+    ray_counts before = counts_of(w);
     if (j->work->accum) {
         tile_finished(j, w, &before, r, render_tile_pass(j, w, item, r));
         return;
