@@ -16,7 +16,7 @@
 #include "geom/mesh_trace.h"
 #include "geom/shape.h"
 #include "scene/scene.h"
-#include "scene/scene_trace.h"
+#include "scene/scene_packet8.h"
 
 static float uniform(rng *g, float lo, float hi) { return lo + (hi - lo) * rng_float(g); }
 

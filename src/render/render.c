@@ -18,6 +18,7 @@
 #include "trace/whitted.h"
 #include "render/bands.h"
 #include "render/sampler.h"
+#include "render/tile_lists.h"
 
 typedef struct job {
     const scene *scene;
@@ -43,16 +44,12 @@ typedef struct job {
     uint64_t primary_rays, secondary_rays, shadow_rays;
 } job;
 
-/* The most objects a tile's camera rays are tested against without the
- * scene's tree (tile_cone). */
-#define TILE_CONE_MAX 32
-
 /* A render thread's own state. */
 typedef struct worker_state {
     trace_ctx ctx;
     uint64_t primary_rays;
     int ncone; /* the objects the tile's camera rays may meet, or -1: walk the tree */
-    int32_t cone[TILE_CONE_MAX];
+    int32_t cone[TILE_LISTS_MAX];
     trace_tile_shadows shadows; /* what the shadow rays from their hits may meet */
     struct lattice_point *points; /* adaptive: one pixel's lattice */
     struct lattice_point *corners; /* adaptive: a tile's pixel corners */
@@ -241,48 +238,12 @@ static void sample_packet(const job *j, worker_state *w, int x0, int y, int n, i
     }
 }
 
-/* Where the cone is on (job.cone), the objects the camera rays of tile r
- * may meet into w->cone, for scene_intersect8_among, else w->ncone -1;
- * and then the objects the shadow rays from their hits to each point or
- * spot light may meet into w->shadows, for the lighting of those hits
- * (trace_ctx.tile). A pinhole's ray through image position (x, y) has
- * direction corner + dx x + dy y, each component in floats a monotonic
- * function of x and of y, so the directions of every position of the
- * tile's pixels lie between those of its four corners. */
+/* The tile's lists (render/tile_lists.h) where job.cone is on. */
 static void tile_cone(const job *j, worker_state *w, glint_rect r)
 {
-    w->ncone = -1;
-    w->ctx.tile = NULL;
-    if (!j->cone)
-        return;
-    vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
-    for (int c = 0; c < 4; c++) {
-        ray8 p;
-        camera_row8(&j->frame, c & 1 ? r.x1 : r.x0, 1, 0.0f, (float)(c & 2 ? r.y1 : r.y0), 0.5f,
-                    0.5f, 0.0f, &p);
-        vec3 d = v3(p.dx[0], p.dy[0], p.dz[0]);
-        lo = v3_min(lo, d);
-        hi = v3_max(hi, d);
-    }
-    aabb reach;
-    w->ncone = scene_cone_objects(j->scene, j->frame.eye, lo, hi, w->cone, TILE_CONE_MAX, &reach);
-    if (w->ncone < 0)
-        return;
-    const scene *s = j->scene;
-    bool any = false;
-    for (int i = 0; i < TRACE_TILE_LIGHTS; i++) {
-        const light *l = i < s->nlights ? &s->lights[i] : NULL;
-        int n = -1;
-        if (l && (l->kind == LIGHT_POINT || l->kind == LIGHT_SPOT))
-            n = scene_shadow_cone_objects(s, reach,
-                                          l->kind == LIGHT_POINT ? l->point.position
-                                                                 : l->spot.position,
-                                          w->shadows.list[i], TRACE_TILE_OBJECTS);
-        w->shadows.n[i] = n;
-        any |= n >= 0;
-    }
-    if (any)
-        w->ctx.tile = &w->shadows;
+    bool lit = false;
+    w->ncone = j->cone ? tile_lists(j->scene, &j->frame, r, w->cone, &w->shadows, &lit) : -1;
+    w->ctx.tile = lit ? &w->shadows : NULL;
 }
 
 /* grid and jitter: every sample of each pixel, averaged. */

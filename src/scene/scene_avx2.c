@@ -1,7 +1,8 @@
-/* The scene kernels of scene_trace.h for the avx2 path (accel/isa.h); the
- * Makefile compiles this file with the avx2 flags. */
+/* The scene kernels of scene_trace.h, scene_packet8.h and camera8.h for
+ * the avx2 path (accel/isa.h); the Makefile compiles this file with the
+ * avx2 flags. */
 #include "camera8.h"
-#include "scene_trace.h"
+#include "scene_packet8.h"
 
 #if defined(GLINT_WIDE_KERNELS)
 #if !defined(__AVX2__)

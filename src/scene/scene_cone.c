@@ -5,7 +5,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "scene_trace.h"
+#include "scene_packet8.h"
 
 /* Whether a ray o + t d, 0 <= t <= tmax, with d anywhere in [dlo, dhi] (each
  * component on its own: a superset of the bundle), may meet box b grown

@@ -19,7 +19,7 @@
 #include <string.h>
 #include "geom/csg.h"
 #include "geom/mesh.h"
-#include "scene_trace.h"
+#include "scene_packet8.h"
 
 /* Object i's hits h[k] for the rays of `any`, kept by scene_hit_object's
  * rule; returns the rays whose hit it is now. */
