@@ -97,11 +97,13 @@ deps:
 run: all
 	$(BUILD)/glint -o glint.png
 
-# The full suite: optimised build, then again under ASan + UBSan.
+# The full suite: optimised build, then again under ASan + UBSan, each
+# built on every core.
+NPROC := $(shell nproc 2>/dev/null || echo 2)
 test:
 	@scripts/install-deps test
-	@$(MAKE) --no-print-directory check
-	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 check
+	@$(MAKE) --no-print-directory -j$(NPROC) check
+	@$(MAKE) --no-print-directory -j$(NPROC) BUILD=build/asan SAN=1 check
 
 check: $(BUILD)/glint $(MPI_BIN) $(BUILD)/tests scenes/textures/flag.png scenes/textures/globe.png
 	scripts/check-layers
