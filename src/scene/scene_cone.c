@@ -7,6 +7,10 @@
 
 #include "scene_packet8.h"
 
+/* fmin and fmax of numbers (no NaN here), without libm's calls. */
+static inline double lesser(double a, double b) { return a < b ? a : b; }
+static inline double greater(double a, double b) { return a > b ? a : b; }
+
 /* Whether a ray o + t d, 0 <= t <= tmax, with d anywhere in [dlo, dhi] (each
  * component on its own: a superset of the bundle), may meet box b grown
  * by a margin far beyond rounding (1e-4 of the coordinates' size: a
@@ -16,10 +20,6 @@
  * three ranges of t do not meet. Where it may meet it, *reach (when not
  * NULL) grows to hold the grown box's part that the bundle's rays cross
  * in that range of t. In doubles, whose rounding the margin dwarfs. */
-/* fmin and fmax of numbers (no NaN here), without libm's calls. */
-static inline double lesser(double a, double b) { return a < b ? a : b; }
-static inline double greater(double a, double b) { return a > b ? a : b; }
-
 static bool cone_meets(aabb b, vec3 o, vec3 dlo, vec3 dhi, double tmax, aabb *reach)
 {
     const float lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
