@@ -16,8 +16,8 @@
 struct glint_scene;
 
 /* The most objects a tile's camera rays are tested against without the
- * scene's tree. */
-#define TILE_LISTS_MAX 32
+ * scene's tree: as many as a light's list holds. */
+#define TILE_LISTS_MAX TRACE_TILE_OBJECTS
 
 /* The lists of the pixels of r for pinhole frame f (perspective, no lens):
  * the camera rays' objects into cone (room for TILE_LISTS_MAX), their

@@ -1,11 +1,11 @@
 /* scene_cone: the objects a bundle of rays from one point may meet, found
  * once for the bundle (a tile's camera rays, or the shadow rays from their
- * hits to a light, seen from the light), and the bundle's packets then
- * tested against those objects alone instead of walking the tree. */
+ * hits to a light, seen from the light), which the bundle's packets are
+ * then tested against alone instead of walking the tree (scene_packet.c:
+ * scene_intersect8_among, scene_shadow8_among). */
 #include <math.h>
-#include <string.h>
 
-#include "scene_packet8.h"
+#include "scene.h"
 
 /* fmin and fmax of numbers (no NaN here), without libm's calls. */
 static inline double lesser(double a, double b) { return a < b ? a : b; }
@@ -126,50 +126,4 @@ int scene_shadow_cone_objects(const scene *s, aabb from, vec3 light_at, int32_t 
     float slack = 1e-4f * (maxf(v3_max_abs(lo), v3_max_abs(hi)) + v3_max_abs(light_at));
     return cone_objects(s, light_at, v3_sub(lo, v3s(slack)), v3_add(hi, v3s(slack)), 1.0 + 1e-3,
                         list, cap, NULL);
-}
-
-bool scene_shadow8_among(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
-                         int *blocked, int *crosses)
-{
-    *blocked = *crosses = 0;
-    if (!s->flat && !(s->bvh.width == 8 && s->bvh.nnodes > 0))
-        return false;
-#if defined(GLINT_WIDE_KERNELS)
-    if (s->bvh.isa == ACCEL_AVX512)
-        scene_shadow_among8_avx512(s, r, active, list, n, blocked, crosses);
-    else if (s->bvh.isa == ACCEL_AVX2)
-        scene_shadow_among8_avx2(s, r, active, list, n, blocked, crosses);
-    else
-#endif
-    {
-        for (int i = 0; i < s->nunbounded; i++)
-            scene_shadow8_object(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
-        for (int i = 0; i < n; i++)
-            scene_shadow8_object(s, list[i], r, active & ~*blocked, blocked, crosses);
-    }
-    *crosses &= ~*blocked;
-    return true;
-}
-
-int scene_intersect8_among(const scene *s, const ray8 *r, int active, const int32_t *list,
-                           int n, scene_hit *hit)
-{
-    if (!active)
-        return 0;
-#if defined(GLINT_WIDE_KERNELS)
-    if (s->bvh.isa == ACCEL_AVX512)
-        return scene_among8_avx512(s, r, active, list, n, hit);
-    if (s->bvh.isa == ACCEL_AVX2)
-        return scene_among8_avx2(s, r, active, list, n, hit);
-#endif
-    float best[8];
-    memcpy(best, r->tmax, sizeof best);
-    for (int k = 0; k < 8; k++)
-        hit[k].object = -1;
-    int found = 0;
-    for (int i = 0; i < s->nunbounded; i++)
-        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit);
-    for (int i = 0; i < n; i++)
-        found |= scene_packet_object(s, list[i], r, active, best, hit);
-    return found;
 }

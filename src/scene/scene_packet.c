@@ -402,20 +402,47 @@ static bool shadow_walk8(const scene *s, const ray8 *r, int active, int *blocked
     return false;
 }
 
+/* The n objects of list against the shadow rays of active not yet
+ * blocked, as scene_shadow8 asks them. */
+static void shadow8_objects(const scene *s, const int32_t *list, int n, const ray8 *r,
+                            int active, int *blocked, int *crosses)
+{
+    for (int i = 0; i < n; i++)
+        scene_shadow8_object(s, list[i], r, active & ~*blocked, blocked, crosses);
+}
+
 bool scene_shadow8(const scene *s, const ray8 *r, int active, int *blocked, int *crosses)
 {
     *blocked = *crosses = 0;
     if (!s->flat && !(eight_wide(s->bvh.isa) && s->bvh.width == 8))
         return false;
-    for (int i = 0; i < s->nunbounded; i++)
-        scene_shadow8_object(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
+    shadow8_objects(s, s->unbounded, s->nunbounded, r, active, blocked, crosses);
     if (s->flat) {
         uint32_t first, n = scene_flat_leaf(s, &first);
-        for (uint32_t i = 0; i < n; i++)
-            scene_shadow8_object(s, s->bvh.prims[first + i], r, active & ~*blocked, blocked,
-                                 crosses);
+        shadow8_objects(s, s->bvh.prims + first, (int)n, r, active, blocked, crosses);
     } else if ((active & ~*blocked) && !shadow_walk8(s, r, active & ~*blocked, blocked, crosses)) {
         return false;
+    }
+    *crosses &= ~*blocked;
+    return true;
+}
+
+bool scene_shadow8_among(const scene *s, const ray8 *r, int active, const int32_t *list, int n,
+                         int *blocked, int *crosses)
+{
+    *blocked = *crosses = 0;
+    if (!s->flat && !(eight_wide(s->bvh.isa) && s->bvh.width == 8))
+        return false;
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        scene_shadow_among8_avx512(s, r, active, list, n, blocked, crosses);
+    else if (s->bvh.isa == ACCEL_AVX2)
+        scene_shadow_among8_avx2(s, r, active, list, n, blocked, crosses);
+    else
+#endif
+    {
+        shadow8_objects(s, s->unbounded, s->nunbounded, r, active, blocked, crosses);
+        shadow8_objects(s, list, n, r, active, blocked, crosses);
     }
     *crosses &= ~*blocked;
     return true;
@@ -449,6 +476,27 @@ static int walk8_by_octant(const scene *s, const ray8 *r, int active, int found,
     return result | one_by_one(s, r, alone, hit);
 }
 
+/* The n objects of list against the rays of active, each searched up to
+ * best[k] (scene_packet_object); returns the rays whose nearest hit one
+ * of them now is. */
+static int packet_objects(const scene *s, const int32_t *list, int n, const ray8 *r, int active,
+                          float best[8], scene_hit *hit)
+{
+    int found = 0;
+    for (int i = 0; i < n; i++)
+        found |= scene_packet_object(s, list[i], r, active, best, hit);
+    return found;
+}
+
+/* A packet's search before its first object: each ray up to its limit,
+ * no hit yet. */
+static void packet_begin(const ray8 *r, float best[8], scene_hit *hit)
+{
+    memcpy(best, r->tmax, sizeof(float) * 8);
+    for (int k = 0; k < 8; k++)
+        hit[k].object = -1;
+}
+
 int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
 {
     if (!active)
@@ -456,22 +504,33 @@ int scene_intersect8(const scene *s, const ray8 *r, int active, scene_hit *hit)
     if (!s->flat && !eight_wide(s->bvh.isa))
         return one_by_one(s, r, active, hit);
     float best[8];
-    memcpy(best, r->tmax, sizeof best);
-    for (int k = 0; k < 8; k++)
-        hit[k].object = -1;
-    int found = 0;
-    for (int i = 0; i < s->nunbounded; i++)
-        found |= scene_packet_object(s, s->unbounded[i], r, active, best, hit);
+    packet_begin(r, best, hit);
+    int found = packet_objects(s, s->unbounded, s->nunbounded, r, active, best, hit);
     if (s->flat) {
         uint32_t first, n = scene_flat_leaf(s, &first);
-        for (uint32_t i = 0; i < n; i++)
-            found |= scene_packet_object(s, s->bvh.prims[first + i], r, active, best, hit);
-        return found;
+        return found | packet_objects(s, s->bvh.prims + first, (int)n, r, active, best, hit);
     }
     int walked = walk8(s, r, active, best, hit);
     if (walked < 0 && eight_wide(s->bvh.isa) && s->bvh.width == 8 && s->bvh.nnodes > 0)
         return walk8_by_octant(s, r, active, found, best, hit);
     return walked < 0 ? one_by_one(s, r, active, hit) : found | walked;
+}
+
+int scene_intersect8_among(const scene *s, const ray8 *r, int active, const int32_t *list,
+                           int n, scene_hit *hit)
+{
+    if (!active)
+        return 0;
+#if defined(GLINT_WIDE_KERNELS)
+    if (s->bvh.isa == ACCEL_AVX512)
+        return scene_among8_avx512(s, r, active, list, n, hit);
+    if (s->bvh.isa == ACCEL_AVX2)
+        return scene_among8_avx2(s, r, active, list, n, hit);
+#endif
+    float best[8];
+    packet_begin(r, best, hit);
+    return packet_objects(s, s->unbounded, s->nunbounded, r, active, best, hit) |
+           packet_objects(s, list, n, r, active, best, hit);
 }
 
 /* Rays that spread go one by one through a mesh or a tree deeper than one

@@ -11,16 +11,25 @@
 #include "geom/shape8.h"
 #endif
 
+/* Which of object i's hits, on the rays of `any`, are kept: those of
+ * `nearer`, which beat the best so far, and of the others, which tie with
+ * it, those where i is the lower index. */
+static inline int kept_hits8(int i, int any, int nearer, const scene_hit hit[8])
+{
+    int kept = nearer;
+    for (int m = any & ~nearer; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m);
+        kept |= (i < hit[k].object) << k;
+    }
+    return kept;
+}
+
 /* keep8 for shape8_hit's hits h of the rays of `any`, of which those of
  * `nearer` beat best[k] and the others tie with it. */
 static inline int keep_hits8(int i, int any, int nearer, const shape_hits8 *h, float best[8],
                              scene_hit hit[8])
 {
-    int kept = nearer;
-    for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
-        int k = __builtin_ctz((unsigned)m);
-        kept |= (i < hit[k].object) << k;
-    }
+    int kept = kept_hits8(i, any, nearer, hit);
     for (int m = kept; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         best[k] = h->t[k];
@@ -57,11 +66,7 @@ __attribute__((always_inline)) static inline int keep_hits8_wide(int i, int any,
                                                                  const shape_hits8 *h,
                                                                  float best[8], scene_hit hit[8])
 {
-    int kept = nearer;
-    for (int m = any & ~nearer; m; m &= m - 1) { /* ties: the lower index */
-        int k = __builtin_ctz((unsigned)m);
-        kept |= (i < hit[k].object) << k;
-    }
+    int kept = kept_hits8(i, any, nearer, hit);
     if (!kept)
         return 0;
     _mm256_storeu_ps(best, _mm256_blendv_ps(_mm256_loadu_ps(best), _mm256_loadu_ps(h->t),
