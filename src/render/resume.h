@@ -22,7 +22,7 @@
 
 #include "glint.h"
 
-#define RESUME_VERSION 2 /* 1: the fingerprint hashed a byte at a time */
+#define RESUME_VERSION 3 /* 1: the fingerprint hashed a byte at a time; 2: in one lane */
 #define RESUME_MAX_NOTE (1u << 20)
 
 struct glint_scene;

@@ -7,15 +7,39 @@
 
 #define FNV_PRIME 0x100000001b3ULL
 
+/* One word into a lane: FNV's step, then the high bits folded down. */
+static inline uint64_t lane_step(uint64_t h, uint64_t w)
+{
+    h = (h ^ w) * FNV_PRIME;
+    return h ^ (h >> 29); /* carries the high bits down, which the product alone never does */
+}
+
 uint64_t fingerprint_bytes(uint64_t h, const void *data, size_t n)
 {
     const unsigned char *p = data;
     size_t i = 0;
+    if (n >= FINGERPRINT_LANES_FROM) {
+        /* four lanes, words 0-3 of each 32 bytes, then folded into one:
+         * four times the single lane's speed, whose steps wait on the one
+         * before (a 1024x512 texture's pixels, or a film's). Four
+         * variables, not an array, which compilers turn into SSE2 code
+         * that multiplies in shifts and adds, slower than one lane. */
+        uint64_t a = h, b = h ^ 0x9e3779b97f4a7c15ULL, c = h ^ 0xc2b2ae3d27d4eb4fULL,
+                 d = h ^ 0x165667b19e3779f9ULL;
+        for (; i + 32 <= n; i += 32) {
+            uint64_t w[4];
+            memcpy(w, p + i, 32); /* the host's byte order, as below */
+            a = lane_step(a, w[0]);
+            b = lane_step(b, w[1]);
+            c = lane_step(c, w[2]);
+            d = lane_step(d, w[3]);
+        }
+        h = lane_step(lane_step(lane_step(a, b), c), d);
+    }
     for (; i + 8 <= n; i += 8) {
         uint64_t w;
         memcpy(&w, p + i, 8); /* the host's byte order: files are read back on a like host */
-        h = (h ^ w) * FNV_PRIME;
-        h ^= h >> 29; /* carries the high bits down, which the product alone never does */
+        h = lane_step(h, w);
     }
     for (; i < n; i++)
         h = (h ^ p[i]) * FNV_PRIME;
