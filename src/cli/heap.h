@@ -22,7 +22,9 @@
  *   the main heap, six times the file's size, for the scene itself. Both,
  *   at most 256 MiB each, are mapped (in huge pages where the kernel
  *   offers them) on a thread of its own while the scene loads: the
- *   loader's blocks then land on mapped pages;
+ *   loader's blocks then land on mapped pages. The film's share of the
+ *   spare beyond the tree's is left to the film's clearing, which maps
+ *   it on the render's threads;
  * - however small the scene file, or with none (the built-in scene), at
  *   least 32 MiB of that room, starting on a huge page, is marked for
  *   huge pages, though only the file's share is mapped ahead: the rest
@@ -44,7 +46,7 @@
  * may run `threads` threads (0: one a CPU; where that is one the room is
  * mapped before this returns, else by one more thread meanwhile), and then
  * rendering a film of film_bytes (0: not known yet; from -r), for which
- * the spare is made big enough and so mapped while the scene loads. Call
+ * the spare is made big enough. Call
  * once, from the main thread, before other threads start. Advice only:
  * nothing fails. */
 void heap_ready(const char *path, int threads, size_t film_bytes);
