@@ -76,13 +76,41 @@ Test(spare, calloc_clears_what_the_spare_held)
 {
     unsigned char *s = spare_make(8 * MIB);
     cr_assert_not_null(s);
+    cr_assert_eq(spare_take(8 * MIB, NULL), s);
     memset(s, 0xff, 8 * MIB);
+    cr_assert(spare_give(s));
     unsigned char *p = spare_calloc(5 * MIB + 17, 2);
     cr_assert_eq(p, s);
     for (size_t i = 0; i < 5 * MIB + 17; i++)
         cr_assert_eq(p[i], 0, "byte %zu", i);
     spare_free(p);
     cr_assert_eq(spare_take(MIB, NULL), s, "freed, it is the spare again");
+}
+
+/* A block taken before (a parse tree's) may hold anything in the whole
+ * huge pages it was taken as; past them the spare was never handed out:
+ * a film taken next is zero in both parts (spare_calloc clears only the
+ * first, the kernel gave the rest zeroed), and a film taken after that
+ * film, which wrote all of it, is cleared throughout. */
+Test(spare, calloc_clears_every_page_handed_out_before)
+{
+    unsigned char *s = spare_make(16 * MIB);
+    cr_assert_not_null(s);
+    unsigned char *tree = spare_take(3 * MIB, NULL); /* 4 MiB in whole huge pages */
+    cr_assert_eq(tree, s);
+    memset(tree, 0xa5, 4 * MIB);
+    cr_assert(spare_give(tree));
+    unsigned char *film = spare_calloc(12 * MIB + 5, 2);
+    cr_assert_eq(film, s);
+    for (size_t i = 0; i < 12 * MIB + 5; i += 61)
+        cr_assert_eq(film[i], 0, "byte %zu", i);
+    memset(film, 0x3c, 16 * MIB);
+    spare_free(film);
+    film = spare_calloc(14 * MIB, 1);
+    cr_assert_eq(film, s);
+    for (size_t i = 0; i < 14 * MIB; i += 61)
+        cr_assert_eq(film[i], 0, "byte %zu of the second film", i);
+    spare_free(film);
 }
 
 Test(spare, small_blocks_leave_it)

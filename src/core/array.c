@@ -95,6 +95,7 @@ typedef struct fill_job {
     char *p;
     size_t n, pages;
     atomic_size_t next;
+    bool zero; /* clear each page once mapped (else it is fresh: the kernel's zeros) */
 } fill_job;
 
 static void *fill(void *arg)
@@ -106,7 +107,8 @@ static void *fill(void *arg)
         madvise(page, HUGE_PAGE, MADV_POPULATE_WRITE); /* Linux 5.14 on */
 #endif
         size_t end = (i + 1) * HUGE_PAGE < f->n ? (i + 1) * HUGE_PAGE : f->n;
-        memset(page, 0, end - i * HUGE_PAGE);
+        if (f->zero)
+            memset(page, 0, end - i * HUGE_PAGE);
     }
     return NULL;
 }
@@ -115,13 +117,17 @@ static void *fill(void *arg)
 #define FILL_SPLIT_FROM ((size_t)8 << 20)
 #define FILL_MAX_THREADS 8
 
-void array_clear_on(void *p, size_t n, int threads)
+static void fill_on(void *p, size_t n, int threads, bool zero)
 {
-    fill_job f = {p, n, (n + HUGE_PAGE - 1) / HUGE_PAGE, 0};
+    fill_job f = {p, n, (n + HUGE_PAGE - 1) / HUGE_PAGE, 0, zero};
     int k = n >= FILL_SPLIT_FROM ? cpus_threads(threads, FILL_MAX_THREADS) : 1;
     k = (size_t)k > f.pages ? (int)f.pages : k;
     cpus_share(k, fill, &f);
 }
+
+void array_clear_on(void *p, size_t n, int threads) { fill_on(p, n, threads, true); }
+
+void array_map_on(void *p, size_t n, int threads) { fill_on(p, n, threads, false); }
 
 void *array_calloc_big_on(size_t n, int threads)
 {

@@ -63,4 +63,8 @@ void *array_calloc_big_on(size_t n, int threads);
  * by up to `threads` threads, a huge page at a time. */
 void array_clear_on(void *p, size_t n, int threads);
 
+/* array_clear_on for pages never written since they were mapped: the
+ * kernel gives them zeroed, so they are mapped but not cleared again. */
+void array_map_on(void *p, size_t n, int threads);
+
 #endif
