@@ -260,20 +260,37 @@ typedef struct png_job {
 /* A thread's own memory: its compressor, igzip's working memory for noisy
  * strips once it meets one, a strip's rows as PNG wants them before
  * compression (each row a filter-type byte, then its samples), made again
- * for each strip it takes (so they stay in the cache), and two more rows. */
+ * for each strip it takes (so they stay in the cache), two more rows, and
+ * room for a strip's stream at its longest, which it is compressed into
+ * and joined in before it is copied out at its length: a block that long
+ * for each strip had its few written pages spread over 6 MB for a 1080p
+ * image, each a page fault, or a fresh huge page to clear. */
 typedef struct strip_tools {
     struct libdeflate_compressor *c;
     uint8_t *noisy;
     uint8_t *rows, *above;
     uint16_t *tmp;
+    uint8_t *z;
+    size_t zcap;
 } strip_tools;
+
+/* The longest stream igzip may make of n bytes: stored blocks, the
+ * worst, add 5 bytes in 65535. */
+static size_t noisy_bound(size_t n) { return n + n / 8 + 1024; }
 
 static bool tools_get(strip_tools *t, const png_job *j, int rows)
 {
-    *t = (strip_tools){libdeflate_alloc_compressor(PNG_DEFLATE_LEVEL), NULL,
-                       malloc(j->stride * (size_t)rows), malloc(j->stride),
-                       malloc((size_t)j->src->width * 4 * sizeof *t->tmp)};
-    return t->c && t->rows && t->above && t->tmp;
+    size_t n = j->stride * (size_t)rows;
+    *t = (strip_tools){.c = libdeflate_alloc_compressor(PNG_DEFLATE_LEVEL),
+                       .rows = malloc(n),
+                       .above = malloc(j->stride),
+                       .tmp = malloc((size_t)j->src->width * 4 * sizeof *t->tmp)};
+    if (!t->c)
+        return false;
+    size_t bound = libdeflate_deflate_compress_bound(t->c, n);
+    t->zcap = (bound > noisy_bound(n) ? bound : noisy_bound(n)) + DEFLATE_UNFINAL_EXTRA;
+    t->z = malloc(t->zcap);
+    return t->rows && t->above && t->tmp && t->z;
 }
 
 static void tools_free(strip_tools *t)
@@ -283,6 +300,17 @@ static void tools_free(strip_tools *t)
     free(t->rows);
     free(t->above);
     free(t->tmp);
+    free(t->z);
+}
+
+/* The strip's stream, t->z's first s->zlen bytes, copied out to s->z at
+ * its length; false when memory runs out. */
+static bool strip_keep(strip *s, const strip_tools *t)
+{
+    s->z = malloc(s->zlen ? s->zlen : 1);
+    if (s->z && s->zlen)
+        memcpy(s->z, t->z, s->zlen);
+    return s->z != NULL;
 }
 
 /* The strip's rows into samples in t->rows, filtered: row 0 of the image
@@ -312,8 +340,7 @@ static size_t strip_rows(const png_job *j, const strip *s, strip_tools *t)
  * should igzip fail, which leaves the whole image to compress_whole. */
 static bool strip_compress_noisy(strip *s, strip_tools *t, size_t n, bool last)
 {
-    size_t cap = n + n / 8 + 1024; /* stored blocks, the worst, add 5 bytes in 65535 */
-    if ((!t->noisy && !(t->noisy = malloc(PNG_NOISY_BUF))) || !(s->z = malloc(cap)))
+    if (!t->noisy && !(t->noisy = malloc(PNG_NOISY_BUF)))
         return false;
     /* (the init leaves some fields, hist_bits among them, as they were:
      * zeroed first, the window is the default 32 KiB and the stream
@@ -325,13 +352,13 @@ static bool strip_compress_noisy(strip *s, strip_tools *t, size_t n, bool last)
     zs.level_buf_size = PNG_NOISY_BUF;
     zs.next_in = t->rows;
     zs.avail_in = (uint32_t)n;
-    zs.next_out = s->z;
-    zs.avail_out = (uint32_t)cap;
+    zs.next_out = t->z;
+    zs.avail_out = (uint32_t)noisy_bound(n);
     zs.end_of_stream = last;
     zs.flush = last ? NO_FLUSH : FULL_FLUSH;
     s->joined = n <= UINT32_MAX / 2 && isal_deflate_stateless(&zs) == COMP_OK;
     s->zlen = s->joined ? zs.total_out : 0;
-    return true;
+    return strip_keep(s, t);
 }
 
 /* Compresses the strip's filtered rows, `zeros` of them zero; false
@@ -343,20 +370,16 @@ static bool strip_compress(png_job *j, strip *s, strip_tools *t, size_t zeros)
     bool last = s == &j->strips[j->nstrips - 1];
     if ((double)zeros < PNG_FAST_ZEROS * (double)n && dynlib_open(&isal_lib, NULL))
         return strip_compress_noisy(s, t, n, last);
-    size_t bound = libdeflate_deflate_compress_bound(t->c, n);
-    s->z = malloc(bound + DEFLATE_UNFINAL_EXTRA);
-    if (!s->z)
-        return false;
-    s->zlen = libdeflate_deflate_compress(t->c, t->rows, n, s->z, bound);
+    s->zlen = libdeflate_deflate_compress(t->c, t->rows, n, t->z, t->zcap - DEFLATE_UNFINAL_EXTRA);
     if (last) {
         s->joined = s->zlen > 0;
-        return true;
+        return strip_keep(s, t);
     }
     deflate_ends ends;
-    s->joined = s->zlen > 0 && deflate_walk(s->z, s->zlen, n, &ends);
+    s->joined = s->zlen > 0 && deflate_walk(t->z, s->zlen, n, &ends);
     if (s->joined)
-        deflate_unfinal(s->z, &s->zlen, &ends);
-    return true;
+        deflate_unfinal(t->z, &s->zlen, &ends);
+    return strip_keep(s, t);
 }
 
 static void *strip_worker(void *arg)
@@ -439,11 +462,11 @@ static bool compress_whole(const png_job *j, idat_writer *w)
     strip s = {.y0 = 0, .y1 = j->src->height};
     size_t n = j->stride * (size_t)j->src->height, z = 0;
     uint8_t *block = NULL;
-    if (tools_get(&t, j, j->src->height)) {
+    if (tools_get(&t, j, j->src->height)) { /* t.z has room for the zlib stream's 6 bytes more */
         strip_rows(j, &s, &t);
-        size_t bound = libdeflate_zlib_compress_bound(t.c, n);
-        if ((block = malloc(bound)))
-            z = libdeflate_zlib_compress(t.c, t.rows, n, block, bound);
+        z = libdeflate_zlib_compress(t.c, t.rows, n, t.z, t.zcap);
+        block = t.z;
+        t.z = NULL;
     }
     tools_free(&t);
     if (z == 0) {
