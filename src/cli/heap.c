@@ -83,7 +83,8 @@ static struct {
     pthread_mutex_t lock; /* over mapper and mapping */
 } room = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
-/* The block before the room's first huge page, kept (map_room). */
+/* The block before the room's first huge page, kept (map_room; once a
+ * process: a later room starts where the first one did). */
 static void *first_gap;
 
 static void *map_pieces(void *unused)
@@ -101,14 +102,15 @@ static void *map_pieces(void *unused)
     return NULL;
 }
 
-/* Takes at least `huge` bytes, and n, from the heap in pieces and gives
- * them back: the heap keeps them. Taken in pieces below HEAP_MMAP_FROM, which would otherwise
- * each be a mapping of their own and gone again when freed; side by side
- * at the top of the heap, they join again into one free block. Each piece
- * is marked for huge pages from its first whole 4 KiB page to its last
- * (the kernel puts whole huge pages where they fit, small ones at the
- * ends), and the first n bytes' pages are then mapped (with the spare's,
- * first): on a thread of their own beside
+/* Takes n bytes, and at least `huge`, from the heap in pieces and gives
+ * them back: the heap keeps them. Taken in pieces below HEAP_MMAP_FROM,
+ * which would otherwise each be a mapping of their own and gone again
+ * when freed; side by side at the top of the heap, they join again into
+ * one free block. Each piece is marked for huge pages from its first
+ * whole 4 KiB page to its last (the kernel puts whole huge pages where
+ * they fit, small ones at the ends; the first piece from its first huge
+ * page), and the first n bytes' pages are then mapped, after the spare's
+ * spare_bytes: on a thread of their own beside
  * the load (one thread more than -t asks for, for that long) unless the
  * process may use only one CPU (-t 1, or one in its affinity mask), so
  * that the loader, which carves the room from its low end up, meanwhile
@@ -156,7 +158,7 @@ static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, int
      * from. A block over them is taken and kept, never written past its
      * header (a chunk of malloc(gap - 16) is gap bytes), so that the
      * blocks that follow start on a huge page. */
-    if (gap >= page && (first_gap = malloc(gap - 16)) != piece[0])
+    if (!first_gap && gap >= page && (first_gap = malloc(gap - 16)) != piece[0])
         free(first_gap), first_gap = NULL; /* served from elsewhere: no use */
     if (room.n == 0)
         return;

@@ -287,7 +287,7 @@ static bool tools_get(strip_tools *t, const png_job *j, int rows)
                        .tmp = malloc((size_t)j->src->width * 4 * sizeof *t->tmp)};
     if (!t->c)
         return false;
-    size_t bound = libdeflate_deflate_compress_bound(t->c, n);
+    size_t bound = libdeflate_zlib_compress_bound(t->c, n); /* (compress_whole's zlib stream) */
     t->zcap = (bound > noisy_bound(n) ? bound : noisy_bound(n)) + DEFLATE_UNFINAL_EXTRA;
     t->z = malloc(t->zcap);
     return t->rows && t->above && t->tmp && t->z;
@@ -462,7 +462,7 @@ static bool compress_whole(const png_job *j, idat_writer *w)
     strip s = {.y0 = 0, .y1 = j->src->height};
     size_t n = j->stride * (size_t)j->src->height, z = 0;
     uint8_t *block = NULL;
-    if (tools_get(&t, j, j->src->height)) { /* t.z has room for the zlib stream's 6 bytes more */
+    if (tools_get(&t, j, j->src->height)) {
         strip_rows(j, &s, &t);
         z = libdeflate_zlib_compress(t.c, t.rows, n, t.z, t.zcap);
         block = t.z;
