@@ -87,29 +87,34 @@ Test(spare, calloc_clears_what_the_spare_held)
     cr_assert_eq(spare_take(MIB, NULL), s, "freed, it is the spare again");
 }
 
-/* A block taken before (a parse tree's) may hold anything in the whole
- * huge pages it was taken as; past them the spare was never handed out:
- * a film taken next is zero in both parts (spare_calloc clears only the
- * first, the kernel gave the rest zeroed), and a film taken after that
- * film, which wrote all of it, is cleared throughout. */
+/* A spare never taken is the kernel's zeros, which spare_calloc only
+ * maps; a block taken may then be written as far as spare_size reports
+ * (a parse tree's, or a film's), and the next spare_calloc clears all of
+ * that. */
 Test(spare, calloc_clears_every_page_handed_out_before)
 {
     unsigned char *s = spare_make(16 * MIB);
     cr_assert_not_null(s);
-    unsigned char *tree = spare_take(3 * MIB, NULL); /* 4 MiB in whole huge pages */
-    cr_assert_eq(tree, s);
-    memset(tree, 0xa5, 4 * MIB);
-    cr_assert(spare_give(tree));
-    unsigned char *film = spare_calloc(12 * MIB + 5, 2);
+    unsigned char *film = spare_calloc(12 * MIB + 5, 2); /* never taken: mapped only */
     cr_assert_eq(film, s);
     for (size_t i = 0; i < 12 * MIB + 5; i += 61)
         cr_assert_eq(film[i], 0, "byte %zu", i);
-    memset(film, 0x3c, 16 * MIB);
+    cr_assert_eq(spare_size(film), 16 * MIB);
+    memset(film, 0x3c, spare_size(film));
     spare_free(film);
     film = spare_calloc(14 * MIB, 1);
     cr_assert_eq(film, s);
     for (size_t i = 0; i < 14 * MIB; i += 61)
         cr_assert_eq(film[i], 0, "byte %zu of the second film", i);
+    spare_free(film);
+    unsigned char *tree = spare_take(3 * MIB, NULL);
+    cr_assert_eq(tree, s);
+    memset(tree, 0xa5, spare_size(tree));
+    cr_assert(spare_give(tree));
+    film = spare_calloc(16 * MIB, 2);
+    cr_assert_eq(film, s);
+    for (size_t i = 0; i < 16 * MIB; i += 61)
+        cr_assert_eq(film[i], 0, "byte %zu after a tree", i);
     spare_free(film);
 }
 

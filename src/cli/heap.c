@@ -83,8 +83,8 @@ static struct {
     pthread_mutex_t lock; /* over mapper and mapping */
 } room = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
-/* The block before the room's first huge page, kept (map_room; once a
- * process: a later room starts where the first one did). */
+/* The block before the first room's first huge page, kept (map_room;
+ * made once a process). */
 static void *first_gap;
 
 static void *map_pieces(void *unused)
@@ -132,13 +132,16 @@ static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, int
     }
     size_t whole = huge > n ? huge : n, map = n; /* marked; of it, mapped ahead */
     size_t gap = 0; /* from the room's start to its first huge page */
+    uintptr_t start = 0; /* the room's first block, before it is freed */
     for (size_t left = whole; left > 0 && k < ROOM_PIECES - 1; k++) {
         size_t take = left < HEAP_PIECE ? left : HEAP_PIECE;
         if (!(piece[k] = malloc(take)))
             break;
         left -= take;
-        if (k == 0)
-            gap = (((uintptr_t)piece[0] + HEAP_STEP - 1) & ~(HEAP_STEP - 1)) - (uintptr_t)piece[0];
+        if (k == 0) {
+            start = (uintptr_t)piece[0];
+            gap = ((start + HEAP_STEP - 1) & ~(HEAP_STEP - 1)) - start;
+        }
         uintptr_t a = ((uintptr_t)piece[k] + (k ? page - 1 : gap)) & ~(page - 1);
         uintptr_t e = ((uintptr_t)piece[k] + take) & ~(page - 1);
         if (e > a) {
@@ -158,7 +161,7 @@ static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, int
      * from. A block over them is taken and kept, never written past its
      * header (a chunk of malloc(gap - 16) is gap bytes), so that the
      * blocks that follow start on a huge page. */
-    if (!first_gap && gap >= page && (first_gap = malloc(gap - 16)) != piece[0])
+    if (!first_gap && gap >= page && (uintptr_t)(first_gap = malloc(gap - 16)) != start)
         free(first_gap), first_gap = NULL; /* served from elsewhere: no use */
     if (room.n == 0)
         return;

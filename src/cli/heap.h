@@ -25,9 +25,10 @@
  *   loader's blocks then land on mapped pages. The film's share of the
  *   spare beyond the tree's is left to the film's clearing, which maps
  *   it on the render's threads;
- * - however small the scene file, or with none (the built-in scene), at
- *   least 32 MiB of that room, starting on a huge page, is marked for
- *   huge pages, though only the file's share is mapped ahead: the rest
+ * - however small the scene file, or with none (the built-in scene), 32
+ *   MiB of that room (less what lies before its first huge page, which
+ *   a block kept untouched takes) is marked for huge pages, though only
+ *   the file's share is mapped ahead: the rest
  *   is mapped 2 MiB at a time where it is first touched (the built-in
  *   scene at 1920x1080 on two threads took some 900 page faults, 160
  *   since).

@@ -23,7 +23,8 @@ static struct {
     pthread_mutex_t lock;
     block b; /* p NULL: none */
     bool taken;
-    size_t used; /* bytes from the block's start ever handed out; past them, zeros */
+    size_t used; /* bytes from the block's start ever handed out (a whole block,
+                    as spare_size reports it); past them, zeros */
 } sp = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
 static size_t whole_pages(size_t n)
@@ -108,7 +109,7 @@ static void *take(size_t n, size_t *had, size_t *used)
         if (had)
             *had = before;
         *used = sp.used;
-        sp.used = sp.used > n ? sp.used : n;
+        sp.used = sp.b.n; /* all of it, which spare_size reports, may now be written */
     }
     pthread_mutex_unlock(&sp.lock);
     return p;
@@ -151,8 +152,8 @@ void *spare_calloc(size_t n, int threads)
     if (!p)
         return array_calloc_big_on(n, threads);
     /* what was handed out before is cleared, the rest only mapped: a
-     * 1080p film in a spare no parse tree used is 25 MB the kernel has
-     * already zeroed */
+     * 1080p film in a spare never taken before (no parse tree in it) is
+     * 25 MB the kernel has already zeroed */
     size_t dirty = used < n ? used : whole_pages(n);
     if (dirty)
         array_clear_on(p, dirty, threads);

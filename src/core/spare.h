@@ -34,9 +34,10 @@ void *spare_take(size_t n, size_t *had);
 
 /* n zeroed bytes: from 1 MiB up the spare, cleared by up to `threads`
  * threads (as array_calloc_big_on clears), when there is one; else
- * array_calloc_big_on(n, threads). Only the pages the spare ever handed
- * out are cleared: the rest are mapped, the kernel's zeros (spare_make's
- * caller maps, never writes). Free with spare_free. */
+ * array_calloc_big_on(n, threads). A spare never taken before is only
+ * mapped, the kernel's zeros (spare_make's caller maps, never writes);
+ * one taken before is cleared as far as it then held (spare_size), the
+ * rest mapped. Free with spare_free. */
 void *spare_calloc(size_t n, int threads);
 
 /* Hands back a block spare_take gave: it becomes the spare again. False,
