@@ -165,6 +165,30 @@ Test(heap, a_floor_of_huge_page_room_for_a_small_scene_file)
     tmpdir_remove();
 }
 
+/* Blocks carved from the heap as a loader takes them: 48 bytes each (64
+ * with malloc's header), each touched, up to 32 MiB of them. */
+enum { CARVE_MAX = (32 << 20) / 64 };
+static char *carved[CARVE_MAX];
+
+/* Carves count blocks into carved[]; the page faults that took. */
+static long carve(int count)
+{
+    memset(carved, 0, sizeof carved); /* the array's own pages touched first */
+    long before = minor_faults();
+    for (int i = 0; i < count; i++) {
+        carved[i] = malloc(48);
+        cr_assert_not_null(carved[i]);
+        carved[i][0] = 1;
+    }
+    return minor_faults() - before;
+}
+
+static void free_carved(int count)
+{
+    for (int i = 0; i < count; i++)
+        free(carved[i]);
+}
+
 /* The mapping that holds p, from /proc/self/smaps: whether it is marked
  * for huge pages (VmFlags "hg", madvise MADV_HUGEPAGE) and how many kB
  * of it are in huge pages now. */
@@ -197,21 +221,12 @@ Test(heap, the_floor_is_mapped_in_huge_pages)
 {
     SKIP_UNLESS_APPLIES();
     heap_ready(NULL, 0, 0);
-    enum { BLOCK = 48, COUNT = (8 << 20) / 64 };
-    static char *blocks[COUNT];
-    memset(blocks, 0, sizeof blocks); /* its own pages touched first */
-    long before = minor_faults();
-    for (int i = 0; i < COUNT; i++) {
-        blocks[i] = malloc(BLOCK);
-        cr_assert_not_null(blocks[i]);
-        blocks[i][0] = 1;
-    }
-    long faults = minor_faults() - before;
+    enum { COUNT = (8 << 20) / 64 };
+    long faults = carve(COUNT);
     bool marked;
     long huge_kb;
-    mapping_of(blocks[COUNT / 2], &marked, &huge_kb);
-    for (int i = 0; i < COUNT; i++)
-        free(blocks[i]);
+    mapping_of(carved[COUNT / 2], &marked, &huge_kb);
+    free_carved(COUNT);
     cr_assert(marked, "the room's blocks lie in a mapping not marked for huge pages");
     if (huge_kb > 0)
         cr_assert_lt(faults, 200, "%ld page faults carving the room (%ld kB in huge pages)",
@@ -230,21 +245,11 @@ static void expect_room_mapped(int threads)
     if (!can_map)
         cr_skip_test("the kernel cannot map memory ahead (Linux 5.14 on)");
     cr_assert_geq(room_for_mapped((off_t)8 << 20, threads, true), (size_t)48 << 20);
-    /* 32 MiB of small blocks (48 bytes, 64 with malloc's header), as a
-     * loader takes them: 8,192 pages, but already mapped, so only the odd
-     * fault of malloc's own */
-    enum { BLOCK = 48, COUNT = (32 << 20) / 64 };
-    static char *blocks[COUNT];
-    memset(blocks, 0, sizeof blocks); /* its own pages touched first */
-    long before = minor_faults();
-    for (int i = 0; i < COUNT; i++) {
-        blocks[i] = malloc(BLOCK);
-        cr_assert_not_null(blocks[i]);
-        blocks[i][0] = 1;
-    }
-    long faults = minor_faults() - before;
-    for (int i = 0; i < COUNT; i++)
-        free(blocks[i]);
+    /* 32 MiB of small blocks, as a loader takes them: 8,192 pages, but
+     * already mapped, so only the odd fault of malloc's own */
+    enum { COUNT = (32 << 20) / 64 };
+    long faults = carve(COUNT);
+    free_carved(COUNT);
     cr_assert_lt(faults, 200, "%ld page faults carving the room", faults);
 }
 
