@@ -117,7 +117,10 @@ __attribute__((always_inline)) static inline int scene_walk8(const scene *s, con
     if (s->bvh.width != 8 || s->bvh.nnodes == 0 || !packet_make(&p, r, active))
         return -1;
     scene_packet_ctx c = {s, r, best, hit, 0};
-    __m256 tmax = _mm256_loadu_ps(best);
+    /* best was copied 16 bytes at a time by code without AVX (packet_begin):
+     * read back as it was written, then stored whole for the leaves' loads */
+    __m256 tmax = _mm256_loadu2_m128(best + 4, best);
+    _mm256_storeu_ps(best, tmax);
     if (cull)
         packet_bound(&p, active);
     packet_walk(&s->bvh, &p, active, &tmax, scene_packet_leaf, &c, cull);
