@@ -218,9 +218,10 @@ static void mix8(const trace_ctx *ctx, const shade8 *sp, int keep, bool reflect,
     }
 }
 
-/* trace_rest for the lanes of `found`, with their local light in c. */
+/* trace_rest for the lanes of `found`, with their local light in c, into
+ * c. */
 static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int depth,
-                  const scene_hit hit[8], const shade8 *sp, color8 *c, color8 *out)
+                  const scene_hit hit[8], const shade8 *sp, color8 *c)
 {
     /* where no material reflects or transmits, no lane has a secondary ray */
     if (depth < ctx->max_depth && (ctx->scene->any_reflect || ctx->scene->any_transmit)) {
@@ -257,13 +258,12 @@ static void rest8(trace_ctx *ctx, lanes8 *ls, const ray8 *r, int found, int dept
             int k = __builtin_ctz((unsigned)m);
             crossed |= shade_absorbs_inside(sp->m[k]) << k;
         }
-    *out = *c;
     for (int m = crossed; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         shade_point spk = shade8_get(sp, k);
         ray rk = ray8_get(r, k);
-        color8_put(out, k, shade_segment_crossed(ctx->scene, &rk, hit[k].h.t, &spk,
-                                                 color8_get(c, k)));
+        color8_put(c, k, shade_segment_crossed(ctx->scene, &rk, hit[k].h.t, &spk,
+                                               color8_get(c, k)));
     }
 }
 
@@ -334,12 +334,13 @@ static void shade_lanes(trace_ctx *ctx, lanes8 *ls, const ray8 *p, int active, i
                         int depth, const scene_hit hit[8], color8 *out)
 {
     shade8 sp; /* set for the lanes of found, the only ones used */
-    color8 c;
     prepare8(ctx, p, found, hit, &sp);
-    lighting_local8(ctx, ls->tl, &sp, found, ls->events, depth == 0 ? ctx->tile : NULL, &c);
+    /* into out itself: the mix kernel's loads of a copy made here, 16 bytes
+     * at a time, would wait for its stores */
+    lighting_local8(ctx, ls->tl, &sp, found, ls->events, depth == 0 ? ctx->tile : NULL, out);
     for (int m = found; m; m &= m - 1)
         ls->events[__builtin_ctz((unsigned)m)]++;
-    rest8(ctx, ls, p, found, depth, hit, &sp, &c, out);
+    rest8(ctx, ls, p, found, depth, hit, &sp, out);
     const scene *s = ctx->scene; /* the misses: the background, fogged */
     for (int m = active & ~found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
