@@ -1234,18 +1234,85 @@ Test(packet, a_tile_cone_keeps_every_object_its_rays_hit)
                   left_out);
 }
 
-/* The shadow rays from the hits of a tile's camera rays to a point light
- * are tested against the objects the light's cone through the hits' reach
- * may meet (scene_shadow_cone_objects, scene_shadow8_among): each ray is
- * blocked where scene_occluded_opaque says, leaving its hit by ray_offset
- * along any normal. A scene with an unbounded object gives no list. */
-Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
+/* Objects a list's packets test only where their rays may meet the
+ * objects' boxes (turned ones, tori: scene_among8, scene_shadow_among8)
+ * lose no hit and no shadow: rays aimed at points in and just around the
+ * boxes, where turned boxes and tori touch them, find scene_intersect's
+ * hits and scene_occluded_opaque's shadows. */
+Test(packet, listed_costly_objects_keep_every_hit_near_their_boxes)
 {
-    int blocked_rays = 0, free_rays = 0, left_out = 0;
+    int hits = 0;
     for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
         if (accel_isa_force((accel_isa)path) != (accel_isa)path)
             continue;
-        scene *s = small_lattice(false);
+        scene *s = scene_new();
+        material mt = material_default();
+        int mat = scene_add_material(s, &mt);
+        for (int i = 0; i < 6; i++) {
+            vec3 at = v3(2.5f * (float)i - 6.0f, 0.0f, -4.0f);
+            xform r = xform_rotate(v3(1.0f, 1.0f, (float)i), 15.0f + 25.0f * (float)i);
+            xform t = xform_translate(at);
+            xform rt = xform_then(&r, &t);
+            shape sh =
+                i % 2 ? shape_box(v3s(-0.7f), v3s(0.7f)) : shape_torus(v3s(0.0f), 0.7f, 0.3f);
+            cr_assert_geq(scene_add_object(s, &sh, mat, scene_add_xform(s, &rt)), 0);
+        }
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        int32_t list[6] = {0, 1, 2, 3, 4, 5};
+        rng g = rng_seed(31, 2);
+        for (int i = 0; i < 4000; i++) {
+            aabb b = s->bounds[i % 6];
+            vec3 eye = v3(uniform(&g, -3, 3), uniform(&g, 2, 6), uniform(&g, 4, 8));
+            ray8 p;
+            for (int k = 0; k < 8; k++) { /* a point of the box, or just outside it */
+                vec3 at = v3(uniform(&g, b.lo.x - 0.05f, b.hi.x + 0.05f),
+                             uniform(&g, b.lo.y - 0.05f, b.hi.y + 0.05f),
+                             uniform(&g, b.lo.z - 0.05f, b.hi.z + 0.05f));
+                put(&p, k, eye, v3_sub(at, eye), 0.0f, i % 5 ? INFINITY : 1.0f);
+            }
+            scene_hit h8[8], h1;
+            int found = scene_intersect8_among(s, &p, 0xff, list, 6, h8);
+            int blocked = 0, crosses = 0;
+            cr_assert(scene_shadow8_among(s, &p, 0xff, list, 6, &blocked, &crosses));
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                bool hit = scene_intersect(s, &r, &h1);
+                cr_assert_eq(found >> k & 1, hit, "%s, packet %d ray %d",
+                             accel_isa_name((accel_isa)path), i, k);
+                cr_assert_eq(blocked >> k & 1, scene_occluded_opaque(s, &r),
+                             "%s, packet %d ray %d: the shadow",
+                             accel_isa_name((accel_isa)path), i, k);
+                if (!hit)
+                    continue;
+                cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+                expect_same_hit(&h8[k].h, &h1.h, i, k);
+                hits++;
+            }
+        }
+        scene_free(s);
+    }
+    accel_isa_force(ACCEL_AUTO);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert_gt(hits, 10000, "%d hits", hits);
+}
+
+/* The shadow rays from the hits of a tile's camera rays to a point light
+ * are tested against the objects the light's cone through the hits' reach
+ * may meet (scene_shadow_cone_objects, scene_shadow8_among): every hit
+ * lies in the reach, and each ray is blocked where scene_occluded_opaque
+ * says, leaving its hit by ray_offset along any normal. With a ground
+ * plane, the reach holds the plane's hits where every direction of the
+ * cone heads for it, and there is no list where one does not. */
+Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
+{
+    int blocked_rays = 0, free_rays = 0, left_out = 0, ground_lists = 0, ground_none = 0;
+    for (int run = 0; run < 4; run++) {
+        int path = ACCEL_AVX2 + run / 2;
+        bool ground = run % 2;
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        scene *s = small_lattice(ground);
         int32_t list[32], shadows[32];
         rng g = rng_seed(29, 6);
         for (int i = 0; i < 6000; i++) {
@@ -1254,6 +1321,8 @@ Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
                 ray one = ray8_get(&p, i / 2 % 8);
                 for (int k = 0; k < 8; k++)
                     put(&p, k, one.o, one.d, 0.0f, INFINITY);
+            } else if (ground && i % 4 == 2) { /* one ray up or level: the horizon in the cone */
+                p.dy[i / 4 % 8] = i % 8 == 2 ? 0.0f : 0.3f;
             }
             vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
             for (int k = 0; k < 8; k++) {
@@ -1267,6 +1336,17 @@ Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
             cr_assert_geq(n, 0);
             vec3 light_at = v3(uniform(&g, -20, 30), uniform(&g, 2, 30), uniform(&g, -20, 20));
             int m = scene_shadow_cone_objects(s, reach, light_at, shadows, 32);
+            if (ground) {
+                bool down = true; /* every direction of the cone heads for the ground */
+                for (int c = 0; c < 8; c++)
+                    down &= (c & 2 ? hi.y : lo.y) < 0.0f;
+                if (p.oy[0] <= -0.6f || !down) {
+                    cr_assert_eq(m, -1, "packet %d: the cone meets the ground anywhere", i);
+                    ground_none++;
+                    continue;
+                }
+                ground_lists += m >= 0;
+            }
             cr_assert(m >= 0 && m <= s->bvh.nprims, "%d", m);
             left_out += s->bvh.nprims - m;
             if (n > 0) /* segments to the light from the corners of the reach, as far */
@@ -1278,7 +1358,8 @@ Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
                     ray r = {.o = o, .d = v3_sub(light_at, o), .tmin = 0.0f, .tmax = 1.0f};
                     for (int k = 0; k < s->nobjects; k++) {
                         ray lr = scene_object_ray(s, &s->objects[k], &r);
-                        bool listed = false;
+                        /* the unbounded ones are tested by every packet */
+                        bool listed = aabb_is_unbounded(s->bounds[k]);
                         for (int q = 0; q < m; q++)
                             listed |= shadows[q] == k;
                         cr_assert(listed || !shape_occluded_inline(&s->objects[k].shape, &lr),
@@ -1293,6 +1374,10 @@ Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
                 if (!scene_intersect(s, &r, &h))
                     continue;
                 vec3 at = ray_at(&r, h.h.t);
+                cr_assert(at.x >= reach.lo.x && at.y >= reach.lo.y && at.z >= reach.lo.z &&
+                              at.x <= reach.hi.x && at.y <= reach.hi.y && at.z <= reach.hi.z,
+                          "packet %d ray %d: its hit on object %d is outside the reach", i, k,
+                          h.object);
                 vec3 ng = v3_norm(v3(uniform(&g, -1, 1), uniform(&g, -1, 1), uniform(&g, -1, 1)));
                 vec3 o = ray_offset(at, ng, v3_sub(light_at, at));
                 put(&sr, k, o, v3_sub(light_at, o), 0.0f, 1.0f);
@@ -1316,17 +1401,27 @@ Test(packet, a_light_cone_keeps_every_object_a_shadow_ray_meets)
             }
         }
         scene_free(s);
-        s = small_lattice(true);
-        aabb reach;
-        cr_assert_geq(scene_cone_objects(s, v3(2, 5, 8), v3(-0.1f, -1, -1), v3(0.1f, -0.5f, -0.8f),
-                                         list, 32, &reach),
-                      0);
-        cr_assert_eq(scene_shadow_cone_objects(s, reach, v3(0, 20, 0), shadows, 32), -1,
-                     "a hit on the ground plane may be anywhere");
-        scene_free(s);
     }
+    scene *s = small_lattice(true);
+    int32_t list[32], shadows[32];
+    aabb reach;
+    cr_assert_geq(scene_cone_objects(s, v3(2, 5, 8), v3(-0.1f, -1, -1), v3(0.1f, -0.5f, -0.8f),
+                                     list, 32, &reach),
+                  0);
+    cr_assert(reach.lo.y < -0.6f && reach.hi.y < 5.0f && reach.lo.z > -20.0f,
+              "the ground's hits are bounded: y %g..%g, z %g..%g", reach.lo.y, reach.hi.y,
+              reach.lo.z, reach.hi.z);
+    cr_assert_geq(scene_shadow_cone_objects(s, reach, v3(0, 20, 0), shadows, 32), 0);
+    cr_assert_geq(scene_cone_objects(s, v3(2, 5, 8), v3(-0.1f, -1, -1), v3(0.1f, 0.0f, -0.8f),
+                                     list, 32, &reach),
+                  0);
+    cr_assert_eq(scene_shadow_cone_objects(s, reach, v3(0, 20, 0), shadows, 32), -1,
+                 "a cone reaching the horizon meets the ground anywhere");
+    scene_free(s);
     accel_isa_force(ACCEL_AUTO);
     if (accel_isa_best() >= ACCEL_AVX2)
-        cr_assert(blocked_rays > 2000 && free_rays > 2000 && left_out > 10000,
-                  "%d blocked, %d not, %d objects left out", blocked_rays, free_rays, left_out);
+        cr_assert(blocked_rays > 2000 && free_rays > 2000 && left_out > 10000 &&
+                      ground_lists > 500 && ground_none > 500,
+                  "%d blocked, %d not, %d objects left out, %d ground lists, %d cones without",
+                  blocked_rays, free_rays, left_out, ground_lists, ground_none);
 }

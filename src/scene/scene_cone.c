@@ -74,6 +74,54 @@ static bool cone_meets(aabb b, vec3 o, vec3 dlo, vec3 dhi, double tmax, aabb *re
     return true;
 }
 
+/* Whether the hits on object ob, unbounded, of rays from o with
+ * directions in [dlo, dhi] can be bounded, and if so their box (grown as
+ * cone_meets grows a box) into *reach. Only an unturned plane can: the
+ * point a direction d meets it at is o + d c / (n.d), c = n.(p - o), a
+ * projective function of d, so where n.d keeps c's sign over the whole
+ * box of directions (the ray heads for the plane, never along it), the
+ * points lie in the hull of those its eight corners meet it at. In
+ * doubles, whose rounding the margin dwarfs, as it does a hit's. */
+static bool plane_reach(const object *ob, vec3 o, vec3 dlo, vec3 dhi, aabb *reach)
+{
+    if (ob->shape.kind != SHAPE_PLANE || ob->xform >= 0 || ob->moving)
+        return false;
+    const struct plane *pl = &ob->shape.plane;
+    const double n[3] = {pl->normal.x, pl->normal.y, pl->normal.z};
+    const double oo[3] = {o.x, o.y, o.z}, p[3] = {pl->point.x, pl->point.y, pl->point.z};
+    const double lo[3] = {dlo.x, dlo.y, dlo.z}, hi[3] = {dhi.x, dhi.y, dhi.z};
+    double c = 0.0, qlo[3], qhi[3];
+    for (int a = 0; a < 3; a++)
+        qlo[a] = INFINITY, qhi[a] = -INFINITY;
+    for (int a = 0; a < 3; a++)
+        c += n[a] * (p[a] - oo[a]);
+    if (!(fabs(c) > 0.0))
+        return false; /* the eye on the plane (or no number) */
+    for (int corner = 0; corner < 8; corner++) {
+        double d[3], nd = 0.0;
+        for (int a = 0; a < 3; a++) {
+            d[a] = corner >> a & 1 ? hi[a] : lo[a];
+            nd += n[a] * d[a];
+        }
+        if (!(nd * c > 0.0))
+            return false; /* a direction along the plane, or away from it */
+        double t = c / nd;
+        for (int a = 0; a < 3; a++) {
+            qlo[a] = lesser(qlo[a], oo[a] + t * d[a]);
+            qhi[a] = greater(qhi[a], oo[a] + t * d[a]);
+        }
+    }
+    float flo[3], fhi[3];
+    for (int a = 0; a < 3; a++) {
+        double pad = 1e-4 * (fabs(qlo[a]) + fabs(qhi[a]) + fabs(oo[a])) + 1e-30;
+        flo[a] = (float)(qlo[a] - pad), fhi[a] = (float)(qhi[a] + pad);
+        if (!isfinite(flo[a]) || !isfinite(fhi[a]))
+            return false;
+    }
+    *reach = aabb_union(*reach, (aabb){v3(flo[0], flo[1], flo[2]), v3(fhi[0], fhi[1], fhi[2])});
+    return true;
+}
+
 /* The objects of the tree that rays from o with directions in [dlo, dhi]
  * may meet up to tmax, and where (scene_cone_objects). */
 static int cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, double tmax, int32_t *list,
@@ -88,7 +136,9 @@ static int cone_objects(const scene *s, vec3 o, vec3 dlo, vec3 dhi, double tmax,
     const float c[9] = {o.x, o.y, o.z, dlo.x, dlo.y, dlo.z, dhi.x, dhi.y, dhi.z};
     if (!floats_finite(c, 9))
         return -1;
-    bool anywhere = s->nunbounded > 0;
+    bool anywhere = false; /* whether some hit may be anywhere */
+    for (int i = 0; i < s->nunbounded; i++)
+        anywhere |= !(reach && plane_reach(&s->objects[s->unbounded[i]], o, dlo, dhi, reach));
     int n = 0;
     for (int i = 0; i < s->bvh.nprims; i++) {
         int32_t k = s->bvh.prims[i];

@@ -104,6 +104,62 @@ __attribute__((always_inline)) static inline bool scene_packet_leaf(void *ctx, u
     return true;
 }
 
+/* The rays of `rays` that may meet box b before their limits (lim, a
+ * walk's tmax), by a walk's test of a node's box (packet_child). */
+__attribute__((always_inline)) static inline int scene_packet_box(const packet8 *p, aabb b,
+                                                                  __m256 lim, int rays)
+{
+    const float lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+    const bool neg[3] = {p->nx, p->ny, p->nz};
+    const __m256 o[3] = {p->ox, p->oy, p->oz}, inv[3] = {p->ix, p->iy, p->iz};
+    __m256 vn = p->tmin, vf = _mm256_set1_ps(INFINITY);
+    for (int a = 0; a < 3; a++) {
+        __m256 near = _mm256_set1_ps(neg[a] ? hi[a] : lo[a]);
+        __m256 far = _mm256_set1_ps(neg[a] ? lo[a] : hi[a]);
+        vn = _mm256_max_ps(vn, _mm256_mul_ps(_mm256_sub_ps(near, o[a]), inv[a]));
+        vf = _mm256_min_ps(vf, _mm256_mul_ps(_mm256_sub_ps(far, o[a]), inv[a]));
+    }
+    __m256 reach = _mm256_mul_ps(lim, _mm256_set1_ps(WIDE_TIE_SCALE));
+    vf = _mm256_min_ps(_mm256_mul_ps(vf, _mm256_set1_ps(WIDE_FAR_SCALE)), reach);
+    return rays & _mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ));
+}
+
+/* Whether object o takes the general way (turned, moving, or of a kind
+ * shape8_hit does not test), which a walk's box test spares most rays. */
+static inline bool scene_packet_costly(const object *o)
+{
+    return !(o->xform < 0 && !o->moving && shape_tests_eight(o->shape.kind));
+}
+
+/* scene_intersect8_among (scene_packet.c): the rays of active against the
+ * unbounded objects and those of list; a costly object only against the
+ * rays that may meet its box, as in a walk's leaf. */
+__attribute__((always_inline)) static inline int scene_among8(const scene *s, const ray8 *r,
+                                                              int active, const int32_t *list,
+                                                              int n, scene_hit hit[8])
+{
+    float best[8];
+    _mm256_storeu_ps(best, _mm256_loadu_ps(r->tmax));
+    for (int k = 0; k < 8; k++)
+        hit[k].object = -1;
+    scene_packet_ctx c = {s, r, best, hit, 0};
+    for (int i = 0; i < s->nunbounded; i++)
+        scene_packet_one(&c, s->unbounded[i], active);
+    int i = 0; /* the packet's inverse directions made at the first costly object */
+    while (i < n && !scene_packet_costly(&s->objects[list[i]]))
+        scene_packet_one(&c, list[i++], active);
+    packet8 p;
+    bool boxed = i < n && packet_make(&p, r, active);
+    for (; i < n; i++) {
+        int rays = active;
+        if (boxed && scene_packet_costly(&s->objects[list[i]]))
+            rays = scene_packet_box(&p, s->bounds[list[i]], _mm256_loadu_ps(best), active);
+        if (rays)
+            scene_packet_one(&c, list[i], rays);
+    }
+    return c.found;
+}
+
 /* The rays of active through the scene's eight-wide tree together
  * (packet_walk), each leaf's objects tested against the rays that enter
  * it; the order of the leaves does not change the hits (scene_hit_object).
@@ -186,6 +242,31 @@ __attribute__((always_inline)) static inline bool scene_shadow_walk8(const scene
     return true;
 }
 
+/* scene_shadow8_among (scene_packet.c): the shadow rays of active against
+ * the unbounded objects and those of list, a costly one only against the
+ * rays that may meet its box. */
+__attribute__((always_inline)) static inline void scene_shadow_among8(const scene *s,
+                                                                      const ray8 *r, int active,
+                                                                      const int32_t *list, int n,
+                                                                      int *blocked, int *crosses)
+{
+    for (int i = 0; i < s->nunbounded; i++)
+        scene_shadow8_one(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);
+    int i = 0; /* as in scene_among8 */
+    for (; i < n && !scene_packet_costly(&s->objects[list[i]]); i++)
+        if (active & ~*blocked)
+            scene_shadow8_one(s, list[i], r, active & ~*blocked, blocked, crosses);
+    packet8 p;
+    bool boxed = i < n && packet_make(&p, r, active);
+    for (; i < n; i++) {
+        int rays = active & ~*blocked;
+        if (rays && boxed && scene_packet_costly(&s->objects[list[i]]))
+            rays = scene_packet_box(&p, s->bounds[list[i]], _mm256_loadu_ps(r->tmax), rays);
+        if (rays)
+            scene_shadow8_one(s, list[i], r, rays, blocked, crosses);
+    }
+}
+
 /* Row i of a times (x, y, z, w), in mat4_point's order of operations
  * (w 0: mat4_vector's, which adds nothing). */
 static inline __m256 scene_row8(const float a[4], __m256 x, __m256 y, __m256 z, bool w)
@@ -238,25 +319,13 @@ scene_object_rays8(const mat4 *inv, const ray8 *r, int active, const float *best
     int scene_among8_##isa(const scene *s, const ray8 *r, int active, const int32_t *list,     \
                            int n, scene_hit hit[8])                                            \
     {                                                                                          \
-        float best[8];                                                                         \
-        _mm256_storeu_ps(best, _mm256_loadu_ps(r->tmax));                                      \
-        for (int k = 0; k < 8; k++)                                                            \
-            hit[k].object = -1;                                                                \
-        scene_packet_ctx c = {s, r, best, hit, 0};                                             \
-        for (int i = 0; i < s->nunbounded; i++)                                                \
-            scene_packet_one(&c, s->unbounded[i], active);                                     \
-        for (int i = 0; i < n; i++)                                                            \
-            scene_packet_one(&c, list[i], active);                                             \
-        return c.found;                                                                        \
+        return scene_among8(s, r, active, list, n, hit);                                       \
     }                                                                                          \
     __attribute__((flatten))                                                                   \
     void scene_shadow_among8_##isa(const scene *s, const ray8 *r, int active,                  \
                                    const int32_t *list, int n, int *blocked, int *crosses)     \
     {                                                                                          \
-        for (int i = 0; i < s->nunbounded; i++)                                                \
-            scene_shadow8_one(s, s->unbounded[i], r, active & ~*blocked, blocked, crosses);    \
-        for (int i = 0; i < n; i++)                                                            \
-            scene_shadow8_one(s, list[i], r, active & ~*blocked, blocked, crosses);            \
+        scene_shadow_among8(s, r, active, list, n, blocked, crosses);                          \
     }                                                                                          \
     __attribute__((flatten))                                                                   \
     int scene_walk8_##isa(const scene *s, const ray8 *r, int active, float best[8],            \
