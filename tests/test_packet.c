@@ -1297,6 +1297,112 @@ Test(packet, listed_costly_objects_keep_every_hit_near_their_boxes)
         cr_assert_gt(hits, 10000, "%d hits", hits);
 }
 
+/* A listed object a packet's rays meet along the plane of one of its box's
+ * faces, a direction's zero component on that face (0 times infinity in
+ * the box test), keeps those rays, as the walk's box test does. */
+Test(packet, a_listed_object_keeps_rays_along_its_boxs_face)
+{
+    for (int path = ACCEL_AVX2; path <= ACCEL_AVX512; path++) {
+        if (accel_isa_force((accel_isa)path) != (accel_isa)path)
+            continue;
+        for (int kind = 0; kind < 2; kind++) {
+            scene *s = scene_new();
+            material mt = material_default();
+            int mat = scene_add_material(s, &mt);
+            xform id = xform_identity();
+            shape sh = kind ? shape_box(v3(1, -1, 0), v3(2, 1, 1))
+                            : shape_triangle(v3(1, -1, 0), v3(1, 1, 0), v3(1, 0, 1));
+            cr_assert_geq(scene_add_object(s, &sh, mat, kind ? scene_add_xform(s, &id) : -1), 0);
+            glint_error err = {0};
+            cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+            ray8 p;
+            for (int k = 0; k < 8; k++) /* along z = 0, the box's lower face */
+                put(&p, k, v3s(0.0f), v3(1.0f, 0.05f + 0.1f * (float)k, 0.0f), 0.0f, INFINITY);
+            int32_t list[1] = {0};
+            scene_hit h8[8], h1;
+            int found = scene_intersect8_among(s, &p, 0xff, list, 1, h8), blocked = 0, crosses = 0;
+            cr_assert(scene_shadow8_among(s, &p, 0xff, list, 1, &blocked, &crosses));
+            int want = 0, shade = 0;
+            for (int k = 0; k < 8; k++) {
+                ray r = ray8_get(&p, k);
+                want |= scene_intersect(s, &r, &h1) << k;
+                shade |= scene_occluded_opaque(s, &r) << k;
+            }
+            cr_assert_eq(want, 0xff, "the rays meet the %s", kind ? "box" : "triangle");
+            cr_assert_eq(found, want, "%s: %x against %x", kind ? "box" : "triangle", found, want);
+            cr_assert_eq(blocked, shade, "%s: %x against %x", kind ? "box" : "triangle", blocked,
+                         shade);
+            scene_free(s);
+        }
+    }
+    accel_isa_force(ACCEL_AUTO);
+}
+
+/* A plane's hits lie in the reach the tile's cone gives them, turned
+ * planes' too, for cones that dip under the horizon by as little as
+ * 1e-6: where the renderer's hits there may stray beyond the margin, the
+ * reach is the whole space. */
+Test(packet, a_planes_hits_lie_in_its_reach_near_the_horizon)
+{
+    rng g = rng_seed(7, 1);
+    const vec3 normals[3] = {v3(0, 1, 0), v3(0.3f, 1.0f, 0.7f), v3(1, 1, 1)};
+    int lists = 0, grazing = 0, hits = 0;
+    for (int run = 0; run < 6; run++) {
+        scene *s = scene_new();
+        material mt = material_default();
+        int mat = scene_add_material(s, &mt);
+        shape pl = shape_plane(v3(0.2f, -0.1f, 0.3f), normals[run % 3]);
+        shape ball = shape_sphere(v3(0, 5, -5), 0.5f);
+        cr_assert_geq(scene_add_object(s, &pl, mat, -1), 0);
+        cr_assert_geq(scene_add_object(s, &ball, mat, -1), 0);
+        glint_error err = {0};
+        cr_assert_eq(scene_build(s, &err), GLINT_OK, "%s", err.msg);
+        const struct plane *sp = &s->objects[0].shape.plane;
+        vec3 n = sp->normal;
+        for (int i = 0; i < 20000; i++) {
+            vec3 eye = v3_add(sp->point, v3(uniform(&g, -3, 3), 0.0f, uniform(&g, -3, 3)));
+            eye = v3_madd(eye, n, uniform(&g, 1, 4));
+            vec3 side = v3(uniform(&g, -1, 1), uniform(&g, -1, 1), uniform(&g, -1, 1));
+            vec3 h = v3_norm(v3_cross(n, side)); /* along the plane */
+            float dip = powf(10.0f, -uniform(&g, 1.0f, 6.0f)), w = run < 3 ? 0.3f * dip : 0.01f;
+            vec3 d0 = v3_sub(h, v3_scale(n, dip + 3.0f * w));
+            vec3 lo = v3_sub(d0, v3s(w)), hi = v3_add(d0, v3s(w));
+            int32_t list[8];
+            aabb reach;
+            if (scene_cone_objects(s, eye, lo, hi, list, 8, &reach) < 0 ||
+                aabb_is_unbounded(reach))
+                continue;
+            lists++;
+            grazing += dip < 1e-3f;
+            for (int k = 0; k < 16; k++) {
+                vec3 d = k < 8 ? v3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z)
+                               : v3(uniform(&g, lo.x, hi.x), uniform(&g, lo.y, hi.y),
+                                    uniform(&g, lo.z, hi.z));
+                ray r = {.o = eye, .d = d, .tmin = 0.0f, .tmax = INFINITY};
+                scene_hit hh;
+                if (!scene_intersect(s, &r, &hh) || hh.object != 0)
+                    continue;
+                surface sf;
+                vec3 at = ray_at(&r, hh.h.t);
+                plane_surface(sp, at, &sf);
+                for (int q = 0; q < 2; q++) {
+                    vec3 x = q ? sf.p : at;
+                    cr_assert(x.x >= reach.lo.x && x.y >= reach.lo.y && x.z >= reach.lo.z &&
+                                  x.x <= reach.hi.x && x.y <= reach.hi.y && x.z <= reach.hi.z,
+                              "run %d, cone %d (dip %g): a hit (%g %g %g) outside the reach "
+                              "(%g %g %g .. %g %g %g)",
+                              run, i, dip, x.x, x.y, x.z, reach.lo.x, reach.lo.y, reach.lo.z,
+                              reach.hi.x, reach.hi.y, reach.hi.z);
+                }
+                hits++;
+            }
+        }
+        scene_free(s);
+    }
+    cr_assert(lists > 20000 && grazing > 1000 && hits > 200000,
+              "%d lists, %d of them grazing, %d hits", lists, grazing, hits);
+}
+
 /* The shadow rays from the hits of a tile's camera rays to a point light
  * are tested against the objects the light's cone through the hits' reach
  * may meet (scene_shadow_cone_objects, scene_shadow8_among): every hit

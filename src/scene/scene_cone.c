@@ -75,13 +75,19 @@ static bool cone_meets(aabb b, vec3 o, vec3 dlo, vec3 dhi, double tmax, aabb *re
 }
 
 /* Whether the hits on object ob, unbounded, of rays from o with
- * directions in [dlo, dhi] can be bounded, and if so their box (grown as
- * cone_meets grows a box) into *reach. Only an unturned plane can: the
- * point a direction d meets it at is o + d c / (n.d), c = n.(p - o), a
- * projective function of d, so where n.d keeps c's sign over the whole
- * box of directions (the ray heads for the plane, never along it), the
- * points lie in the hull of those its eight corners meet it at. In
- * doubles, whose rounding the margin dwarfs, as it does a hit's. */
+ * directions in [dlo, dhi] can be bounded, and if so their box into
+ * *reach. Only an unturned plane can: the point a direction d meets it at
+ * is o + d c / (n.d), c = n.(p - o), a projective function of d, so where
+ * n.d keeps c's sign over the whole box of directions (the ray heads for
+ * the plane, never along it), the points lie in the hull of those its
+ * eight corners meet it at. The renderer works t = c / (n.d) out in floats
+ * (ray_plane), within 4 units of 2^-24 times the two dot products'
+ * condition numbers (sum |n_i x_i| / |n.x|) of the exact t, relatively;
+ * near the horizon, or with the eye close to the plane for its distance
+ * from the origin, those grow without bound, and there the plane is not
+ * bounded. Elsewhere that error, and a hit's own rounding, stay far below
+ * the margin, 1e-4 of the largest coordinate's size on every axis. In
+ * doubles, whose rounding the margin dwarfs. */
 static bool plane_reach(const object *ob, vec3 o, vec3 dlo, vec3 dhi, aabb *reach)
 {
     if (ob->shape.kind != SHAPE_PLANE || ob->xform >= 0 || ob->moving)
@@ -90,30 +96,38 @@ static bool plane_reach(const object *ob, vec3 o, vec3 dlo, vec3 dhi, aabb *reac
     const double n[3] = {pl->normal.x, pl->normal.y, pl->normal.z};
     const double oo[3] = {o.x, o.y, o.z}, p[3] = {pl->point.x, pl->point.y, pl->point.z};
     const double lo[3] = {dlo.x, dlo.y, dlo.z}, hi[3] = {dhi.x, dhi.y, dhi.z};
-    double c = 0.0, qlo[3], qhi[3];
-    for (int a = 0; a < 3; a++)
-        qlo[a] = INFINITY, qhi[a] = -INFINITY;
-    for (int a = 0; a < 3; a++)
+    double c = 0.0, cmag = 0.0, worst = 0.0, qlo[3], qhi[3];
+    for (int a = 0; a < 3; a++) {
         c += n[a] * (p[a] - oo[a]);
+        cmag += fabs(n[a] * (p[a] - oo[a]));
+        qlo[a] = INFINITY, qhi[a] = -INFINITY;
+    }
     if (!(fabs(c) > 0.0))
         return false; /* the eye on the plane (or no number) */
     for (int corner = 0; corner < 8; corner++) {
-        double d[3], nd = 0.0;
+        double d[3], nd = 0.0, ndmag = 0.0;
         for (int a = 0; a < 3; a++) {
             d[a] = corner >> a & 1 ? hi[a] : lo[a];
             nd += n[a] * d[a];
+            ndmag += fabs(n[a] * d[a]);
         }
         if (!(nd * c > 0.0))
             return false; /* a direction along the plane, or away from it */
+        worst = greater(worst, ndmag / fabs(nd));
         double t = c / nd;
         for (int a = 0; a < 3; a++) {
             qlo[a] = lesser(qlo[a], oo[a] + t * d[a]);
             qhi[a] = greater(qhi[a], oo[a] + t * d[a]);
         }
     }
+    if (!(4.0 * 0x1p-24 * (cmag / fabs(c) + worst + 2.0) <= 1e-5))
+        return false; /* grazing: the renderer's hits may stray too far */
+    double size = 0.0;
+    for (int a = 0; a < 3; a++)
+        size = greater(size, fabs(qlo[a]) + fabs(qhi[a]) + fabs(oo[a]));
+    double pad = 1e-4 * size + 1e-30;
     float flo[3], fhi[3];
     for (int a = 0; a < 3; a++) {
-        double pad = 1e-4 * (fabs(qlo[a]) + fabs(qhi[a]) + fabs(oo[a])) + 1e-30;
         flo[a] = (float)(qlo[a] - pad), fhi[a] = (float)(qhi[a] + pad);
         if (!isfinite(flo[a]) || !isfinite(fhi[a]))
             return false;

@@ -112,13 +112,16 @@ __attribute__((always_inline)) static inline int scene_packet_box(const packet8 
     const float lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
     const bool neg[3] = {p->nx, p->ny, p->nz};
     const __m256 o[3] = {p->ox, p->oy, p->oz}, inv[3] = {p->ix, p->iy, p->iz};
-    __m256 vn = p->tmin, vf = _mm256_set1_ps(INFINITY);
+    __m256 t0[3], t1[3];
     for (int a = 0; a < 3; a++) {
-        __m256 near = _mm256_set1_ps(neg[a] ? hi[a] : lo[a]);
-        __m256 far = _mm256_set1_ps(neg[a] ? lo[a] : hi[a]);
-        vn = _mm256_max_ps(vn, _mm256_mul_ps(_mm256_sub_ps(near, o[a]), inv[a]));
-        vf = _mm256_min_ps(vf, _mm256_mul_ps(_mm256_sub_ps(far, o[a]), inv[a]));
+        t0[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(neg[a] ? hi[a] : lo[a]), o[a]), inv[a]);
+        t1[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(neg[a] ? lo[a] : hi[a]), o[a]), inv[a]);
     }
+    /* in packet_child's order, so that a NaN (a direction's zero component
+     * on a face's plane: 0 times infinity) drops out as it does there */
+    __m256 vn = _mm256_max_ps(_mm256_max_ps(t0[0], t0[1]), _mm256_max_ps(t0[2], p->tmin));
+    __m256 vf = _mm256_min_ps(_mm256_min_ps(t1[0], t1[1]),
+                              _mm256_min_ps(t1[2], _mm256_set1_ps(INFINITY)));
     __m256 reach = _mm256_mul_ps(lim, _mm256_set1_ps(WIDE_TIE_SCALE));
     vf = _mm256_min_ps(_mm256_mul_ps(vf, _mm256_set1_ps(WIDE_FAR_SCALE)), reach);
     return rays & _mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ));
