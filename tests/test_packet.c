@@ -1163,6 +1163,24 @@ static scene *small_lattice(bool with_ground)
     return s;
 }
 
+/* Ray k of packet p against scene_intersect, when it is one of active:
+ * found's bit k and the packet's hit h8[k] (scene_intersect8_among's)
+ * agree with it, on path, in packet i. Returns whether the ray hits. */
+static bool expect_among_hit(const scene *s, const ray8 *p, int active, int found,
+                             const scene_hit h8[8], int path, int i, int k)
+{
+    ray r = ray8_get(p, k);
+    scene_hit h1;
+    bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
+    cr_assert_eq(found >> k & 1, hit, "%s, packet %d ray %d", accel_isa_name((accel_isa)path), i,
+                 k);
+    if (hit) {
+        cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
+        expect_same_hit(&h8[k].h, &h1.h, i, k);
+    }
+    return hit;
+}
+
 /* A tile's camera rays are tested against the objects its cone may meet
  * (scene_cone_objects, scene_intersect8_among) and find scene_intersect's
  * hits to the bit: eight rays from one eye, at silhouettes and edges, and
@@ -1208,19 +1226,10 @@ Test(packet, a_tile_cone_keeps_every_object_its_rays_hit)
             cr_assert(n >= 0 && n <= s->bvh.nprims, "%d", n);
             left_out += s->bvh.nprims - n;
             int active = i % 7 == 0 ? 0x5d : 0xff;
-            scene_hit h8[8], h1;
+            scene_hit h8[8];
             int found = scene_intersect8_among(s, &p, active, list, n, h8);
-            for (int k = 0; k < 8; k++) {
-                ray r = ray8_get(&p, k);
-                bool hit = (active >> k & 1) && scene_intersect(s, &r, &h1);
-                cr_assert_eq(found >> k & 1, hit, "%s, packet %d ray %d",
-                             accel_isa_name((accel_isa)path), i, k);
-                if (!hit)
-                    continue;
-                cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
-                expect_same_hit(&h8[k].h, &h1.h, i, k);
-                hits++;
-            }
+            for (int k = 0; k < 8; k++)
+                hits += expect_among_hit(s, &p, active, found, h8, path, i, k);
         }
         scene_free(s);
         s = ball_lattice(); /* 200 objects */
@@ -1271,23 +1280,16 @@ Test(packet, listed_costly_objects_keep_every_hit_near_their_boxes)
                              uniform(&g, b.lo.z - 0.05f, b.hi.z + 0.05f));
                 put(&p, k, eye, v3_sub(at, eye), 0.0f, i % 5 ? INFINITY : 1.0f);
             }
-            scene_hit h8[8], h1;
+            scene_hit h8[8];
             int found = scene_intersect8_among(s, &p, 0xff, list, 6, h8);
             int blocked = 0, crosses = 0;
             cr_assert(scene_shadow8_among(s, &p, 0xff, list, 6, &blocked, &crosses));
             for (int k = 0; k < 8; k++) {
                 ray r = ray8_get(&p, k);
-                bool hit = scene_intersect(s, &r, &h1);
-                cr_assert_eq(found >> k & 1, hit, "%s, packet %d ray %d",
-                             accel_isa_name((accel_isa)path), i, k);
                 cr_assert_eq(blocked >> k & 1, scene_occluded_opaque(s, &r),
                              "%s, packet %d ray %d: the shadow",
                              accel_isa_name((accel_isa)path), i, k);
-                if (!hit)
-                    continue;
-                cr_assert_eq(h8[k].object, h1.object, "packet %d ray %d", i, k);
-                expect_same_hit(&h8[k].h, &h1.h, i, k);
-                hits++;
+                hits += expect_among_hit(s, &p, 0xff, found, h8, path, i, k);
             }
         }
         scene_free(s);
