@@ -195,7 +195,8 @@ $(LIB_OBJ): CFLAGS += $(LIB_CFLAGS)
 # of its own so that the two kinds of object never mix). The library and
 # the commands are first built instrumented into $(BUILD)/pgo
 # (PGO=generate), which renders the training set (scripts/pgo-train: the
-# built-in scene and every scenes/*.yaml, small, on one thread); the
+# built-in scene, every scenes/*.yaml and a generated field of 4,096
+# objects, small, on one thread); the
 # counts that run leaves are put beside the objects here (<object>.gcda),
 # which are then compiled with them. Floats are worked out the same either
 # way: only where the code branches, inlines and is laid out changes. A
@@ -221,7 +222,7 @@ $(PGO_OBJ): CFLAGS += $(PGO_USE_FLAGS)
 $(PGO_OBJ): $(BUILD)/pgo.stamp
 $(BUILD)/pgo.stamp: $(BUILD)/flags.stamp \
                     $(LIB_SRC) $(APP_SRC) $(CLI_SRC) $(shell find src include -name '*.h') \
-                    $(shell find scenes -type f) scripts/pgo-train \
+                    $(shell find scenes -type f) scripts/pgo-train scripts/pgo-field.awk \
                     scenes/textures/flag.png scenes/textures/globe.png
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/pgo PGO=generate $(BUILD)/pgo/glint
 	scripts/pgo-train $(BUILD)/pgo $(BUILD)
