@@ -5,8 +5,10 @@
  * Each lane does the one-ray routines' operations in the same order
  * (aabb_hit, mat4_point, mat4_vector, sphere_span, box_span,
  * cylinder_span; no fused multiply-adds), so its spans are the same to
- * the bit; branches become masks. Any other leaf is asked ray by ray
- * (shape_crossings), and each ray's crossings are then classified by
+ * the bit; branches become masks. The rays whose crossings are all such
+ * spans, in a tree with a table, are classified together (csg8_classify,
+ * the hit csg.c's classification finds). Any other leaf is asked ray by
+ * ray (shape_crossings), and those rays' crossings are classified by
  * csg.c's one routine (csg_hit_lane). For translation units compiled with
  * AVX2 (geom/shape8_<isa>.c). */
 #ifndef GLINT_GEOM_CSG8_H
@@ -233,13 +235,138 @@ static inline int csg8_spans(const csg *c, const ray8 *r, int active, csg_spans8
     return crosses;
 }
 
+/* The rays of m whose crossings are all in pre, as spans in order (tin <=
+ * tout, no NaN), of a tree with a table (csg.h): every leaf their bounds
+ * meet is spanned. csg8_classify takes them. */
+static inline int csg8_spanned(const csg *c, const csg_spans8 *pre, int m)
+{
+    if (c->nleaves > CSG_TABLE_LEAVES)
+        return 0;
+    for (int i = 0; i < c->nleaves && m; i++) {
+        const csg_leaf8 *l = &pre->leaf[i];
+        m &= ~(l->bounded & ~l->spanned);
+        if (l->met)
+            m &= ~l->met | _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(l->tin),
+                                                            _mm256_loadu_ps(l->tout), _CMP_LE_OQ));
+    }
+    return m;
+}
+
+/* The tree's table (csg.h) at each lane's set of leaves (bit i: inside
+ * leaf i): all-ones lanes where the point is inside the csg. */
+static inline __m256i csg8_answer(const csg *c, __m256i bits)
+{
+    __m256i table = _mm256_loadu_si256((const __m256i *)c->table); /* bit s of word s >> 5 */
+    __m256i word = _mm256_permutevar8x32_epi32(table, _mm256_srli_epi32(bits, 5));
+    __m256i bit = _mm256_srlv_epi32(word, _mm256_and_si256(bits, _mm256_set1_epi32(31)));
+    __m256i one = _mm256_set1_epi32(1);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(bit, one), one);
+}
+
+/* csg_hit_lane's classification (csg.c: rounds) for the rays of lanes,
+ * which csg8_spanned keeps, all at once. Their crossings are the spans'
+ * entries and exits after tmin; csg.c sorts them by t and walks them,
+ * and the hit is the first t after which the tree's answer differs from
+ * its answer at tmin. The set of leaves a ray is inside after t depends
+ * only on which crossings lie at or before t, so each crossing's t is
+ * tried as it stands, and the least t that changes the answer (below
+ * tmax) is the hit. Of the crossings at that t, the cause is csg.c's
+ * (cause): the first, in the order csg.c's stable sort keeps (by leaf,
+ * an entry before an exit), that makes the change, else the first. */
+static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *pre, int lanes,
+                                shape_hit *hit)
+{
+    const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
+    __m256 t0 = _mm256_loadu_ps(r->tmin), best = _mm256_loadu_ps(r->tmax);
+    __m256 tin[CSG_TABLE_LEAVES], tout[CSG_TABLE_LEAVES];
+    __m256i enters[CSG_TABLE_LEAVES], exits[CSG_TABLE_LEAVES], start[CSG_TABLE_LEAVES];
+    __m256i bits0 = zero;
+    int n = c->nleaves;
+    for (int i = 0; i < n; i++) {
+        const csg_leaf8 *l = &pre->leaf[i];
+        __m256i met = _mm256_castps_si256(packet_lanes(l->met & lanes));
+        tin[i] = _mm256_loadu_ps(l->tin), tout[i] = _mm256_loadu_ps(l->tout);
+        __m256i later = _mm256_castps_si256(_mm256_cmp_ps(tin[i], t0, _CMP_GT_OQ));
+        enters[i] = _mm256_and_si256(met, later);
+        exits[i] = _mm256_and_si256(
+            met, _mm256_castps_si256(_mm256_cmp_ps(tout[i], t0, _CMP_GT_OQ)));
+        start[i] = _mm256_andnot_si256(later, exits[i]); /* inside at tmin */
+        bits0 = _mm256_or_si256(bits0, _mm256_and_si256(start[i], _mm256_set1_epi32(1 << i)));
+    }
+    __m256i was = csg8_answer(c, bits0);
+    /* each crossing in csg.c's order (leaf j's entry, then its exit) */
+    for (int e = 0; e < 2 * n; e++) {
+        int j = e >> 1;
+        __m256i valid = e & 1 ? exits[j] : enters[j];
+        if (_mm256_testz_si256(valid, valid))
+            continue;
+        __m256 t = e & 1 ? tout[j] : tin[j];
+        __m256i bits = zero;
+        for (int i = 0; i < n; i++) {
+            __m256i in = _mm256_blendv_epi8(
+                start[i], ones,
+                _mm256_and_si256(enters[i],
+                                 _mm256_castps_si256(_mm256_cmp_ps(tin[i], t, _CMP_LE_OQ))));
+            in = _mm256_andnot_si256(
+                _mm256_and_si256(exits[i],
+                                 _mm256_castps_si256(_mm256_cmp_ps(tout[i], t, _CMP_LE_OQ))),
+                in);
+            bits = _mm256_or_si256(bits, _mm256_and_si256(in, _mm256_set1_epi32(1 << i)));
+        }
+        __m256i change = _mm256_andnot_si256(_mm256_cmpeq_epi32(csg8_answer(c, bits), was), valid);
+        change = _mm256_and_si256(
+            change, _mm256_castps_si256(_mm256_cmp_ps(t, best, _CMP_LT_OQ)));
+        best = _mm256_blendv_ps(best, t, _mm256_castsi256_ps(change));
+    }
+    int found = lanes & _mm256_movemask_ps(_mm256_cmp_ps(best, _mm256_loadu_ps(r->tmax),
+                                                         _CMP_LT_OQ));
+    if (!found)
+        return 0;
+    /* the cause: the crossings at the hit's t, in order */
+    __m256i first = _mm256_set1_epi32(-1), made = first, any = zero, makes = zero;
+    for (int e = 0; e < 2 * n; e++) {
+        int j = e >> 1;
+        __m256i valid = e & 1 ? exits[j] : enters[j];
+        __m256 t = e & 1 ? tout[j] : tin[j];
+        __m256i at = _mm256_and_si256(
+            valid, _mm256_castps_si256(_mm256_cmp_ps(t, best, _CMP_EQ_OQ)));
+        /* the answer after it is the one at tmin's opposite: it makes the
+         * change where entering (it enters, or leaves a flipped leaf) is
+         * becoming inside */
+        bool enters_solid = !(e & 1) != c->leaves[j].flip;
+        __m256i make = _mm256_and_si256(at, enters_solid ? _mm256_xor_si256(was, ones) : was);
+        __m256i code = _mm256_set1_epi32(e);
+        first = _mm256_blendv_epi8(first, code, _mm256_andnot_si256(any, at));
+        made = _mm256_blendv_epi8(made, code, _mm256_andnot_si256(makes, make));
+        any = _mm256_or_si256(any, at);
+        makes = _mm256_or_si256(makes, make);
+    }
+    int32_t cause[8];
+    _mm256_storeu_si256((__m256i *)cause, _mm256_blendv_epi8(first, made, makes));
+    float tb[8];
+    _mm256_storeu_ps(tb, best);
+    for (int m = found; m; m &= m - 1) {
+        int k = __builtin_ctz((unsigned)m), j = cause[k] >> 1;
+        const csg_leaf8 *l = &pre->leaf[j];
+        hit[k] = (shape_hit){0};
+        hit[k].t = tb[k];
+        hit[k].part = cause[k] & 1 ? l->pout[k] : l->pin[k];
+        hit[k].leaf = j;
+    }
+    return found;
+}
+
 /* csg_intersect against the rays of active: the spans at once, then the
- * classification of each ray that crosses a leaf. */
+ * classification of the rays whose crossings are all spans, at once, and
+ * of each other ray that crosses a leaf. */
 static inline int csg8_hit(const csg *c, const ray8 *r, int active, shape_hit *hit)
 {
     csg_spans8 pre;
-    int found = 0;
-    for (int m = csg8_spans(c, r, active, &pre); m; m &= m - 1) {
+    int crosses = csg8_spans(c, r, active, &pre), spanned = csg8_spanned(c, &pre, crosses);
+    int found = spanned ? csg8_classify(c, r, &pre, spanned, hit) : 0;
+    for (int m = spanned & ~found; m; m &= m - 1)
+        hit[__builtin_ctz((unsigned)m)] = (shape_hit){0};
+    for (int m = crosses & ~spanned; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m);
         ray one = ray8_get(r, k);
         hit[k] = (shape_hit){0};
