@@ -796,6 +796,40 @@ Test(csg, eight_rays_match_one_at_a_time_with_other_leaves)
     cr_assert_gt(tl.fallback, tl.hits / 4, "other leaves hit: %d of %d", tl.fallback, tl.hits);
 }
 
+/* Rays no render makes, taken at once as one at a time all the same: one
+ * starting before 0 (tmin -0.5), whose crossings at t = 0 are a box's
+ * exit at -0 and another's entry at +0, the second the one that changes
+ * the answer (the hit's t is its own +0); and one whose tmax is NaN,
+ * which one ray at a time never stops at. */
+Test(csg, eight_rays_match_one_at_a_time_at_signed_zeros_and_a_nan_tmax)
+{
+    csg c = {0};
+    shape x = shape_box(v3(0, -5, 0), v3(1, 5, 1)), y = shape_box(v3(-5, 0, 0), v3(5, 1, 1)),
+          z = shape_box(v3(10, 10, 10), v3(11, 11, 11));
+    int32_t xz[2] = {csg_add_leaf(&c, &x, NULL, 0), csg_add_leaf(&c, &y, NULL, 1)};
+    xz[1] = csg_add_leaf(&c, &z, NULL, 2);
+    int32_t u[2] = {1, csg_add_node(&c, CSG_INTERSECTION, xz, 2)}; /* y | (x & z) */
+    csg_add_node(&c, CSG_UNION, u, 2);
+    csg_finish(&c);
+    ray8 p;
+    for (int k = 0; k < 8; k++) {
+        ray r = ray_make(v3(0, 0, 0.5f), v3(-1, 1, 0), k < 4 ? INFINITY : NAN);
+        r.tmin = k < 4 ? -0.5f : 0.0f;
+        if (k >= 4)
+            r.o = v3(0.5f, -3, 0.5f), r.d = v3(0, 1, 0);
+        ray8_put(&p, k, &r);
+    }
+    csg8_tally tl = {0};
+    csg8_same(&c, &p, 0xff, &tl, "signed zeros and NaN");
+    ray one = ray8_get(&p, 0);
+    shape_hit h;
+    cr_assert(csg_intersect(&c, &one, &h));
+    cr_assert(h.t == 0.0f && !signbit(h.t) && h.leaf == 1, "t %a leaf %d", (double)h.t, h.leaf);
+    if (accel_isa_best() >= ACCEL_AVX2)
+        cr_assert_eq(tl.hits, 8 * csg8_kernels((csg8_hit_fn[2]){0}, (csg8_occluded_fn[2]){0}));
+    csg_free(&c);
+}
+
 /* A ray of a packet along a row of cubes laid along x up to the origin
  * (rows_tree): from before the row, or from inside one of its cubes,
  * nearly along +x; some through the middle of the faces (where a face's

@@ -237,11 +237,13 @@ static inline int csg8_spans(const csg *c, const ray8 *r, int active, csg_spans8
 
 /* The rays of m whose crossings are all in pre, as spans in order (tin <=
  * tout, no NaN), of a tree with a table (csg.h): every leaf their bounds
- * meet is spanned. csg8_classify takes them. */
-static inline int csg8_spanned(const csg *c, const csg_spans8 *pre, int m)
+ * meet is spanned; and whose tmax is a number. csg8_classify takes them. */
+static inline int csg8_spanned(const csg *c, const ray8 *r, const csg_spans8 *pre, int m)
 {
     if (c->nleaves > CSG_TABLE_LEAVES)
         return 0;
+    __m256 tmax = _mm256_loadu_ps(r->tmax);
+    m &= _mm256_movemask_ps(_mm256_cmp_ps(tmax, tmax, _CMP_ORD_Q));
     for (int i = 0; i < c->nleaves && m; i++) {
         const csg_leaf8 *l = &pre->leaf[i];
         m &= ~(l->bounded & ~l->spanned);
@@ -322,8 +324,10 @@ static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *p
                                                          _CMP_LT_OQ));
     if (!found)
         return 0;
-    /* the cause: the crossings at the hit's t, in order */
+    /* the cause: the crossings at the hit's t, in order, and its own t
+     * (-0 and +0 are one t) */
     __m256i first = _mm256_set1_epi32(-1), made = first, any = zero, makes = zero;
+    __m256 first_t = best, made_t = best;
     for (int e = 0; e < 2 * n; e++) {
         int j = e >> 1;
         __m256i valid = e & 1 ? exits[j] : enters[j];
@@ -336,15 +340,18 @@ static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *p
         bool enters_solid = !(e & 1) != c->leaves[j].flip;
         __m256i make = _mm256_and_si256(at, enters_solid ? _mm256_xor_si256(was, ones) : was);
         __m256i code = _mm256_set1_epi32(e);
-        first = _mm256_blendv_epi8(first, code, _mm256_andnot_si256(any, at));
-        made = _mm256_blendv_epi8(made, code, _mm256_andnot_si256(makes, make));
+        __m256i now_first = _mm256_andnot_si256(any, at), now_made = _mm256_andnot_si256(makes, make);
+        first = _mm256_blendv_epi8(first, code, now_first);
+        made = _mm256_blendv_epi8(made, code, now_made);
+        first_t = _mm256_blendv_ps(first_t, t, _mm256_castsi256_ps(now_first));
+        made_t = _mm256_blendv_ps(made_t, t, _mm256_castsi256_ps(now_made));
         any = _mm256_or_si256(any, at);
         makes = _mm256_or_si256(makes, make);
     }
     int32_t cause[8];
     _mm256_storeu_si256((__m256i *)cause, _mm256_blendv_epi8(first, made, makes));
     float tb[8];
-    _mm256_storeu_ps(tb, best);
+    _mm256_storeu_ps(tb, _mm256_blendv_ps(first_t, made_t, _mm256_castsi256_ps(makes)));
     for (int m = found; m; m &= m - 1) {
         int k = __builtin_ctz((unsigned)m), j = cause[k] >> 1;
         const csg_leaf8 *l = &pre->leaf[j];
@@ -362,7 +369,7 @@ static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *p
 static inline int csg8_hit(const csg *c, const ray8 *r, int active, shape_hit *hit)
 {
     csg_spans8 pre;
-    int crosses = csg8_spans(c, r, active, &pre), spanned = csg8_spanned(c, &pre, crosses);
+    int crosses = csg8_spans(c, r, active, &pre), spanned = csg8_spanned(c, r, &pre, crosses);
     int found = spanned ? csg8_classify(c, r, &pre, spanned, hit) : 0;
     for (int m = spanned & ~found; m; m &= m - 1)
         hit[__builtin_ctz((unsigned)m)] = (shape_hit){0};
