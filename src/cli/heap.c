@@ -69,7 +69,7 @@ bool heap_policy_applies(void)
 }
 
 #if defined(HEAP_POLICY)
-enum { ROOM_PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 2 };
+enum { ROOM_PIECES = (int)(HEAP_ROOM_MAX / HEAP_PIECE) + 3 };
 
 /* The room's pages still to be mapped, piece by piece, and the thread
  * mapping them while the scene loads. */
@@ -110,7 +110,7 @@ static void *map_pieces(void *unused)
  * whole 4 KiB page to its last (the kernel puts whole huge pages where
  * they fit, small ones at the ends; the first piece from its first huge
  * page), and the first n bytes' pages are then mapped, after the spare's
- * spare_bytes: on a thread of their own beside
+ * spare_bytes and before film's film_bytes: on a thread of their own beside
  * the load (one thread more than -t asks for, for that long) unless the
  * process may use only one CPU (-t 1, or one in its affinity mask), so
  * that the loader, which carves the room from its low end up, meanwhile
@@ -120,7 +120,8 @@ static void *map_pieces(void *unused)
  * a virtual machine whose host has taken its memory back, 1-2 ms a MiB),
  * the rest of the room is left to be mapped if and when it is touched,
  * instead of the render waiting for all of it. */
-static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, int threads)
+static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, char *film,
+                     size_t film_bytes, int threads)
 {
     const uintptr_t page = 4096;
     char *piece[ROOM_PIECES];
@@ -153,6 +154,10 @@ static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, int
                 room.bytes[room.n++] = ahead;
             }
         }
+    }
+    if (film && film_bytes) { /* last: what the load leaves the film's clearing */
+        room.at[room.n] = film;
+        room.bytes[room.n++] = film_bytes;
     }
     while (k-- > 0)
         free(piece[k]);
@@ -211,12 +216,15 @@ void heap_ready(const char *path, int threads, size_t film_bytes)
     size_t room_bytes = capped(bytes, HEAP_ROOM_PER_BYTE);
     room_bytes = room_bytes < least ? 0 : room_bytes;
     /* the spare holds the parse tree, then the film: whichever is
-     * bigger. The tree's share is mapped while the scene loads; the rest
-     * is mapped by the film's clearing, on the render's threads (mapped
-     * here, beside a load of a few ms, it held the kernel's lock on the
-     * process's mappings for 0.1-4 ms a huge page while the loader's
-     * threads started and its blocks were marked: on two threads the
-     * built-in scene's load took 5.4 ms against 3.6 on one). The spare
+     * bigger. The tree's share is mapped while the scene loads, then the
+     * room, then the film's share beyond the tree's, as far as the load
+     * leaves time. Without a tree (a small file, or the built-in scene)
+     * the film's share is mapped by the film's clearing, on the render's
+     * threads (mapped here, beside a load of a few ms, it held the
+     * kernel's lock on the process's mappings for 0.1-4 ms a huge page
+     * while the loader's threads started and its blocks were marked: on
+     * two threads the built-in scene's load took 5.4 ms against 3.6 on
+     * one). The spare
      * stays where it is during the load (the tree is sized from the same
      * file's length; should the file have grown since, a spare moved to
      * grow has its old range mapped for nothing: mapping ahead never
@@ -224,7 +232,10 @@ void heap_ready(const char *path, int threads, size_t film_bytes)
     size_t tree_bytes = capped(bytes, HEAP_SPARE_PER_BYTE);
     size_t spare_bytes = tree_bytes > film_bytes ? tree_bytes : capped(film_bytes, 1);
     char *spare = spare_bytes >= least ? glint_memory_spare(spare_bytes) : NULL;
-    map_room(room_bytes, HEAP_HUGE_LEAST, tree_bytes >= least ? spare : NULL, tree_bytes, threads);
+    bool tree = spare && tree_bytes >= least;
+    map_room(room_bytes, HEAP_HUGE_LEAST, tree ? spare : NULL, tree_bytes,
+             tree && spare_bytes > tree_bytes ? spare + tree_bytes : NULL, spare_bytes - tree_bytes,
+             threads);
 #else
     (void)path, (void)threads, (void)film_bytes;
 #endif

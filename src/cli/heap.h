@@ -22,9 +22,12 @@
  *   the main heap, six times the file's size, for the scene itself. Both,
  *   at most 256 MiB each, are mapped (in huge pages where the kernel
  *   offers them) on a thread of its own while the scene loads: the
- *   loader's blocks then land on mapped pages. The film's share of the
- *   spare beyond the tree's is left to the film's clearing, which maps
- *   it on the render's threads;
+ *   loader's blocks then land on mapped pages. Where the spare holds a
+ *   tree (a scene file of some 700 KB or more, whose load takes long
+ *   enough), the film's share of it beyond the tree's is mapped last, as
+ *   far as the load leaves time (row 8 of bench/README.md: the film's
+ *   clearing, on the render's threads, mapped 13 MiB of fresh pages);
+ *   else it is left to that clearing;
  * - however small the scene file, or with none (the built-in scene), 32
  *   MiB of that room (less what lies before its first huge page, which
  *   a block kept untouched takes) is marked for huge pages, though only
