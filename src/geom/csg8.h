@@ -265,73 +265,27 @@ static inline __m256i csg8_answer(const csg *c, __m256i bits)
     return _mm256_cmpeq_epi32(_mm256_and_si256(bit, one), one);
 }
 
-/* csg_hit_lane's classification (csg.c: rounds) for the rays of lanes,
- * which csg8_spanned keeps, all at once. Their crossings are the spans'
- * entries and exits after tmin; csg.c sorts them by t and walks them,
- * and the hit is the first t after which the tree's answer differs from
- * its answer at tmin. The set of leaves a ray is inside after t depends
- * only on which crossings lie at or before t, so each crossing's t is
- * tried as it stands, and the least t that changes the answer (below
- * tmax) is the hit. Of the crossings at that t, the cause is csg.c's
- * (cause): the first, in the order csg.c's stable sort keeps (by leaf,
- * an entry before an exit), that makes the change, else the first. */
-static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *pre, int lanes,
-                                shape_hit *hit)
-{
-    const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
-    __m256 t0 = _mm256_loadu_ps(r->tmin), best = _mm256_loadu_ps(r->tmax);
+/* The crossings of the rays of csg8_classify's lanes, leaf by leaf: the
+ * spans' entries (valid in enters, after tmin) and exits (in exits), and
+ * the rays inside each leaf at tmin (start). */
+typedef struct csg8_crossings {
     __m256 tin[CSG_TABLE_LEAVES], tout[CSG_TABLE_LEAVES];
     __m256i enters[CSG_TABLE_LEAVES], exits[CSG_TABLE_LEAVES], start[CSG_TABLE_LEAVES];
-    __m256i bits0 = zero;
-    int n = c->nleaves;
-    for (int i = 0; i < n; i++) {
-        const csg_leaf8 *l = &pre->leaf[i];
-        __m256i met = _mm256_castps_si256(packet_lanes(l->met & lanes));
-        tin[i] = _mm256_loadu_ps(l->tin), tout[i] = _mm256_loadu_ps(l->tout);
-        __m256i later = _mm256_castps_si256(_mm256_cmp_ps(tin[i], t0, _CMP_GT_OQ));
-        enters[i] = _mm256_and_si256(met, later);
-        exits[i] = _mm256_and_si256(
-            met, _mm256_castps_si256(_mm256_cmp_ps(tout[i], t0, _CMP_GT_OQ)));
-        start[i] = _mm256_andnot_si256(later, exits[i]); /* inside at tmin */
-        bits0 = _mm256_or_si256(bits0, _mm256_and_si256(start[i], _mm256_set1_epi32(1 << i)));
-    }
-    __m256i was = csg8_answer(c, bits0);
-    /* each crossing in csg.c's order (leaf j's entry, then its exit) */
-    for (int e = 0; e < 2 * n; e++) {
+} csg8_crossings;
+
+/* Of the crossings at the hits' t (best) on the rays of found, the cause
+ * csg.c picks (cause, event_hit), each ray's hit made from it. was: the
+ * tree's answer at tmin, all-ones lanes inside. */
+static inline void csg8_cause(const csg *c, const csg_spans8 *pre, const csg8_crossings *x,
+                              __m256 best, __m256i was, int found, shape_hit *hit)
+{
+    const __m256i ones = _mm256_set1_epi32(-1);
+    __m256i first = ones, made = ones, any = _mm256_setzero_si256(), makes = any;
+    __m256 first_t = best, made_t = best; /* the cause's own t: -0 and +0 are one t */
+    for (int e = 0; e < 2 * c->nleaves; e++) {
         int j = e >> 1;
-        __m256i valid = e & 1 ? exits[j] : enters[j];
-        if (_mm256_testz_si256(valid, valid))
-            continue;
-        __m256 t = e & 1 ? tout[j] : tin[j];
-        __m256i bits = zero;
-        for (int i = 0; i < n; i++) {
-            __m256i in = _mm256_blendv_epi8(
-                start[i], ones,
-                _mm256_and_si256(enters[i],
-                                 _mm256_castps_si256(_mm256_cmp_ps(tin[i], t, _CMP_LE_OQ))));
-            in = _mm256_andnot_si256(
-                _mm256_and_si256(exits[i],
-                                 _mm256_castps_si256(_mm256_cmp_ps(tout[i], t, _CMP_LE_OQ))),
-                in);
-            bits = _mm256_or_si256(bits, _mm256_and_si256(in, _mm256_set1_epi32(1 << i)));
-        }
-        __m256i change = _mm256_andnot_si256(_mm256_cmpeq_epi32(csg8_answer(c, bits), was), valid);
-        change = _mm256_and_si256(
-            change, _mm256_castps_si256(_mm256_cmp_ps(t, best, _CMP_LT_OQ)));
-        best = _mm256_blendv_ps(best, t, _mm256_castsi256_ps(change));
-    }
-    int found = lanes & _mm256_movemask_ps(_mm256_cmp_ps(best, _mm256_loadu_ps(r->tmax),
-                                                         _CMP_LT_OQ));
-    if (!found)
-        return 0;
-    /* the cause: the crossings at the hit's t, in order, and its own t
-     * (-0 and +0 are one t) */
-    __m256i first = _mm256_set1_epi32(-1), made = first, any = zero, makes = zero;
-    __m256 first_t = best, made_t = best;
-    for (int e = 0; e < 2 * n; e++) {
-        int j = e >> 1;
-        __m256i valid = e & 1 ? exits[j] : enters[j];
-        __m256 t = e & 1 ? tout[j] : tin[j];
+        __m256i valid = e & 1 ? x->exits[j] : x->enters[j];
+        __m256 t = e & 1 ? x->tout[j] : x->tin[j];
         __m256i at = _mm256_and_si256(
             valid, _mm256_castps_si256(_mm256_cmp_ps(t, best, _CMP_EQ_OQ)));
         /* the answer after it is the one at tmin's opposite: it makes the
@@ -340,7 +294,8 @@ static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *p
         bool enters_solid = !(e & 1) != c->leaves[j].flip;
         __m256i make = _mm256_and_si256(at, enters_solid ? _mm256_xor_si256(was, ones) : was);
         __m256i code = _mm256_set1_epi32(e);
-        __m256i now_first = _mm256_andnot_si256(any, at), now_made = _mm256_andnot_si256(makes, make);
+        __m256i now_first = _mm256_andnot_si256(any, at);
+        __m256i now_made = _mm256_andnot_si256(makes, make);
         first = _mm256_blendv_epi8(first, code, now_first);
         made = _mm256_blendv_epi8(made, code, now_made);
         first_t = _mm256_blendv_ps(first_t, t, _mm256_castsi256_ps(now_first));
@@ -360,6 +315,64 @@ static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *p
         hit[k].part = cause[k] & 1 ? l->pout[k] : l->pin[k];
         hit[k].leaf = j;
     }
+}
+
+/* csg_hit_lane's classification (csg.c: rounds) for the rays of lanes,
+ * which csg8_spanned keeps, all at once. Their crossings are the spans'
+ * entries and exits after tmin; csg.c sorts them by t and walks them,
+ * and the hit is the first t after which the tree's answer differs from
+ * its answer at tmin. The set of leaves a ray is inside after t depends
+ * only on which crossings lie at or before t, so each crossing's t is
+ * tried as it stands, and the least t that changes the answer (below
+ * tmax) is the hit, with csg.c's cause (csg8_cause). */
+static inline int csg8_classify(const csg *c, const ray8 *r, const csg_spans8 *pre, int lanes,
+                                shape_hit *hit)
+{
+    const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
+    __m256 t0 = _mm256_loadu_ps(r->tmin), best = _mm256_loadu_ps(r->tmax);
+    csg8_crossings x;
+    __m256i bits0 = zero;
+    int n = c->nleaves;
+    for (int i = 0; i < n; i++) {
+        const csg_leaf8 *l = &pre->leaf[i];
+        __m256i met = _mm256_castps_si256(packet_lanes(l->met & lanes));
+        x.tin[i] = _mm256_loadu_ps(l->tin), x.tout[i] = _mm256_loadu_ps(l->tout);
+        __m256i later = _mm256_castps_si256(_mm256_cmp_ps(x.tin[i], t0, _CMP_GT_OQ));
+        x.enters[i] = _mm256_and_si256(met, later);
+        x.exits[i] = _mm256_and_si256(
+            met, _mm256_castps_si256(_mm256_cmp_ps(x.tout[i], t0, _CMP_GT_OQ)));
+        x.start[i] = _mm256_andnot_si256(later, x.exits[i]); /* inside at tmin */
+        bits0 = _mm256_or_si256(bits0, _mm256_and_si256(x.start[i], _mm256_set1_epi32(1 << i)));
+    }
+    __m256i was = csg8_answer(c, bits0);
+    /* each crossing in csg.c's order (leaf j's entry, then its exit) */
+    for (int e = 0; e < 2 * n; e++) {
+        int j = e >> 1;
+        __m256i valid = e & 1 ? x.exits[j] : x.enters[j];
+        if (_mm256_testz_si256(valid, valid))
+            continue;
+        __m256 t = e & 1 ? x.tout[j] : x.tin[j];
+        __m256i bits = zero;
+        for (int i = 0; i < n; i++) {
+            __m256i in = _mm256_blendv_epi8(
+                x.start[i], ones,
+                _mm256_and_si256(x.enters[i],
+                                 _mm256_castps_si256(_mm256_cmp_ps(x.tin[i], t, _CMP_LE_OQ))));
+            in = _mm256_andnot_si256(
+                _mm256_and_si256(x.exits[i],
+                                 _mm256_castps_si256(_mm256_cmp_ps(x.tout[i], t, _CMP_LE_OQ))),
+                in);
+            bits = _mm256_or_si256(bits, _mm256_and_si256(in, _mm256_set1_epi32(1 << i)));
+        }
+        __m256i change = _mm256_andnot_si256(_mm256_cmpeq_epi32(csg8_answer(c, bits), was), valid);
+        change = _mm256_and_si256(
+            change, _mm256_castps_si256(_mm256_cmp_ps(t, best, _CMP_LT_OQ)));
+        best = _mm256_blendv_ps(best, t, _mm256_castsi256_ps(change));
+    }
+    int found = lanes & _mm256_movemask_ps(_mm256_cmp_ps(best, _mm256_loadu_ps(r->tmax),
+                                                         _CMP_LT_OQ));
+    if (found)
+        csg8_cause(c, pre, &x, best, was, found, hit);
     return found;
 }
 
