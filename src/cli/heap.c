@@ -104,22 +104,23 @@ static void *map_pieces(void *unused)
 
 /* Takes n bytes, and at least `huge`, from the heap in pieces and gives
  * them back: the heap keeps them. Taken in pieces below HEAP_MMAP_FROM,
- * which would otherwise each be a mapping of their own and gone again
- * when freed; side by side at the top of the heap, they join again into
- * one free block. Each piece is marked for huge pages from its first
- * whole 4 KiB page to its last (the kernel puts whole huge pages where
- * they fit, small ones at the ends; the first piece from its first huge
- * page), and the first n bytes' pages are then mapped, after the spare's
- * spare_bytes and before film's film_bytes: on a thread of their own beside
- * the load (one thread more than -t asks for, for that long) unless the
- * process may use only one CPU (-t 1, or one in its affinity mask), so
- * that the loader, which carves the room from its low end up, meanwhile
- * parses (the mapper, also working upwards, keeps ahead of it: a page the
- * loader reaches first it maps itself, once). The mapper stops once the
- * load is done (heap_settle): where mapping runs slower than the load (on
- * a virtual machine whose host has taken its memory back, 1-2 ms a MiB),
- * the rest of the room is left to be mapped if and when it is touched,
- * instead of the render waiting for all of it. */
+ * which would otherwise each be a mapping of their own and gone again when
+ * freed; side by side at the top of the heap, they join again into one free
+ * block. Each piece is marked for huge pages from its first whole 4 KiB
+ * page to its last (the kernel puts whole huge pages where they fit, small
+ * ones at the ends; the first piece from its first huge page), and the
+ * first n bytes' pages are then mapped, after the spare's spare_bytes and
+ * before film_bytes at film (the film's share of the spare beyond the
+ * tree's): on a thread of their own beside the load (one thread more than
+ * -t asks for, for that long) unless the process may use only one CPU (-t
+ * 1, or one in its affinity mask), so that the loader, which carves the
+ * room from its low end up, meanwhile parses (the mapper, also working
+ * upwards, keeps ahead of it: a page the loader reaches first it maps
+ * itself, once). The mapper stops once the load is done (heap_settle):
+ * where mapping runs slower than the load (on a virtual machine whose host
+ * has taken its memory back, 1-2 ms a MiB), the rest of the room is left to
+ * be mapped if and when it is touched, instead of the render waiting for
+ * all of it. */
 static void map_room(size_t n, size_t huge, char *spare, size_t spare_bytes, char *film,
                      size_t film_bytes, int threads)
 {
@@ -215,16 +216,15 @@ void heap_ready(const char *path, int threads, size_t film_bytes)
     const size_t least = (size_t)4 << 20;
     size_t room_bytes = capped(bytes, HEAP_ROOM_PER_BYTE);
     room_bytes = room_bytes < least ? 0 : room_bytes;
-    /* the spare holds the parse tree, then the film: whichever is
-     * bigger. The tree's share is mapped while the scene loads, then the
-     * room, then the film's share beyond the tree's, as far as the load
-     * leaves time. Without a tree (a small file, or the built-in scene)
-     * the film's share is mapped by the film's clearing, on the render's
-     * threads (mapped here, beside a load of a few ms, it held the
-     * kernel's lock on the process's mappings for 0.1-4 ms a huge page
-     * while the loader's threads started and its blocks were marked: on
-     * two threads the built-in scene's load took 5.4 ms against 3.6 on
-     * one). The spare
+    /* the spare holds the parse tree, then the film: whichever is bigger.
+     * The tree's share is mapped while the scene loads, then the room, then
+     * the film's share beyond the tree's, as far as the load leaves time.
+     * Without a tree (a small file, or the built-in scene) the film's share
+     * is mapped by the film's clearing, on the render's threads (mapped
+     * here, beside a load of a few ms, it held the kernel's lock on the
+     * process's mappings for 0.1-4 ms a huge page while the loader's
+     * threads started and its blocks were marked: on two threads the
+     * built-in scene's load took 5.4 ms against 3.6 on one). The spare
      * stays where it is during the load (the tree is sized from the same
      * file's length; should the file have grown since, a spare moved to
      * grow has its old range mapped for nothing: mapping ahead never
