@@ -24,5 +24,5 @@ int glint_scene_source_count(const glint_scene *s) { return s ? s->nsources : 0;
 
 const char *glint_scene_source(const glint_scene *s, int i)
 {
-    return s && i >= 0 && i < s->nsources ? s->sources[i] : NULL;
+    return s && i >= 0 && i < s->nsources ? s->sources[i].path : NULL;
 }

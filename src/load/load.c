@@ -329,10 +329,14 @@ static glint_rc load(const char *text, size_t len, char *data, const char *name,
         goto out;
     }
     L.s->threads = threads;
-    if (L.reader == scene_read_file && scene_add_source(L.s, name) < 0) {
-        free(data);
-        rc = err_nomem(err);
-        goto out;
+    if (L.reader == scene_read_file) {
+        int source = scene_add_source(L.s, name);
+        if (source < 0) {
+            free(data);
+            rc = err_nomem(err);
+            goto out;
+        }
+        scene_source_read(L.s, source, text, len);
     }
     L.settings = scene_settings(L.s);
     L.camera = scene_camera(L.s);

@@ -119,11 +119,15 @@ glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char
 {
     glint_error rerr = {0};
     *data = NULL;
-    if (L->reader == scene_read_file && scene_add_source(L->s, resolved) < 0)
+    int source = L->reader == scene_read_file ? scene_add_source(L->s, resolved) : 0;
+    if (source < 0)
         return err_nomem(L->err);
     glint_rc rc = L->reader(L->user, resolved, data, size, &rerr);
-    if (rc == GLINT_OK && *size <= LOAD_MAX_FILE_BYTES)
+    if (rc == GLINT_OK && *size <= LOAD_MAX_FILE_BYTES) {
+        if (L->reader == scene_read_file)
+            scene_source_read(L->s, source, *data, *size);
         return GLINT_OK;
+    }
     if (rc == GLINT_OK) {
         free(*data);
         *data = NULL;

@@ -22,7 +22,9 @@
 
 #include "glint.h"
 
-#define RESUME_VERSION 3 /* 1: the fingerprint hashed a byte at a time; 2: in one lane */
+/* 1: the fingerprint hashed a byte at a time; 2: in one lane; 3: the
+ * scene's files chained into it as read again at the render */
+#define RESUME_VERSION 4
 #define RESUME_MAX_NOTE (1u << 20)
 
 struct glint_scene;

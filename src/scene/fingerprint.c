@@ -91,17 +91,37 @@ static uint64_t hash_data(uint64_t h, const scene *s)
     return h;
 }
 
-/* The bytes of each file the scene was read from, as they are now. */
+uint64_t fingerprint_file_bytes(const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    uint64_t h = FINGERPRINT_SEED;
+    for (size_t at = 0; at < n; at += FINGERPRINT_FILE_PIECE)
+        h = fingerprint_bytes(h, p + at,
+                              n - at < FINGERPRINT_FILE_PIECE ? n - at : FINGERPRINT_FILE_PIECE);
+    return h;
+}
+
+/* The bytes of each file the scene was read from: as the front end read
+ * them, or for a file it did not read itself (a mesh the importer opens),
+ * as they are now. */
 static uint64_t hash_sources(uint64_t h, const scene *s)
 {
     for (int i = 0; i < s->nsources; i++) {
-        FILE *f = fopen(s->sources[i], "rb");
-        h = hash_int(h, f != NULL);
-        unsigned char buf[1 << 14];
-        for (size_t n; f && (n = fread(buf, 1, sizeof buf, f)) > 0;)
-            h = fingerprint_bytes(h, buf, n);
-        if (f)
-            fclose(f);
+        const scene_source *src = &s->sources[i];
+        uint64_t bytes = src->bytes;
+        bool there = src->read;
+        if (!there) {
+            FILE *f = fopen(src->path, "rb");
+            unsigned char buf[FINGERPRINT_FILE_PIECE];
+            bytes = FINGERPRINT_SEED;
+            for (size_t n; f && (n = fread(buf, 1, sizeof buf, f)) > 0;)
+                bytes = fingerprint_bytes(bytes, buf, n);
+            there = f != NULL;
+            if (f)
+                fclose(f);
+        }
+        h = hash_int(h, there);
+        h = hash_int(h, (int64_t)bytes);
     }
     return h;
 }

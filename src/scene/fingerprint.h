@@ -29,6 +29,10 @@ struct glint_scene;
 #define FINGERPRINT_LANES_FROM 256
 
 uint64_t fingerprint_bytes(uint64_t h, const void *data, size_t n);
+/* A file's n bytes, FINGERPRINT_FILE_PIECE at a time from FINGERPRINT_SEED,
+ * as scene_fingerprint hashes a file it reads (scene.h: scene_source). */
+#define FINGERPRINT_FILE_PIECE ((size_t)1 << 14)
+uint64_t fingerprint_file_bytes(const void *data, size_t n);
 
 uint64_t scene_fingerprint(const struct glint_scene *s, const glint_settings *settings);
 

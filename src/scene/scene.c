@@ -9,6 +9,7 @@
 #include "core/array.h"
 #include "core/error.h"
 #include "geom/shape_bounds.h"
+#include "scene/fingerprint.h"
 #include "scene/settings.h"
 #include "scene_surface.h"
 
@@ -53,7 +54,7 @@ void scene_free(scene *s)
     }
     free(s->meshes);
     for (int i = 0; i < s->nsources; i++)
-        free(s->sources[i]);
+        free(s->sources[i].path);
     free(s->sources);
     anim_free(&s->anim);
     for (int i = 0; i < s->npolyhedra; i++) {
@@ -85,7 +86,7 @@ int scene_add_xform(scene *s, const xform *x) { PUSH(s->xforms, s->nxforms, s->c
 int scene_add_source(scene *s, const char *path)
 {
     for (int i = 0; i < s->nsources; i++)
-        if (strcmp(s->sources[i], path) == 0)
+        if (strcmp(s->sources[i].path, path) == 0)
             return i;
     char *copy = strdup(path);
     if (!copy)
@@ -94,8 +95,14 @@ int scene_add_source(scene *s, const char *path)
     if (i < 0)
         free(copy);
     else
-        s->sources[i] = copy;
+        s->sources[i] = (scene_source){copy, 0, false};
     return i;
+}
+
+void scene_source_read(scene *s, int i, const void *data, size_t n)
+{
+    s->sources[i].bytes = fingerprint_file_bytes(data, n);
+    s->sources[i].read = true;
 }
 
 int scene_add_image(scene *s, image *img)

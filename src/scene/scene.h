@@ -36,6 +36,15 @@ typedef struct object {
 
 #define SCENE_FEW_CROSSED 8
 
+/* A file the scene was read from, and when the front end read its bytes
+ * itself (scene_source_read), their fingerprint (fingerprint_file_bytes):
+ * what was rendered, which scene_fingerprint then need not read again. */
+typedef struct scene_source {
+    char *path;
+    uint64_t bytes;
+    bool read;
+} scene_source;
+
 struct glint_scene {
     object *objects;
     int nobjects, cap_objects;
@@ -79,7 +88,7 @@ struct glint_scene {
     bool flat;         /* the BVH is one leaf or empty: rays test objects in turn */
     double build_seconds; /* wall time of the last scene_build */
     int threads; /* for scene_build, mesh imports and texture decoding: 0 one per CPU (cpus.h) */
-    char **sources;       /* files the scene was read from, each once (front ends add them) */
+    scene_source *sources; /* files the scene was read from, each once (front ends add them) */
     int nsources, cap_sources;
 
     anim anim;             /* tracks, channels and motions; frames and fps */
@@ -147,8 +156,12 @@ int scene_mesh_count(const scene *s);
 const struct mesh *scene_mesh(const scene *s, int index);
 
 /* Records a file the scene was read from (a scene file, an include, a
- * texture, a mesh), once however often it is added; -1 when out of memory. */
+ * texture, a mesh), once however often it is added: its index, or -1 when
+ * out of memory. */
 int scene_add_source(scene *s, const char *path);
+/* The bytes source i was read as (the last read, when it was read more
+ * than once). A source without them is read again by scene_fingerprint. */
+void scene_source_read(scene *s, int i, const void *data, size_t n);
 
 /* Checks indices and computes derived data; call after the last add. A
  * moving object's bounds hold it over the whole shutter interval. */
