@@ -297,8 +297,13 @@ static int round_trip_pixels(int w, int h, int channels, int bits, void *px)
             first = b;
             continue;
         }
-        cr_assert(b.len == first.len && memcmp(b.data, first.data, b.len) == 0,
-                  "%dx%d: %d threads wrote other bytes than 1", w, h, threads[t]);
+        size_t at = 0;
+        while (at < b.len && at < first.len && b.data[at] == first.data[at])
+            at++;
+        cr_assert(b.len == first.len && at == b.len,
+                  "%dx%d, %d channels of %d bits: %d threads wrote other bytes than 1 (%zu "
+                  "against %zu bytes, the first difference at byte %zu)",
+                  w, h, channels, bits, threads[t], b.len, first.len, at);
         bytes_free(&b);
     }
     struct spng_ihdr ih;
