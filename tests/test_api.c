@@ -169,15 +169,6 @@ static glint_scene *scene_in_code(void)
     return s;
 }
 
-static void write_file(const char *name, const char *text)
-{
-    char path[128];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(text, f);
-    fclose(f);
-}
 
 static glint_scene *scene_from_yaml(void)
 {
@@ -191,8 +182,8 @@ static glint_scene *scene_from_yaml(void)
 Test(api, scene_in_code_renders_as_the_same_scene_in_yaml)
 {
     tmpdir_make("api");
-    write_file("scene.yaml", scene_yaml);
-    write_file("tetra.obj", tetra_obj);
+    tmpdir_write("scene.yaml", scene_yaml, NULL, 0);
+    tmpdir_write("tetra.obj", tetra_obj, NULL, 0);
     glint_scene *code = scene_in_code(), *yaml = scene_from_yaml();
     tmpdir_remove();
     glint_film a = {0}, b = {0};

@@ -15,20 +15,10 @@
 
 static glint_error err; /* the last call's, for OK and REFUSED */
 
-/* Writes text to name in dir; path gets where (128 bytes). */
-static void write_file(const char *name, const char *text, char *path)
-{
-    snprintf(path, 128, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
 static glint_scene *from_yaml(const char *text)
 {
     char path[128];
-    write_file("scene.yaml", text, path);
+    tmpdir_write("scene.yaml", text, path, sizeof path);
     glint_scene *s = NULL;
     OK(glint_scene_load(path, &s, &err));
     return s;
@@ -194,7 +184,7 @@ Test(api_build, mesh_smoothing_angle_as_in_yaml)
 {
     tmpdir_make("api-mesh");
     char path[128];
-    write_file("oct.obj", octahedron_obj, path);
+    tmpdir_write("oct.obj", octahedron_obj, path, sizeof path);
     glint_camera cam = {{0, 1, 6}, {0, 0, 0}, {0, 1, 0}, 38, 0, 0, GLINT_PROJECTION_PERSPECTIVE, 0, 0};
     glint_scene *s = new_scene(&cam, (double[3]){3, 4, 5});
     OK(glint_scene_set_background(s, (double[3]){0.2, 0.2, 0.2}, &err));
@@ -525,10 +515,11 @@ Test(api_build, csg_out_of_its_rules_is_refused)
      * its own materials. */
     tmpdir_make("api-csg");
     char open_path[128], closed_path[128];
-    write_file("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", open_path);
-    write_file("closed.obj",
-               "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
-               closed_path);
+    tmpdir_write("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", open_path,
+                 sizeof open_path);
+    tmpdir_write("closed.obj",
+                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+                 closed_path, sizeof closed_path);
     int open_mesh = -1, closed_mesh = -1;
     OK(glint_scene_add_mesh(s, open_path, &open_mesh, &err));
     OK(glint_scene_add_mesh_smoothed(s, closed_path, 0, &closed_mesh, &err));

@@ -180,16 +180,6 @@ Test(resume, fingerprint_follows_every_part_of_the_scene)
     glint_scene_free(b);
 }
 
-/* Writes text to dir/name; its path into path. */
-static void put_file(const char *name, const char *text, char *path, size_t room)
-{
-    snprintf(path, room, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    cr_assert_not_null(f);
-    cr_assert_eq(fputs(text, f) >= 0, true);
-    fclose(f);
-}
-
 /* The scene file's and an included file's bytes are in the fingerprint as
  * they were loaded: a comment edited in either makes another fingerprint
  * for the scene loaded again, and none for the scene loaded before (which
@@ -201,8 +191,8 @@ Test(resume, fingerprint_follows_the_files_as_loaded)
                              "objects: [{type: sphere, center: [0, 0, 0], radius: 1}]\n"
                              "include: lights.yaml\n";
     char lights[512], scene[512];
-    put_file("lights.yaml", inc, lights, sizeof lights);
-    put_file("scene.yaml", top, scene, sizeof scene);
+    tmpdir_write("lights.yaml", inc, lights, sizeof lights);
+    tmpdir_write("scene.yaml", top, scene, sizeof scene);
     glint_scene *a, *b, *c;
     OK(glint_scene_load(scene, &a, &err));
     cr_assert_eq(glint_scene_source_count(a), 2);
@@ -211,14 +201,14 @@ Test(resume, fingerprint_follows_the_files_as_loaded)
     OK(glint_fingerprint(a, &st, &fa, &err));
     char edited[512];
     snprintf(edited, sizeof edited, "%s# edited\n", inc);
-    put_file("lights.yaml", edited, lights, sizeof lights);
+    tmpdir_write("lights.yaml", edited, lights, sizeof lights);
     OK(glint_fingerprint(a, &st, &again, &err));
     cr_expect_eq(again, fa, "the loaded scene's fingerprint keeps the bytes it was read from");
     OK(glint_scene_load(scene, &b, &err));
     OK(glint_fingerprint(b, &st, &fb, &err));
     cr_expect_neq(fb, fa, "an included file edited");
     snprintf(edited, sizeof edited, "%s# edited\n", top);
-    put_file("scene.yaml", edited, scene, sizeof scene);
+    tmpdir_write("scene.yaml", edited, scene, sizeof scene);
     OK(glint_scene_load(scene, &c, &err));
     OK(glint_fingerprint(c, &st, &fc, &err));
     cr_expect_neq(fc, fb, "the scene file edited");

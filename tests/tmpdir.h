@@ -36,4 +36,17 @@ static void tmpdir_remove(void)
     rmdir(dir);
 }
 
+/* Writes text to dir/name; where, into path (room bytes) unless NULL. */
+static inline void tmpdir_write(const char *name, const char *text, char *path, size_t room)
+{
+    char own[512];
+    if (!path)
+        path = own, room = sizeof own;
+    snprintf(path, room, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f, "%s", path);
+    cr_assert_geq(fputs(text, f), 0, "%s", path);
+    fclose(f);
+}
+
 #endif

@@ -119,12 +119,12 @@ glint_rc load_named_file(loader *L, uint32_t at, const char *written, const char
 {
     glint_error rerr = {0};
     *data = NULL;
-    int source = L->reader == scene_read_file ? scene_add_source(L->s, resolved) : 0;
-    if (source < 0)
+    int source = -1; /* a file on disk: the scene's source */
+    if (L->reader == scene_read_file && (source = scene_add_source(L->s, resolved)) < 0)
         return err_nomem(L->err);
     glint_rc rc = L->reader(L->user, resolved, data, size, &rerr);
     if (rc == GLINT_OK && *size <= LOAD_MAX_FILE_BYTES) {
-        if (L->reader == scene_read_file)
+        if (source >= 0)
             scene_source_read(L->s, source, *data, *size);
         return GLINT_OK;
     }
