@@ -208,6 +208,28 @@ static glint_rc check_existing(const char *shown, const char *path, struct stat 
     return GLINT_OK;
 }
 
+/* The file at path's pages dropped from the page cache (advice only: it
+ * stays as it is on disk, and a dirty page is written, not dropped). The
+ * file is about to be replaced; its pages, freed now rather than at the
+ * rename, are at hand for the new file's. On a virtual machine whose host
+ * takes back the memory a guest leaves free, a page not touched for a
+ * while costs a fault in the host: bench row 8's 2.3 MB PNG, written over
+ * the last run's right after POV-Ray, took 0.6-4.1 ms to write and 1.7-2.4
+ * to rename into place, against 0.5 and 1.3 with its pages dropped first
+ * (which takes 0.3-0.4 ms; 5 runs each). */
+static void drop_cached(const char *path)
+{
+#if defined(POSIX_FADV_DONTNEED)
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0)
+        return;
+    (void)posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
+    close(fd);
+#else
+    (void)path;
+#endif
+}
+
 static glint_rc replace(const char *shown, const char *path, const struct iovec *iov, int n,
                         glint_error *err)
 {
@@ -219,6 +241,8 @@ static glint_rc replace(const char *shown, const char *path, const struct iovec 
     char *dir = folder_of(path), *tmp = NULL;
     if (!dir)
         return err_nomem(err);
+    if (exists && S_ISREG(old.st_mode))
+        drop_cached(path);
     /* a new file gets 0666 less the umask, as creat() would give it */
     sigset_t saved;
     hold_signals(&saved);
