@@ -169,7 +169,6 @@ static glint_scene *scene_in_code(void)
     return s;
 }
 
-
 static glint_scene *scene_from_yaml(void)
 {
     char path[128];

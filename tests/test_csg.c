@@ -806,9 +806,12 @@ Test(csg, eight_rays_match_one_at_a_time_at_signed_zeros_and_a_nan_tmax)
     csg c = {0};
     shape x = shape_box(v3(0, -5, 0), v3(1, 5, 1)), y = shape_box(v3(-5, 0, 0), v3(5, 1, 1)),
           z = shape_box(v3(10, 10, 10), v3(11, 11, 11));
-    int32_t xz[2] = {csg_add_leaf(&c, &x, NULL, 0), csg_add_leaf(&c, &y, NULL, 1)};
-    xz[1] = csg_add_leaf(&c, &z, NULL, 2);
-    int32_t u[2] = {1, csg_add_node(&c, CSG_INTERSECTION, xz, 2)}; /* y | (x & z) */
+    /* leaves 0, 1, 2 in that order (one call a statement: the calls in an
+     * initializer list may run in any order) */
+    int32_t lx = csg_add_leaf(&c, &x, NULL, 0), ly = csg_add_leaf(&c, &y, NULL, 1);
+    int32_t lz = csg_add_leaf(&c, &z, NULL, 2);
+    int32_t xz[2] = {lx, lz};
+    int32_t u[2] = {ly, csg_add_node(&c, CSG_INTERSECTION, xz, 2)}; /* y | (x & z) */
     csg_add_node(&c, CSG_UNION, u, 2);
     csg_finish(&c);
     ray8 p;
