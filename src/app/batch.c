@@ -77,8 +77,8 @@ typedef struct run {
  * written: the PNG writer's buffers then take the scene's memory, already
  * mapped, instead of fresh pages (on a virtual machine whose host takes
  * back the memory a guest leaves free, a fresh huge page costs 2-4 ms:
- * bench row 8's write phase took 16-18 ms right after POV-Ray, against
- * 17-21 with the scene kept). */
+ * bench row 8's write phase took 15-18 ms right after POV-Ray, median 16,
+ * against 15-30, median 20, with the scene kept). */
 static void release_scene(run *r)
 {
     glint_scene_describe(r->scene, &r->info, NULL);
